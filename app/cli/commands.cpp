@@ -1,0 +1,72 @@
+#include "commands.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "batch.h"
+#include "ray_gen.h"
+#include "rays_io.h"
+#include "registry.h"
+#include "stats_format.h"
+
+namespace cli {
+namespace {
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "accelviz-cli: %s\n", message.c_str());
+  return kExitBadInput;
+}
+
+/// Loads the scene and builds the structure; on error prints it and returns false.
+struct Built {
+  accel::Scene scene;
+  std::unique_ptr<accel::Structure> structure;
+  std::string params;
+};
+
+accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) {
+  accel::Kernel kernel;
+  if (!accel::parse_kernel(o.kernel, &kernel))
+    return accel::make_error("--kernel '" + o.kernel + "' is invalid (valid: watertight, moller, double)");
+  // Validate the structure name and parameters before the (possibly slow) scene load.
+  auto info = accel::find_structure(o.structure);
+  if (!info) return info.error();
+  auto params = accel::ParamSet::parse(info.value()->params, o.params, o.structure);
+  if (!params) return params.error();
+  auto scene = accel::load_scene(o.scene);
+  if (!scene) return scene.error();
+  auto built = std::make_unique<Built>();
+  built->scene = std::move(scene.value());
+  built->params = params.value().to_string();
+  built->structure = info.value()->create();
+  built->structure->set_kernel(kernel);
+  auto ok = built->structure->build(built->scene, params.value());
+  if (!ok) return ok.error();
+  return built;
+}
+
+}  // namespace
+
+int run_trace(const TraceOptions& o) {
+  auto built = load_and_build(o.build);
+  if (!built) return fail(built.error().message);
+  auto rays = accel::make_rays(o.rays, built.value()->scene);
+  if (!rays) return fail(rays.error().message);
+  const auto hits = accel::trace_all(*built.value()->structure, rays.value(), o.threads);
+  auto written = accel::write_hits_csv(o.out, hits);
+  if (!written) return fail(written.error().message);
+  return 0;
+}
+
+int run_stats(const StatsOptions& o) {
+  auto built = load_and_build(o.build);
+  if (!built) return fail(built.error().message);
+  const Built& b = *built.value();
+  const accel::BuildStats stats = b.structure->build_stats();
+  const std::string text = o.json ? stats_json(o.build.scene, o.build.structure, b.params, b.scene, stats)
+                                  : stats_text(o.build.scene, o.build.structure, b.params, b.scene, stats);
+  std::fputs(text.c_str(), stdout);
+  return 0;
+}
+
+}  // namespace cli

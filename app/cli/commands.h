@@ -1,0 +1,35 @@
+#pragma once
+// The subcommands of accelviz-cli. Each returns the process exit code: 0 on success,
+// 2 on bad input (with a one-line message on stderr), never a partial output file.
+#include <string>
+#include <vector>
+
+namespace cli {
+
+/// Options shared by the subcommands that build a structure.
+struct StructureOptions {
+  std::string scene;
+  std::string structure = "brute";
+  std::vector<std::string> params;
+  std::string kernel = "watertight";
+};
+
+struct TraceOptions {
+  StructureOptions build;
+  std::string rays;
+  std::string out;
+  int threads = 0;
+};
+
+struct StatsOptions {
+  StructureOptions build;
+  bool json = false;
+};
+
+int run_trace(const TraceOptions& options);
+int run_stats(const StatsOptions& options);
+
+/// Exit code for bad input.
+inline constexpr int kExitBadInput = 2;
+
+}  // namespace cli

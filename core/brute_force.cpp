@@ -1,0 +1,30 @@
+#include "brute_force.h"
+
+namespace accel {
+
+Result<bool> BruteForce::build_impl(const Scene& scene, const ParamSet&) {
+  scene_ = &scene;
+  stats_ = BuildStats{};
+  stats_.nodes = 1;
+  stats_.prims = scene.valid_prims().size();
+  stats_.prim_references = stats_.prims;
+  stats_.add_leaf(stats_.prims);
+  return true;
+}
+
+void BruteForce::for_each_node(const std::function<void(const NodeView&)>& fn) const { fn(node_view(0)); }
+
+NodeView BruteForce::node_view(NodeId id) const {
+  NodeView v;
+  v.id = id;
+  v.leaf = true;
+  v.prim_count = uint32_t(scene_ ? scene_->valid_prims().size() : 0);
+  if (scene_) v.box = scene_->bounds();
+  return v;
+}
+
+std::vector<uint32_t> BruteForce::node_prims(NodeId) const {
+  return scene_ ? scene_->valid_prims() : std::vector<uint32_t>{};
+}
+
+}  // namespace accel

@@ -1,0 +1,164 @@
+// Procedural scenes: they need no file, so the viewer's default scene and the tests work
+// on a fresh clone. Each is deterministic for a given seed (random.h).
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <utility>
+
+#include "random.h"
+#include "scene.h"
+
+namespace accel {
+namespace {
+
+/// Accumulates positions and triangles, so each builder below reads as a list of shapes.
+struct MeshBuilder {
+  std::vector<Vec3> positions;
+  std::vector<UVec3> triangles;
+
+  uint32_t vertex(const Vec3& p) { positions.push_back(p); return uint32_t(positions.size() - 1); }
+  void triangle(uint32_t a, uint32_t b, uint32_t c) { triangles.emplace_back(a, b, c); }
+  /// Quad a,b,c,d (counter-clockwise) as two triangles.
+  void quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const uint32_t i = vertex(a), j = vertex(b), k = vertex(c), l = vertex(d);
+    triangle(i, j, k);
+    triangle(i, k, l);
+  }
+  /// Axis-aligned box with outward faces.
+  void box(const Vec3& lo, const Vec3& hi) {
+    const Vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    quad(p[0], p[3], p[2], p[1]);  // -z
+    quad(p[4], p[5], p[6], p[7]);  // +z
+    quad(p[0], p[1], p[5], p[4]);  // -y
+    quad(p[3], p[7], p[6], p[2]);  // +y
+    quad(p[0], p[4], p[7], p[3]);  // -x
+    quad(p[1], p[2], p[6], p[5]);  // +x
+  }
+  /// Icosphere: an icosahedron subdivided `levels` times (20 * 4^levels triangles),
+  /// vertices shared so the mesh is closed (a watertightness test case).
+  void icosphere(const Vec3& center, float radius, int levels, float bump = 0.0f) {
+    const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    std::vector<Vec3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                           {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    for (Vec3& p : v) p = glm::normalize(p);
+    std::vector<UVec3> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                            {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (int l = 0; l < levels; ++l) {
+      std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
+      auto mid = [&](uint32_t a, uint32_t b) {
+        const auto key = std::minmax(a, b);
+        auto [it, inserted] = midpoint.try_emplace(key, uint32_t(v.size()));
+        if (inserted) v.push_back(glm::normalize(v[a] + v[b]));
+        return it->second;
+      };
+      std::vector<UVec3> next;
+      next.reserve(f.size() * 4);
+      for (const UVec3& t : f) {
+        const uint32_t ab = mid(t.x, t.y), bc = mid(t.y, t.z), ca = mid(t.z, t.x);
+        next.insert(next.end(), {{t.x, ab, ca}, {t.y, bc, ab}, {t.z, ca, bc}, {ab, bc, ca}});
+      }
+      f = std::move(next);
+    }
+    const uint32_t base = uint32_t(positions.size());
+    for (const Vec3& p : v) {
+      // A deterministic bumpy surface (for the dense 'teapot' object) keeps the mesh closed.
+      const float r = radius * (1.0f + bump * std::sin(7.0f * p.x) * std::sin(5.0f * p.y) * std::sin(3.0f * p.z));
+      positions.push_back(center + r * p);
+    }
+    for (const UVec3& t : f) triangle(base + t.x, base + t.y, base + t.z);
+  }
+};
+
+Scene make_sphere() {
+  MeshBuilder m;
+  m.icosphere(Vec3(0.0f), 1.0f, 4);
+  return Scene(std::move(m.positions), std::move(m.triangles), "procedural:sphere");
+}
+
+Scene make_soup(uint32_t seed) {
+  // 10k random triangles in the unit cube, each with edges up to 0.1: overlapping,
+  // intersecting, of all orientations -- the classic BVH test soup.
+  MeshBuilder m;
+  Rng rng(seed);
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3 c(rng.uniform(), rng.uniform(), rng.uniform());
+    const uint32_t a = m.vertex(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)));
+    const uint32_t b = m.vertex(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)));
+    const uint32_t d = m.vertex(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)));
+    m.triangle(a, b, d);
+  }
+  return Scene(std::move(m.positions), std::move(m.triangles), "procedural:soup");
+}
+
+Scene make_cornell() {
+  // A Cornell-box-like room (open at +z) with a tall and a short block and a ceiling light,
+  // all axis-aligned: rays on cell boundaries and split planes are common here.
+  MeshBuilder m;
+  m.quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});     // floor
+  m.quad({-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1});     // ceiling
+  m.quad({-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1});   // back wall
+  m.quad({-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1}, {-1, 0, 1});   // left wall
+  m.quad({1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1});       // right wall
+  m.quad({-0.25f, 1.98f, -0.25f}, {0.25f, 1.98f, -0.25f}, {0.25f, 1.98f, 0.25f}, {-0.25f, 1.98f, 0.25f});  // light
+  m.box({-0.7f, 0.0f, -0.7f}, {-0.1f, 1.2f, -0.1f});          // tall block
+  m.box({0.1f, 0.0f, 0.0f}, {0.7f, 0.6f, 0.6f});              // short block
+  m.icosphere({0.4f, 0.85f, 0.3f}, 0.25f, 2);                 // a ball on the short block
+  return Scene(std::move(m.positions), std::move(m.triangles), "procedural:cornell");
+}
+
+Scene make_stadium() {
+  // "Teapot in a stadium" (Haines 1988): a small, dense object in the middle of a huge,
+  // sparse environment. Uniform grids waste nearly every cell on it; adaptive trees don't.
+  MeshBuilder m;
+  m.icosphere(Vec3(0.0f, 0.5f, 0.0f), 0.5f, 5, 0.15f);   // 20480 small triangles: the 'teapot'
+  const int segments = 48;
+  const float r_in = 60.0f, r_out = 100.0f;
+  for (int i = 0; i < segments; ++i) {  // tiered stands: a ring of large sloped quads
+    const float a0 = 2.0f * std::numbers::pi_v<float> * i / segments;
+    const float a1 = 2.0f * std::numbers::pi_v<float> * (i + 1) / segments;
+    const Vec3 d0(std::cos(a0), 0.0f, std::sin(a0)), d1(std::cos(a1), 0.0f, std::sin(a1));
+    m.quad(d0 * r_in, d0 * r_out + Vec3(0, 30, 0), d1 * r_out + Vec3(0, 30, 0), d1 * r_in);
+  }
+  m.quad({-r_in, 0, -r_in}, {-r_in, 0, r_in}, {r_in, 0, r_in}, {r_in, 0, -r_in});  // the pitch
+  return Scene(std::move(m.positions), std::move(m.triangles), "procedural:stadium");
+}
+
+struct ProceduralEntry {
+  const char* name;
+  const char* description;
+};
+constexpr std::array<ProceduralEntry, 4> kProcedural = {{
+    {"stadium", "teapot in a stadium: a dense 20k-triangle object in a huge sparse room"},
+    {"sphere", "icosphere, 5120 triangles, closed mesh with shared vertices"},
+    {"soup", "10k random triangles in the unit cube (seeded)"},
+    {"cornell", "Cornell-box-like room with two blocks and a ball, mostly axis-aligned"},
+}};
+
+}  // namespace
+
+std::vector<std::string> procedural_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& e : kProcedural) names.emplace_back(e.name);
+  return names;
+}
+
+std::string procedural_scene_description(std::string_view name) {
+  for (const auto& e : kProcedural)
+    if (name == e.name) return e.description;
+  return {};
+}
+
+Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed) {
+  if (name == "sphere") return make_sphere();
+  if (name == "soup") return make_soup(seed);
+  if (name == "cornell") return make_cornell();
+  if (name == "stadium") return make_stadium();
+  std::string valid;
+  for (const auto& e : kProcedural) valid += std::string(valid.empty() ? "" : ", ") + e.name;
+  return make_error("unknown procedural scene '" + std::string(name) + "' (valid: " + valid + ")");
+}
+
+}  // namespace accel

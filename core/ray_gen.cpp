@@ -1,0 +1,98 @@
+#include "ray_gen.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "random.h"
+#include "rays_io.h"
+
+namespace accel {
+
+PinholeCamera default_camera(const Aabb& bounds) {
+  PinholeCamera cam;
+  if (bounds.empty()) return cam;
+  const Vec3 c = bounds.center();
+  const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-6f);
+  const float dist = radius / std::sin(glm::radians(cam.fovy_deg) * 0.5f);
+  cam.target = c;
+  cam.eye = c + dist * glm::normalize(Vec3(0.55f, 0.45f, 1.0f));
+  return cam;
+}
+
+Ray camera_ray(const PinholeCamera& cam, float px, float py, int width, int height) {
+  const Vec3 forward = glm::normalize(cam.target - cam.eye);
+  const Vec3 right = glm::normalize(glm::cross(forward, cam.up));
+  const Vec3 up = glm::cross(right, forward);
+  const float tan_half = std::tan(glm::radians(cam.fovy_deg) * 0.5f);
+  const float aspect = float(width) / float(height);
+  const float sx = (2.0f * px / float(width) - 1.0f) * tan_half * aspect;
+  const float sy = (1.0f - 2.0f * py / float(height)) * tan_half;
+  Ray r;
+  r.org = cam.eye;
+  r.dir = glm::normalize(forward + sx * right + sy * up);
+  return r;
+}
+
+std::vector<Ray> primary_rays(const PinholeCamera& cam, int width, int height) {
+  std::vector<Ray> rays;
+  rays.reserve(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) rays.push_back(camera_ray(cam, float(x) + 0.5f, float(y) + 0.5f, width, height));
+  return rays;
+}
+
+std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed) {
+  std::vector<Ray> rays;
+  rays.reserve(n);
+  Rng rng(seed);
+  const Vec3 c = bounds.empty() ? Vec3(0.0f) : bounds.center();
+  const Vec3 e = bounds.empty() ? Vec3(1.0f) : glm::max(bounds.extent(), Vec3(1e-6f));
+  while (rays.size() < n) {
+    const Vec3 o = c + 1.5f * e * Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
+    const Vec3 p = c + e * Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
+    const Vec3 d = p - o;
+    if (d == Vec3(0.0f)) continue;
+    Ray r;
+    r.org = o;
+    r.dir = d;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+namespace {
+bool parse_positive(std::string_view s, uint64_t* out) {
+  auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
+  return !s.empty() && ec == std::errc() && ptr == s.data() + s.size();
+}
+}  // namespace
+
+Result<std::vector<Ray>> make_rays(const std::string& spec, const Scene& scene) {
+  std::vector<std::string_view> parts;
+  {
+    std::string_view s(spec);
+    size_t start = 0, pos;
+    while ((pos = s.find(':', start)) != std::string_view::npos) {
+      parts.push_back(s.substr(start, pos - start));
+      start = pos + 1;
+    }
+    parts.push_back(s.substr(start));
+  }
+  if (parts[0] == "primary") {
+    uint64_t w, h;
+    if (parts.size() != 3 || !parse_positive(parts[1], &w) || !parse_positive(parts[2], &h) || w == 0 || h == 0 ||
+        w > 16384 || h > 16384)
+      return make_error("rays '" + spec + "': expected primary:W:H with W, H in [1, 16384]");
+    return primary_rays(default_camera(scene.bounds()), int(w), int(h));
+  }
+  if (parts[0] == "random") {
+    uint64_t n, seed;
+    if (parts.size() != 3 || !parse_positive(parts[1], &n) || !parse_positive(parts[2], &seed) || n == 0 ||
+        n > 100'000'000)
+      return make_error("rays '" + spec + "': expected random:N:SEED with N in [1, 1e8]");
+    return random_rays(scene.bounds(), n, seed);
+  }
+  return read_rays(spec);
+}
+
+}  // namespace accel

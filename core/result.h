@@ -1,0 +1,36 @@
+#pragma once
+// Result<T>: a value or a one-line error message. Bad input (files, rays, parameters)
+// is reported through it; the core never exits and never throws at its callers.
+#include <string>
+#include <utility>
+#include <variant>
+
+#include "check.h"
+
+namespace accel {
+
+/// A one-line, user-facing error: names the file and line, or the parameter, and the bad value.
+struct Error {
+  std::string message;
+};
+
+/// Either a T or an Error. Test with `ok()`, then take `value()` or `error()`.
+template <class T>
+class Result {
+ public:
+  Result(T value) : data_(std::move(value)) {}         // NOLINT: implicit on purpose
+  Result(Error error) : data_(std::move(error)) {}     // NOLINT
+  bool ok() const { return data_.index() == 0; }
+  explicit operator bool() const { return ok(); }
+  T& value() { ACCEL_CHECK(ok()); return std::get<0>(data_); }
+  const T& value() const { ACCEL_CHECK(ok()); return std::get<0>(data_); }
+  const Error& error() const { ACCEL_CHECK(!ok()); return std::get<1>(data_); }
+
+ private:
+  std::variant<T, Error> data_;
+};
+
+/// Builds an Error from a message.
+inline Error make_error(std::string message) { return Error{std::move(message)}; }
+
+}  // namespace accel

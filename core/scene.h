@@ -1,0 +1,68 @@
+#pragma once
+// Scene: exactly what ray casting needs (positions, triangles, their bounds) and nothing
+// more: no materials, normals, textures or scene graph.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "math.h"
+#include "result.h"
+
+namespace accel {
+
+/// A triangle soup. Triangles are numbered 0,1,2,... in file order (formats.md); degenerate
+/// (zero-area) triangles keep their number but are never hit and never enter a structure.
+class Scene {
+ public:
+  Scene() = default;
+  /// Takes positions and triangle indices (validated by the caller: indices in range,
+  /// coordinates finite) and computes the cached per-triangle data.
+  Scene(std::vector<Vec3> positions, std::vector<UVec3> triangles, std::string name = {});
+
+  size_t triangle_count() const { return triangles_.size(); }
+  size_t vertex_count() const { return positions_.size(); }
+  const std::vector<Vec3>& positions() const { return positions_; }
+  const std::vector<UVec3>& triangles() const { return triangles_; }
+  /// Vertex k (0..2) of triangle `prim`.
+  const Vec3& vertex(uint32_t prim, int k) const { return positions_[triangles_[prim][k]]; }
+  const Aabb& triangle_bounds(uint32_t prim) const { return tri_bounds_[prim]; }
+  const Vec3& centroid(uint32_t prim) const { return centroids_[prim]; }
+  bool degenerate(uint32_t prim) const { return degenerate_[prim] != 0; }
+  /// Indices of all non-degenerate triangles, ascending: what structures are built over.
+  const std::vector<uint32_t>& valid_prims() const { return valid_prims_; }
+  size_t degenerate_count() const { return triangles_.size() - valid_prims_.size(); }
+  /// Bounds of all vertices referenced by a triangle.
+  const Aabb& bounds() const { return bounds_; }
+  /// Largest absolute coordinate (the M of formats.md's ulp allowance).
+  float max_abs_coordinate() const;
+  const std::string& name() const { return name_; }
+
+ private:
+  std::vector<Vec3> positions_;
+  std::vector<UVec3> triangles_;
+  std::vector<Aabb> tri_bounds_;
+  std::vector<Vec3> centroids_;
+  std::vector<uint8_t> degenerate_;
+  std::vector<uint32_t> valid_prims_;
+  Aabb bounds_;
+  std::string name_;
+};
+
+/// Loads a Wavefront OBJ (formats.md: polygons fan-triangulated in place, materials,
+/// normals and uvs ignored). Rejects, with "FILE:LINE: what" messages: unreadable or
+/// non-text (e.g. UTF-16) files, malformed numbers, NaN/inf coordinates, out-of-range or
+/// zero face indices, faces with fewer than 3 vertices, and files with no triangles.
+/// A missing .mtl is not an error.
+Result<Scene> load_obj(const std::string& path);
+
+/// Names accepted by make_procedural_scene(), e.g. "sphere", "soup", "cornell", "stadium".
+std::vector<std::string> procedural_scene_names();
+/// One-line description of a procedural scene, for help texts and the viewer's presets.
+std::string procedural_scene_description(std::string_view name);
+/// Builds a procedural scene by name; `seed` varies the random ones. Unknown name -> Error.
+Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed = 1);
+/// Loads "procedural:NAME" via make_procedural_scene, anything else via load_obj.
+Result<Scene> load_scene(const std::string& spec);
+
+}  // namespace accel

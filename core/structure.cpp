@@ -1,0 +1,29 @@
+#include "structure.h"
+
+#include <chrono>
+
+namespace accel {
+
+void BuildStats::add_leaf(size_t n) {
+  constexpr size_t kBuckets = 17;  // 0..15 triangles, then "16 or more"
+  if (leaf_size_histogram.empty()) leaf_size_histogram.assign(kBuckets, 0);
+  ++leaves;
+  if (n == 0) ++empty_leaves;
+  max_leaf_size = std::max(max_leaf_size, n);
+  ++leaf_size_histogram[std::min(n, kBuckets - 1)];
+}
+
+Result<bool> Structure::build(const Scene& scene, const ParamSet& params) {
+  const auto start = std::chrono::steady_clock::now();
+  auto result = build_impl(scene, params);
+  build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+BuildStats Structure::build_stats() const {
+  BuildStats s = compute_stats();
+  s.build_ms = build_ms_;
+  return s;
+}
+
+}  // namespace accel

@@ -1,0 +1,145 @@
+#pragma once
+// The one interface every acceleration structure implements (brute force included), so the
+// CLI, the tests, the benchmark and the viewer treat them alike.
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry.h"
+#include "params.h"
+#include "scene.h"
+#include "trace.h"
+
+namespace accel {
+
+/// Statistics of a finished build. Fields that do not apply stay at their defaults
+/// (sah_cost NaN, counts 0); `extra` holds structure-specific lines.
+struct BuildStats {
+  double build_ms = 0.0;              ///< wall time of build()
+  size_t memory_bytes = 0;            ///< nodes + primitive references (+ grid cells)
+  size_t nodes = 0;                   ///< nodes, or grid cells
+  size_t leaves = 0;                  ///< leaves, or grid cells
+  size_t empty_leaves = 0;            ///< leaves / cells without a triangle
+  int max_depth = 0;                  ///< deepest leaf (root = 0; 0 for a grid)
+  size_t prim_references = 0;         ///< triangle references stored in leaves/cells
+  size_t prims = 0;                   ///< non-degenerate triangles the structure was built over
+  double refs_per_prim() const { return prims ? double(prim_references) / double(prims) : 0.0; }
+  size_t max_leaf_size = 0;
+  /// leaf_size_histogram[k] = number of leaves holding k triangles, k < size()-1; the last
+  /// bucket counts all larger leaves.
+  std::vector<size_t> leaf_size_histogram;
+  double sah_cost = std::nan("");     ///< expected cost (ct, ci below), normalised to the root's area
+  double sah_ct = 0.0, sah_ci = 0.0;  ///< cost constants used for sah_cost
+  std::vector<std::pair<std::string, std::string>> extra;  ///< e.g. {"cells", "32x32x16"}
+
+  /// Adds a leaf of `n` triangles to the leaf counters and the histogram.
+  void add_leaf(size_t n);
+};
+
+/// What the viewer draws of one node or cell (the core knows no GL).
+struct NodeView {
+  NodeId id = kNoNode;
+  int depth = 0;
+  bool leaf = false;
+  uint32_t prim_count = 0;    ///< triangles referenced by this leaf / cell
+  Aabb box;                   ///< node or cell bounds
+  BoundingSphere sphere;      ///< sphere-tree nodes only (radius < 0 otherwise)
+  int split_axis = -1;        ///< kd-tree inner nodes: axis of the split plane, else -1
+  float split_pos = 0.0f;
+};
+
+/// Abstract acceleration structure. Build once, then answer closest-hit queries from any
+/// number of threads (queries are const).
+class Structure {
+ public:
+  virtual ~Structure() = default;
+  /// Registry name, e.g. "bvh".
+  virtual std::string name() const = 0;
+  /// Builds over `scene` (kept by reference: it must outlive the structure) with validated
+  /// parameters, and times it. The only error is an internal limit, reported as an Error.
+  Result<bool> build(const Scene& scene, const ParamSet& params);
+  /// Closest hit of `ray` (formats.md rule). Fills per-query counters when `stats` is given.
+  virtual Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const = 0;
+  /// Same answer as intersect(), recording every traversal step.
+  virtual Hit intersect_traced(const Ray& ray, TraceRecorder& recorder) const = 0;
+  /// Statistics of the last build, build time included.
+  BuildStats build_stats() const;
+  /// Calls `fn` for every node (or non-empty grid cell) in id order.
+  virtual void for_each_node(const std::function<void(const NodeView&)>& fn) const = 0;
+  /// One node or cell, for highlighting a trace step.
+  virtual NodeView node_view(NodeId id) const = 0;
+  /// The triangles of a leaf or cell (empty for inner nodes).
+  virtual std::vector<uint32_t> node_prims(NodeId id) const = 0;
+
+  /// The ray/triangle test used by queries (default watertight).
+  void set_kernel(Kernel k) { kernel_ = k; }
+  Kernel kernel() const { return kernel_; }
+
+ protected:
+  /// The structure's own build, timed by build().
+  virtual Result<bool> build_impl(const Scene& scene, const ParamSet& params) = 0;
+  /// Everything of BuildStats except build_ms.
+  virtual BuildStats compute_stats() const = 0;
+
+  Kernel kernel_ = Kernel::Watertight;
+
+ private:
+  double build_ms_ = 0.0;
+};
+
+/// CRTP glue: turns one `template <class Sink> Hit traverse(const Ray&, Sink&) const` in
+/// Derived into the virtual query functions, so each traversal is written once.
+template <class Derived>
+class StructureWithTraversal : public Structure {
+ public:
+  Hit intersect(const Ray& ray, QueryStats* stats) const override {
+    if (stats) {
+      StatsSink sink;
+      const Hit hit = self().traverse(ray, sink);
+      *stats = sink.stats;
+      return hit;
+    }
+    NullSink sink;
+    return self().traverse(ray, sink);
+  }
+  Hit intersect_traced(const Ray& ray, TraceRecorder& recorder) const override {
+    return self().traverse(ray, recorder);
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
+
+/// Tests one triangle and updates `closest` (whose t is the current tmax). The first hit
+/// in [tmin, tmax] counts even at t == tmax (inclusive); later ones only when strictly
+/// closer, so ties keep the first triangle found.
+template <class Sink>
+inline bool test_triangle(const Scene& scene, const TriangleTester& tester, uint32_t prim, Hit& closest,
+                          Sink& sink) {
+  TriangleHit th{kInf, 0.0f, 0.0f};
+  const bool hit = tester.intersect(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), closest.t, &th);
+  sink.test_prim(prim, hit, th.t);
+  if (hit && (closest.prim < 0 || th.t < closest.t)) {
+    closest = Hit{int32_t(prim), th.t, th.u, th.v};
+    sink.new_closest(prim, th.t);
+    return true;
+  }
+  return false;
+}
+
+/// Initial "closest hit" of a query: no triangle, t = ray.tmax.
+inline Hit no_hit(const Ray& ray) {
+  Hit h;
+  h.t = ray.tmax;
+  return h;
+}
+/// Turns the running closest hit into the query's answer (t = inf on a miss).
+inline Hit finish_hit(Hit h) {
+  if (!h.valid()) h = Hit{};
+  return h;
+}
+
+}  // namespace accel

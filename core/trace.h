@@ -1,0 +1,149 @@
+#pragma once
+// Observers of the one real traversal of each structure. Every structure writes its loop
+// once, as `template <class Sink> Hit traverse(const Ray&, Sink&) const`, and calls the sink
+// at each step. NullSink compiles to nothing (the fast path), StatsSink counts, and
+// TraceRecorder keeps every step for the viewer's animation -- so the animation shows
+// exactly what the real query does.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry.h"
+
+namespace accel {
+
+/// A node's array index, or a grid cell's linear index.
+using NodeId = uint32_t;
+inline constexpr NodeId kNoNode = std::numeric_limits<NodeId>::max();
+
+/// Why a node or cell was skipped.
+enum class CullReason : uint8_t {
+  None,
+  MissedBounds,      ///< the ray does not intersect the node's box/sphere within [tmin, t_closest]
+  BeyondClosestHit,  ///< the ray enters the node farther than the closest hit found so far
+};
+
+enum class TraceEventKind : uint8_t {
+  Visit,       ///< enter a node: node, depth, t interval [t0, t1] of the ray inside it
+  EnterCell,   ///< grid: step into a cell: node = linear cell index, [t0, t1] inside it
+  Cull,        ///< skip a node or subtree: node, depth, reason, t0 = entry distance if known
+  Push,        ///< put a node on the stack / priority queue: node, depth, t0 = its key (entry distance)
+  Pop,         ///< take a node from the stack / queue: node, depth, t0 = its key
+  TestPrim,    ///< ray/triangle test: prim, hit, t0 = hit distance when hit
+  NewClosest,  ///< the closest hit improved: prim, t0 = its distance
+  Done,        ///< the query finished: prim = closest hit (-1 = miss), t0 = its distance
+};
+
+/// One recorded step. Plain data: the viewer turns it into highlights and text.
+struct TraceEvent {
+  TraceEventKind kind = TraceEventKind::Visit;
+  CullReason reason = CullReason::None;
+  bool hit = false;
+  uint16_t depth = 0;
+  NodeId node = kNoNode;
+  int32_t prim = -1;
+  float t0 = 0.0f;
+  float t1 = 0.0f;
+};
+
+/// "visit", "cull", ... for text output.
+const char* event_kind_name(TraceEventKind kind);
+const char* cull_reason_name(CullReason reason);
+/// One line describing the event, e.g. "visit node 12 (depth 3) t=[0.5, 0.8]".
+std::string describe_event(const TraceEvent& e);
+
+/// The fast path: every callback is empty and inlined away.
+struct NullSink {
+  static constexpr bool kRecords = false;
+  void visit(NodeId, int, float, float) {}
+  void enter_cell(NodeId, float, float) {}
+  void cull(NodeId, int, CullReason, float) {}
+  void push(NodeId, int, float) {}
+  void pop(NodeId, int, float) {}
+  void test_prim(uint32_t, bool, float) {}
+  void new_closest(uint32_t, float) {}
+  void done(const Hit&) {}
+};
+
+/// Per-query counters, returned per query (never global).
+struct QueryStats {
+  uint32_t nodes_visited = 0;  ///< nodes entered, or grid cells stepped through
+  uint32_t nodes_culled = 0;   ///< nodes skipped (missed or beyond the closest hit)
+  uint32_t prims_tested = 0;   ///< ray/triangle tests
+  uint32_t max_stack = 0;      ///< deepest stack / largest priority queue
+  QueryStats& operator+=(const QueryStats& o) {
+    nodes_visited += o.nodes_visited;
+    nodes_culled += o.nodes_culled;
+    prims_tested += o.prims_tested;
+    max_stack = std::max(max_stack, o.max_stack);
+    return *this;
+  }
+};
+
+/// Counts steps; the same calls as the recorder, nothing stored.
+struct StatsSink {
+  static constexpr bool kRecords = false;
+  QueryStats stats;
+  uint32_t stack_size = 0;
+  void visit(NodeId, int, float, float) { ++stats.nodes_visited; }
+  void enter_cell(NodeId, float, float) { ++stats.nodes_visited; }
+  void cull(NodeId, int, CullReason, float) { ++stats.nodes_culled; }
+  void push(NodeId, int, float) { stats.max_stack = std::max(stats.max_stack, ++stack_size); }
+  void pop(NodeId, int, float) { if (stack_size) --stack_size; }
+  void test_prim(uint32_t, bool, float) { ++stats.prims_tested; }
+  void new_closest(uint32_t, float) {}
+  void done(const Hit&) {}
+};
+
+/// Records every step in order, for the animation and for tests of the traversal order.
+class TraceRecorder {
+ public:
+  static constexpr bool kRecords = true;
+  void visit(NodeId n, int depth, float t0, float t1) { add(TraceEventKind::Visit, n, depth, t0, t1); }
+  void enter_cell(NodeId n, float t0, float t1) { add(TraceEventKind::EnterCell, n, 0, t0, t1); }
+  void cull(NodeId n, int depth, CullReason why, float t0) {
+    TraceEvent e = make(TraceEventKind::Cull, n, depth, t0, t0);
+    e.reason = why;
+    events_.push_back(e);
+  }
+  void push(NodeId n, int depth, float key) { add(TraceEventKind::Push, n, depth, key, key); }
+  void pop(NodeId n, int depth, float key) { add(TraceEventKind::Pop, n, depth, key, key); }
+  void test_prim(uint32_t prim, bool hit, float t) {
+    TraceEvent e = make(TraceEventKind::TestPrim, kNoNode, 0, hit ? t : kInf, hit ? t : kInf);
+    e.prim = int32_t(prim);
+    e.hit = hit;
+    events_.push_back(e);
+  }
+  void new_closest(uint32_t prim, float t) {
+    TraceEvent e = make(TraceEventKind::NewClosest, kNoNode, 0, t, t);
+    e.prim = int32_t(prim);
+    e.hit = true;
+    events_.push_back(e);
+  }
+  void done(const Hit& h) {
+    TraceEvent e = make(TraceEventKind::Done, kNoNode, 0, h.t, h.t);
+    e.prim = h.prim;
+    e.hit = h.valid();
+    events_.push_back(e);
+  }
+  const std::vector<TraceEvent>& events() const { return events_; }
+  void clear() { events_.clear(); }
+  /// Counters derived from the recorded events (equal to StatsSink's by construction).
+  QueryStats stats() const;
+
+ private:
+  static TraceEvent make(TraceEventKind k, NodeId n, int depth, float t0, float t1) {
+    TraceEvent e;
+    e.kind = k;
+    e.node = n;
+    e.depth = uint16_t(depth);
+    e.t0 = t0;
+    e.t1 = t1;
+    return e;
+  }
+  void add(TraceEventKind k, NodeId n, int depth, float t0, float t1) { events_.push_back(make(k, n, depth, t0, t1)); }
+  std::vector<TraceEvent> events_;
+};
+
+}  // namespace accel

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages accelviz needs, and only those that are missing.
+# Quiet when everything is present; uses sudo when not run as root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config           # toolchain
+  libglfw3-dev libglm-dev libimgui-dev       # viewer: window, math, UI (libimgui.a has the GLFW/GL3 backends)
+  python3-glad                               # GL 3.3 core loader, generated at configure time
+  libgl-dev                                  # OpenGL headers/libs for the viewer
+  libtinyobjloader-dev                       # OBJ loading
+  libgtest-dev libcli11-dev libstb-dev       # tests, CLI parsing, PNG writing
+  libtbb-dev                                 # parallel tracing
+  libembree-dev                              # industry baseline in the benchmark
+  xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "deps.sh: installing ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,168 @@
+#!/usr/bin/env python3
+"""End-to-end tests of accelviz-cli: trace answers (hand-checked), the CSV format of
+../shared/formats.md, and bad input (exit 2, one line naming file and line, no output file)."""
+import argparse
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+FAILURES = []
+
+
+def check(cond, what):
+    if not cond:
+        FAILURES.append(what)
+        print("FAIL:", what)
+
+
+def run(cli, *args):
+    p = subprocess.run([cli, *args], capture_output=True, text=True, timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+# steps.obj: prim 0 = (0,0,0),(2,0,0),(2,2,0); prim 1 = (0,0,0),(2,2,0),(0,2,0); prim 2 at z=1.
+RAYS = """# hand-checked rays for scenes/steps.obj
+0.25 0.25 5 0 0 -1
+1.5 0.5 5 0 0 -1
+0.5 1.5 5 0 0 -1
+3 3 5 0 0 -1
+
+0.25 0.25 5 0 0 -1 0 3
+0.3 0.2 5 0 0 -1 4.5 inf
+0x1p-2 0x1p-2 0x1.4p+2 0 0 -1
+-1 1 0 1 0 0
+0.5 1.5 -1 0 0 1
+1 1 5 0 0 -1
+0.25 0.25 5 0 0 -2 0 2
+"""
+# (allowed prims, t, u, v); u, v only checked for a unique prim.
+EXPECTED = [
+    ({2}, 4.0, 0.25, 0.25),   # triangle above the floor
+    ({0}, 5.0, 0.5, 0.25),
+    ({1}, 5.0, 0.25, 0.5),
+    ({-1}, math.inf, 0, 0),   # outside
+    ({-1}, math.inf, 0, 0),   # tmax = 3 stops before the triangle at t = 4
+    ({0}, 5.0, 0.05, 0.1),    # tmin = 4.5 skips the triangle
+    ({2}, 4.0, 0.25, 0.25),   # hex-float input
+    ({-1}, math.inf, 0, 0),   # ray inside the floor's plane: never a hit
+    ({1}, 1.0, 0.25, 0.5),    # from below
+    ({0, 1}, 5.0, None, None),  # on the shared diagonal: a tie, either triangle
+    ({2}, 2.0, 0.25, 0.25),   # unnormalised direction: t in units of d, tmax = 2 inclusive
+]
+
+
+def read_csv(path):
+    with open(path) as f:
+        lines = f.read().splitlines()
+    return lines[0], [l.split(",") for l in lines[1:]]
+
+
+def test_trace(cli, source, work):
+    scene = os.path.join(source, "scenes", "steps.obj")
+    rays = os.path.join(work, "steps_rays.txt")
+    with open(rays, "w") as f:
+        f.write(RAYS)
+    for threads in ("1", "2"):
+        out = os.path.join(work, f"hits_{threads}.csv")
+        code, _, err = run(cli, "trace", "--scene", scene, "--structure", "brute", "--rays", rays, "--out", out,
+                           "--threads", threads)
+        check(code == 0, f"trace exit {code}: {err}")
+        if code != 0:
+            return
+        header, rows = read_csv(out)
+        check(header == "ray,prim,t,u,v", f"header {header!r}")
+        check(len(rows) == len(EXPECTED), f"{len(rows)} rows")
+        for i, (row, (prims, t, u, v)) in enumerate(zip(rows, EXPECTED)):
+            check(int(row[0]) == i, f"row {i} index {row[0]}")
+            prim = int(row[1])
+            check(prim in prims, f"ray {i}: prim {prim}, expected {prims}")
+            if math.isinf(t):
+                check(row[2] == "inf", f"ray {i}: t {row[2]} for a miss")
+                continue
+            check(abs(float(row[2]) - t) <= 1e-6 * max(1, t), f"ray {i}: t {row[2]} expected {t}")
+            if u is not None:
+                check(abs(float(row[3]) - u) < 1e-6 and abs(float(row[4]) - v) < 1e-6, f"ray {i}: u,v {row[3:]}")
+    a = open(os.path.join(work, "hits_1.csv")).read()
+    b = open(os.path.join(work, "hits_2.csv")).read()
+    check(a == b, "output differs between 1 and 2 threads")
+
+
+def expect_bad(cli, args, must_contain, out=None, code_expected=2):
+    code, stdout, err = run(cli, *args)
+    lines = [l for l in err.splitlines() if l.strip()]
+    check(code == code_expected, f"{args}: exit {code}, expected {code_expected}; stderr {err!r}")
+    check(len(lines) == 1, f"{args}: expected one error line, got {lines!r}")
+    check(must_contain in err, f"{args}: message {err!r} lacks {must_contain!r}")
+    if out:
+        check(not os.path.exists(out), f"{args}: output file {out} was written")
+    check("Traceback" not in err and "Aborted" not in err, f"{args}: crashed")
+
+
+def test_bad_input(cli, source, shared, work):
+    scene = os.path.join(source, "scenes", "steps.obj")
+    good_rays = os.path.join(work, "steps_rays.txt")
+    out = os.path.join(work, "bad_out.csv")
+
+    def trace(scene_path, rays_path=good_rays, *extra):
+        return ["trace", "--scene", scene_path, "--rays", rays_path, "--out", out, *extra]
+
+    expect_bad(cli, trace("/nonexistent/x.obj"), "/nonexistent/x.obj: cannot open", out)
+    bad_rays = os.path.join(work, "bad_rays.txt")
+    with open(bad_rays, "w") as f:
+        f.write("0 0 5 0 0 -1\n# ok so far\n0 0 5 0 0\n")
+    expect_bad(cli, trace(scene, bad_rays), f"{bad_rays}:3: expected 6 or 8", out)
+    with open(bad_rays, "w") as f:
+        f.write("0 0 nan 0 0 -1\n")
+    expect_bad(cli, trace(scene, bad_rays), f"{bad_rays}:1: NaN", out)
+    expect_bad(cli, trace(scene, "/nonexistent/rays.txt"), "/nonexistent/rays.txt: cannot open", out)
+    expect_bad(cli, trace(scene, good_rays, "--structure", "quadtree"), "unknown structure 'quadtree' (valid: brute", out)
+    expect_bad(cli, trace(scene, good_rays, "--param", "x=1"), "unknown parameter 'x'", out)
+    expect_bad(cli, trace(scene, good_rays, "--kernel", "exact"), "--kernel 'exact' is invalid", out)
+    expect_bad(cli, trace(scene, good_rays, "--threads", "-1"), "threads", out)
+    expect_bad(cli, ["trace", "--scene", scene, "--rays", good_rays, "--out", "/nonexistent/dir/out.csv"],
+               "/nonexistent/dir/out.csv: cannot open for writing")
+    expect_bad(cli, ["trace", "--scene", scene], "--rays", out)
+    nan_obj = os.path.join(work, "nan.obj")
+    with open(nan_obj, "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n")
+    expect_bad(cli, trace(nan_obj), f"{nan_obj}:3: vertex coordinate 'nan'", out)
+
+    bad_dir = os.path.join(shared, "scenes", "bad")
+    if not os.path.isdir(bad_dir):
+        print("SKIP: shared bad files not present")
+        return
+    rejected = {"empty.obj": "empty file", "malformed.obj": "out of range", "malformed2.obj": "face needs",
+                "number_formats.obj": ":11: malformed number", "testline.obj": "no triangles",
+                "testpoints.obj": "no triangles", "point_cloud.obj": "no triangles", "box_UTF16BE.obj": "UTF-16"}
+    for name in sorted(os.listdir(bad_dir)):
+        path = os.path.join(bad_dir, name)
+        if name in rejected:
+            expect_bad(cli, trace(path), f"{path}:", out)
+            expect_bad(cli, trace(path), rejected[name], out)
+            expect_bad(cli, ["stats", "--scene", path], rejected[name])
+        else:
+            code, _, err = run(cli, *trace(path))
+            check(code == 0, f"{name}: should load, exit {code} {err}")
+            if os.path.exists(out):
+                os.remove(out)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--cli", required=True)
+    ap.add_argument("--source", required=True)
+    ap.add_argument("--shared", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    shutil.rmtree(a.work, ignore_errors=True)
+    os.makedirs(a.work)
+    test_trace(a.cli, a.source, a.work)
+    test_bad_input(a.cli, a.source, a.shared, a.work)
+    print(f"{'FAILED' if FAILURES else 'OK'}: {len(FAILURES)} failures")
+    return 1 if FAILURES else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

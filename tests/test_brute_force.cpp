@@ -1,0 +1,73 @@
+// Brute force with the float watertight kernel against the double-precision reference,
+// 100k random rays (plus primary rays) per procedural scene.
+#include <gtest/gtest.h>
+
+#include "batch.h"
+#include "brute_force.h"
+#include "registry.h"
+#include "test_support.h"
+
+namespace accel {
+namespace {
+
+class BruteForceScenes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BruteForceScenes, WatertightMatchesDoubleReference) {
+  const std::string name = GetParam();
+  const auto& w = testing::workload("procedural:" + name, [&] { return make_procedural_scene(name).value(); },
+                                    100000, 160, 120);
+  auto s = build_structure("brute", w.scene, {});
+  ASSERT_TRUE(s);
+  const auto hits = trace_all(*s.value(), w.rays);
+  std::string failures;
+  EXPECT_EQ(testing::count_wrong(w, hits, &failures), 0u) << failures;
+  size_t hit_count = 0;
+  for (const Hit& h : hits) hit_count += h.valid();
+  EXPECT_GT(hit_count, w.rays.size() / 10) << "workload should mostly hit";
+}
+
+INSTANTIATE_TEST_SUITE_P(Procedural, BruteForceScenes, ::testing::ValuesIn(procedural_scene_names()));
+
+TEST(BruteForce, DegenerateTrianglesAreNeverHit) {
+  // A zero-area triangle in front of a real one: the ray passes "through" it.
+  Scene scene({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {2, 0, 1}},
+              {{3, 4, 5}, {0, 1, 2}});
+  auto s = build_structure("brute", scene, {});
+  ASSERT_TRUE(s);
+  Ray r;
+  r.org = Vec3(0.5f, 0.0f, 2.0f);
+  r.dir = Vec3(0, 0, -1);
+  const Hit h = s.value()->intersect(r);
+  EXPECT_EQ(h.prim, 1);
+  EXPECT_FLOAT_EQ(h.t, 2.0f);
+}
+
+TEST(BruteForce, EmptySceneMisses) {
+  Scene empty;
+  auto s = build_structure("brute", empty, {});
+  ASSERT_TRUE(s);
+  EXPECT_FALSE(s.value()->intersect(Ray{}).valid());
+}
+
+TEST(BruteForce, RecordingNeverChangesTheAnswer) {
+  auto scene = make_procedural_scene("cornell").value();
+  auto built = build_structure("brute", scene, {});
+  ASSERT_TRUE(built);
+  auto s = std::move(built.value());
+  for (const Ray& r : random_rays(scene.bounds(), 200, 9)) {
+    TraceRecorder rec;
+    QueryStats q;
+    const Hit a = s->intersect(r), b = s->intersect_traced(r, rec), c = s->intersect(r, &q);
+    EXPECT_EQ(a.prim, b.prim);
+    EXPECT_EQ(a.t, b.t);
+    EXPECT_EQ(a.prim, c.prim);
+    EXPECT_EQ(rec.stats().prims_tested, q.prims_tested);
+    EXPECT_EQ(q.prims_tested, scene.valid_prims().size());
+    ASSERT_FALSE(rec.events().empty());
+    EXPECT_EQ(rec.events().back().kind, TraceEventKind::Done);
+    EXPECT_EQ(rec.events().back().prim, a.prim);
+  }
+}
+
+}  // namespace
+}  // namespace accel

@@ -1,0 +1,169 @@
+// Ray/triangle and ray/box tests against the hit rule of formats.md.
+#include <gtest/gtest.h>
+
+#include "geometry.h"
+#include "random.h"
+
+namespace accel {
+namespace {
+
+const Vec3 kA(0, 0, 0), kB(1, 0, 0), kC(0, 1, 0);  // unit right triangle in z = 0
+
+Ray down_at(float x, float y) {
+  Ray r;
+  r.org = Vec3(x, y, 1.0f);
+  r.dir = Vec3(0, 0, -1);
+  return r;
+}
+
+bool hits(Kernel k, const Ray& r, const Vec3& a = kA, const Vec3& b = kB, const Vec3& c = kC) {
+  TriangleHit h;
+  return TriangleTester(r, k).intersect(a, b, c, r.tmax, &h);
+}
+
+TEST(Triangle, InteriorHitGivesTAndBarycentrics) {
+  for (Kernel k : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) {
+    TriangleHit h;
+    ASSERT_TRUE(TriangleTester(down_at(0.25f, 0.5f), k).intersect(kA, kB, kC, kInf, &h));
+    EXPECT_FLOAT_EQ(h.t, 1.0f);
+    EXPECT_FLOAT_EQ(h.u, 0.25f);  // weight of kB
+    EXPECT_FLOAT_EQ(h.v, 0.5f);   // weight of kC
+  }
+}
+
+TEST(Triangle, EdgesAndVerticesAreHit) {
+  // formats.md: the triangle is closed.
+  for (Kernel k : {Kernel::Watertight, Kernel::Double}) {
+    EXPECT_TRUE(hits(k, down_at(0.0f, 0.0f))) << kernel_name(k);   // vertex
+    EXPECT_TRUE(hits(k, down_at(1.0f, 0.0f))) << kernel_name(k);   // vertex
+    EXPECT_TRUE(hits(k, down_at(0.5f, 0.0f))) << kernel_name(k);   // edge
+    EXPECT_TRUE(hits(k, down_at(0.5f, 0.5f))) << kernel_name(k);   // hypotenuse
+    EXPECT_FALSE(hits(k, down_at(0.5f, -1e-6f))) << kernel_name(k);
+  }
+}
+
+TEST(Triangle, BothWindingsAreHit) {
+  EXPECT_TRUE(hits(Kernel::Watertight, down_at(0.2f, 0.2f), kA, kC, kB));
+  Ray up = down_at(0.2f, 0.2f);
+  up.org.z = -1.0f;
+  up.dir = Vec3(0, 0, 1);
+  EXPECT_TRUE(hits(Kernel::Watertight, up));
+}
+
+TEST(Triangle, TminTmaxAreInclusive) {
+  for (Kernel k : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) {
+    Ray r = down_at(0.2f, 0.2f);
+    r.tmax = 1.0f;
+    EXPECT_TRUE(hits(k, r)) << kernel_name(k);
+    r.tmax = 0.999f;
+    EXPECT_FALSE(hits(k, r)) << kernel_name(k);
+    r.tmax = kInf;
+    r.tmin = 1.0f;
+    EXPECT_TRUE(hits(k, r)) << kernel_name(k);
+    r.tmin = 1.001f;
+    EXPECT_FALSE(hits(k, r)) << kernel_name(k);
+  }
+}
+
+TEST(Triangle, RayInPlaneOrParallelIsNeverAHit) {
+  Ray r;
+  r.org = Vec3(-1.0f, 0.25f, 0.0f);  // travels inside z = 0 across the triangle
+  r.dir = Vec3(1, 0, 0);
+  for (Kernel k : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) EXPECT_FALSE(hits(k, r)) << kernel_name(k);
+  r.org.z = 0.5f;  // parallel above it
+  for (Kernel k : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) EXPECT_FALSE(hits(k, r)) << kernel_name(k);
+}
+
+TEST(Triangle, DegenerateDetection) {
+  EXPECT_TRUE(is_degenerate(kA, kA, kB));
+  EXPECT_TRUE(is_degenerate(kA, kB, Vec3(2, 0, 0)));  // collinear
+  EXPECT_FALSE(is_degenerate(kA, kB, kC));
+  EXPECT_FALSE(is_degenerate(kA, kB, Vec3(2, 1e-30f, 0)));  // tiny but not zero area
+}
+
+TEST(Triangle, WatertightAgreesWithDoubleOnRandomTriangles) {
+  // Away from edges the float result equals the reference; count disagreements overall.
+  Rng rng(7);
+  int disagreements = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const Vec3 a(rng.uniform(), rng.uniform(), rng.uniform());
+    const Vec3 b(rng.uniform(), rng.uniform(), rng.uniform());
+    const Vec3 c(rng.uniform(), rng.uniform(), rng.uniform());
+    Ray r;
+    r.org = Vec3(rng.uniform(-1, 2), rng.uniform(-1, 2), rng.uniform(-1, 2));
+    r.dir = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    TriangleHit h;
+    const bool f = TriangleTester(r, Kernel::Watertight).intersect(a, b, c, kInf, &h);
+    double t, u, v;
+    const bool d = intersect_triangle_double(r, a, b, c, INFINITY, &t, &u, &v);
+    if (f != d) {
+      ++disagreements;
+      continue;
+    }
+    if (f) {
+      EXPECT_NEAR(h.t, t, 1e-4 * std::max(1.0, std::abs(t)));
+    }
+  }
+  // Only rays grazing an edge within float rounding may differ.
+  EXPECT_LT(disagreements, 20);
+}
+
+TEST(Triangle, WatertightHasNoCracksBetweenNeighbours) {
+  // Two triangles sharing the diagonal of a square: every ray through the diagonal hits one.
+  const Vec3 p0(0, 0, 0), p1(1, 0, 0), p2(1, 1, 0), p3(0, 1, 0);
+  Rng rng(3);
+  for (int i = 0; i < 20000; ++i) {
+    const float s = rng.uniform();
+    Ray r;
+    r.org = Vec3(s, s, 0.0f) + Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(1, 5));
+    r.dir = Vec3(s, s, 0.0f) - r.org;
+    TriangleTester t(r, Kernel::Watertight);
+    TriangleHit h;
+    const bool any = t.intersect(p0, p1, p2, kInf, &h) || t.intersect(p0, p2, p3, kInf, &h);
+    ASSERT_TRUE(any) << "crack at s=" << s;
+  }
+}
+
+TEST(Box, SlabTestHandlesZeroDirectionComponents) {
+  Aabb box;
+  box.extend(Vec3(0, 0, 0));
+  box.extend(Vec3(1, 1, 1));
+  for (float zero : {0.0f, -0.0f}) {
+    Ray r;
+    r.org = Vec3(0.0f, 0.5f, -1.0f);  // origin on the x = 0 slab plane, dir.x = +-0
+    r.dir = Vec3(zero, 0.0f, 1.0f);
+    float t0, t1;
+    ASSERT_TRUE(BoxTester(r).intersect(box, 0.0f, kInf, &t0, &t1));
+    EXPECT_FALSE(std::isnan(t0));
+    EXPECT_FLOAT_EQ(t0, 1.0f);
+    EXPECT_GE(t1, 2.0f);
+    r.org.x = -0.1f;  // outside the slab, parallel to it: miss
+    EXPECT_FALSE(BoxTester(r).intersect(box, 0.0f, kInf, &t0, &t1));
+  }
+}
+
+TEST(Box, FlatBoxIsHit) {
+  Aabb flat;
+  flat.extend(Vec3(0, 0, 0));
+  flat.extend(Vec3(1, 1, 0));
+  float t0, t1;
+  EXPECT_TRUE(BoxTester(down_at(0.5f, 0.5f)).intersect(flat, 0.0f, kInf, &t0, &t1));
+  EXPECT_FLOAT_EQ(t0, 1.0f);
+}
+
+TEST(Sphere, EntryAndMiss) {
+  BoundingSphere s{Vec3(0, 0, 0), 1.0f};
+  Ray r;
+  r.org = Vec3(0, 0, -5);
+  r.dir = Vec3(0, 0, 1);
+  float t0, t1;
+  ASSERT_TRUE(intersect_sphere(r, s, 0.0f, kInf, &t0, &t1));
+  EXPECT_LE(t0, 4.0f);
+  EXPECT_NEAR(t0, 4.0f, 1e-5);
+  EXPECT_GE(t1, 6.0f);
+  r.org.x = 1.01f;
+  EXPECT_FALSE(intersect_sphere(r, s, 0.0f, kInf, &t0, &t1));
+}
+
+}  // namespace
+}  // namespace accel
