@@ -10,8 +10,6 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
  public:
   static std::vector<ParamSpec> param_specs() { return {}; }
   std::string name() const override { return "brute"; }
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
-  BuildStats compute_stats() const override { return stats_; }
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;
   std::vector<uint32_t> node_prims(NodeId id) const override;
@@ -27,6 +25,10 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
     sink.done(result);
     return result;
   }
+
+ protected:
+  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
+  BuildStats compute_stats() const override { return stats_; }
 
  private:
   const Scene* scene_ = nullptr;

@@ -1,6 +1,11 @@
 #include "registry.h"
 
 #include "brute_force.h"
+#include "bvh.h"
+#include "kd_tree.h"
+#include "octree.h"
+#include "sphere_tree.h"
+#include "uniform_grid.h"
 
 namespace accel {
 
@@ -8,6 +13,16 @@ const std::vector<StructureInfo>& structure_registry() {
   static const std::vector<StructureInfo> registry = {
       {"brute", "brute force: test every triangle (the reference)", BruteForce::param_specs(),
        [] { return std::make_unique<BruteForce>(); }},
+      {"grid", "uniform grid: cells of equal size, 3D-DDA traversal (Amanatides & Woo 1987)",
+       UniformGrid::param_specs(), [] { return std::make_unique<UniformGrid>(); }},
+      {"octree", "octree: cells split into 8 equal children", Octree::param_specs(),
+       [] { return std::make_unique<Octree>(); }},
+      {"kdtree", "kd-tree: axis-aligned split planes, near/far traversal", KdTree::param_specs(),
+       [] { return std::make_unique<KdTree>(); }},
+      {"bvh", "bounding volume hierarchy with axis-aligned boxes (AABB tree)", Bvh::param_specs(),
+       [] { return std::make_unique<Bvh>(); }},
+      {"spheretree", "bounding volume hierarchy with bounding spheres (sphere tree)", SphereTree::param_specs(),
+       [] { return std::make_unique<SphereTree>(); }},
   };
   return registry;
 }

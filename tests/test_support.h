@@ -1,15 +1,22 @@
 #pragma once
 // Shared test data: scenes, ray sets and their reference answers, computed once per test
 // binary (the double-precision reference is the slow part) and reused by every structure.
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <tbb/parallel_for.h>
 
 #include "oracle.h"
+#include "random.h"
 #include "ray_gen.h"
 #include "scene.h"
 #include "structure.h"
@@ -28,7 +35,51 @@ inline std::string shared_scene_path(const std::string& file) {
   return std::string(ACCEL_SHARED_SCENES) + "/" + file;
 }
 
-/// Random rays plus primary camera rays over `scene`, with reference hits (cached by key).
+/// Ray counts are multiplied by ACCEL_TEST_RAY_SCALE (default 1); the sanitizer run of
+/// scripts/test.sh uses 0.1 because instrumented code is several times slower.
+inline size_t scaled(size_t n) {
+  const char* s = std::getenv("ACCEL_TEST_RAY_SCALE");
+  const double f = s ? std::atof(s) : 1.0;
+  return std::max<size_t>(1, size_t(double(n) * (f > 0.0 ? f : 1.0)));
+}
+
+/// FNV-1a over raw bytes: identifies a scene + ray set for the reference cache.
+inline uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ull) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
+
+/// Reference hits of `rays`, brute force in double. ctest runs every test in its own
+/// process, so results are cached on disk (ACCEL_TEST_CACHE_DIR), keyed by a hash of the
+/// scene and the rays, and written atomically so parallel tests may race harmlessly.
+inline std::vector<ReferenceHit> reference_hits(const Scene& scene, const std::vector<Ray>& rays) {
+  uint64_t h = fnv1a(scene.positions().data(), scene.positions().size() * sizeof(Vec3));
+  h = fnv1a(scene.triangles().data(), scene.triangles().size() * sizeof(UVec3), h);
+  h = fnv1a(rays.data(), rays.size() * sizeof(Ray), h);
+  const std::filesystem::path dir(ACCEL_TEST_CACHE_DIR);
+  const std::filesystem::path file = dir / (std::to_string(h) + ".ref");
+  std::vector<ReferenceHit> ref(rays.size());
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (in && in.read(reinterpret_cast<char*>(ref.data()), std::streamsize(ref.size() * sizeof(ReferenceHit))) &&
+        in.peek() == EOF)
+      return ref;
+  }
+  tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) { ref[i] = reference_closest(scene, rays[i]); });
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::filesystem::path tmp = file.string() + ".tmp" + std::to_string(h ^ uint64_t(::getpid()));
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(ref.data()), std::streamsize(ref.size() * sizeof(ReferenceHit)));
+  }
+  std::filesystem::rename(tmp, file, ec);
+  return ref;
+}
+
+/// Random rays plus primary camera rays over a scene, with reference hits (cached by key
+/// in memory, and on disk across test processes).
 inline const Workload& workload(const std::string& key, const std::function<Scene()>& make_scene, size_t n_random,
                                 int primary_w, int primary_h) {
   static std::map<std::string, std::unique_ptr<Workload>> cache;
@@ -36,13 +87,10 @@ inline const Workload& workload(const std::string& key, const std::function<Scen
   if (!slot) {
     slot = std::make_unique<Workload>();
     slot->scene = make_scene();
-    slot->rays = random_rays(slot->scene.bounds(), n_random, 12345);
+    slot->rays = random_rays(slot->scene.bounds(), scaled(n_random), 12345);
     const auto primary = primary_rays(default_camera(slot->scene.bounds()), primary_w, primary_h);
     slot->rays.insert(slot->rays.end(), primary.begin(), primary.end());
-    slot->reference.resize(slot->rays.size());
-    tbb::parallel_for(size_t(0), slot->rays.size(), [&](size_t i) {
-      slot->reference[i] = reference_closest(slot->scene, slot->rays[i]);
-    });
+    slot->reference = reference_hits(slot->scene, slot->rays);
   }
   return *slot;
 }

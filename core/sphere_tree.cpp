@@ -1,0 +1,1 @@
+#include "sphere_tree.h"

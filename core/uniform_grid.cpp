@@ -1,0 +1,1 @@
+#include "uniform_grid.h"

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Configures and builds accelviz into build/ (Release). Extra arguments go to cmake's
+# configure step, e.g. scripts/build.sh -DACCEL_BUILD_APP=OFF.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${ACCEL_BUILD_DIR:-$root/build}"
+jobs="$(nproc 2>/dev/null || echo 2)"
+cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build "$build_dir" -j"$jobs"

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs missing packages, builds, and runs every test (the viewer's under xvfb-run).
+# Then repeats the core and CLI tests in a second build instrumented with AddressSanitizer
+# and UBSan (build-asan/), with smaller ray counts (ACCEL_TEST_RAY_SCALE) to keep CI short.
+#   ACCEL_SKIP_SANITIZERS=1 scripts/test.sh   # only the Release run
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+jobs="$(nproc 2>/dev/null || echo 2)"
+"$root/scripts/deps.sh"
+
+echo "== Release build and tests"
+"$root/scripts/build.sh"
+(cd "$root/build" && ctest --output-on-failure -j"$jobs")
+
+if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
+  echo "== AddressSanitizer + UBSan build and tests"
+  cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACCEL_SANITIZE=ON \
+        -DACCEL_BUILD_APP=OFF >/dev/null
+  cmake --build "$root/build-asan" -j"$jobs"
+  (cd "$root/build-asan" && ACCEL_TEST_RAY_SCALE=0.1 \
+     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+     ctest --output-on-failure -j"$jobs")
+fi

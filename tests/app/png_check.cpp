@@ -1,0 +1,88 @@
+// png_check: asserts that a screenshot of the viewer is a real picture.
+//
+//   png_check FILE WIDTH HEIGHT [MIN_FRACTION]   exit 0 if FILE is a WIDTHxHEIGHT PNG in
+//                                                 which at least MIN_FRACTION (default
+//                                                 0.05) of the pixels differ from the
+//                                                 background, in several shades
+//   png_check --skip REASON                      prints REASON, exits 77 (ctest SKIP)
+//
+// The background is the bottom-right corner pixel: ImGui's panel sits top-left, and the
+// framed scene leaves the corners free.
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <string>
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#include <stb/stb_image.h>
+
+namespace {
+
+constexpr int kSkipCode = 77;
+// Per-channel sum of absolute differences above which a pixel is "not background";
+// large enough to ignore dithering or compression noise, small enough for dark shades.
+constexpr int kDiffThreshold = 24;
+// Flat shading gives many faces many brightnesses; a blank or single-colour frame fails.
+constexpr size_t kMinShades = 8;
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "png_check: FAIL: %s\n", message.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "--skip") {
+    std::printf("png_check: skipped: %s\n", argv[2]);
+    return kSkipCode;
+  }
+  if (argc < 4 || argc > 5) {
+    std::fprintf(stderr, "usage: png_check FILE WIDTH HEIGHT [MIN_FRACTION] | png_check --skip REASON\n");
+    return 2;
+  }
+  const std::string path = argv[1];
+  const int want_w = std::atoi(argv[2]);
+  const int want_h = std::atoi(argv[3]);
+  const double min_fraction = argc == 5 ? std::atof(argv[4]) : 0.05;
+
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(path.c_str(), &w, &h, &channels, 3);
+  if (pixels == nullptr) return fail("cannot read " + path + ": " + stbi_failure_reason());
+  if (w != want_w || h != want_h) {
+    stbi_image_free(pixels);
+    return fail(path + " is " + std::to_string(w) + "x" + std::to_string(h) + ", expected " +
+                std::to_string(want_w) + "x" + std::to_string(want_h));
+  }
+
+  const auto at = [&](int x, int y) { return pixels + 3 * (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)); };
+  const unsigned char* bg = at(w - 1, h - 1);
+  const int bg_r = bg[0], bg_g = bg[1], bg_b = bg[2];
+  size_t differing = 0;
+  std::set<int> shades;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const unsigned char* p = at(x, y);
+      const int diff = std::abs(p[0] - bg_r) + std::abs(p[1] - bg_g) + std::abs(p[2] - bg_b);
+      if (diff > kDiffThreshold) {
+        ++differing;
+        shades.insert((p[0] << 16) | (p[1] << 8) | p[2]);
+      }
+    }
+  }
+  stbi_image_free(pixels);
+
+  const double fraction = static_cast<double>(differing) / (static_cast<double>(w) * static_cast<double>(h));
+  std::printf("png_check: %s: %dx%d, background (%d,%d,%d), %.1f%% of pixels differ, %zu colours\n",
+              path.c_str(), w, h, bg_r, bg_g, bg_b, 100.0 * fraction, shades.size());
+  if (fraction < min_fraction) {
+    return fail("only " + std::to_string(100.0 * fraction) + "% of pixels differ from the background, need " +
+                std::to_string(100.0 * min_fraction) + "%: blank frame?");
+  }
+  if (shades.size() < kMinShades) {
+    return fail("only " + std::to_string(shades.size()) + " colours besides the background: unshaded?");
+  }
+  std::printf("png_check: OK\n");
+  return 0;
+}

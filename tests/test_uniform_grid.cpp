@@ -1,0 +1,1 @@
+// Tests for core/uniform_grid: STUB
