@@ -1,33 +1,22 @@
 #pragma once
-// STUB: replaced by the real implementation.
-#include "structure.h"
+// Bounding volume hierarchy with axis-aligned boxes (AABB tree). Builders: bvh_builders.h;
+// traversal orders: hierarchy.h.
+#include "hierarchy.h"
 
 namespace accel {
 
-class Bvh final : public StructureWithTraversal<Bvh> {
+class Bvh final : public Hierarchy<Bvh, Aabb, BoxTester> {
  public:
-  static std::vector<ParamSpec> param_specs() { return {}; }
+  static std::vector<ParamSpec> param_specs() { return hierarchy_param_specs(); }
   std::string name() const override { return "bvh"; }
-  void for_each_node(const std::function<void(const NodeView&)>&) const override {}
-  NodeView node_view(NodeId) const override { return {}; }
-  std::vector<uint32_t> node_prims(NodeId) const override { return {}; }
 
-  template <class Sink>
-  Hit traverse(const Ray& ray, Sink& sink) const {
-    const TriangleTester tester(ray, kernel_);
-    Hit closest = no_hit(ray);
-    for (uint32_t prim : scene_->valid_prims()) test_triangle(*scene_, tester, prim, closest, sink);
-    const Hit result = finish_hit(closest);
-    sink.done(result);
-    return result;
+  // Volume policy used by Hierarchy (see hierarchy.h).
+  static Aabb fit(const Scene&, const uint32_t*, size_t, const Aabb& box) { return box; }
+  static float volume_area(const Aabb& box) { return box.area(); }
+  static bool hit(const Aabb& box, const BoxTester& vray, const Ray&, float tmin, float tmax, float* t0, float* t1) {
+    return vray.intersect(box, tmin, tmax, t0, t1);
   }
-
- protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet&) override { scene_ = &scene; return true; }
-  BuildStats compute_stats() const override { return {}; }
-
- private:
-  const Scene* scene_ = nullptr;
+  static void describe(const Aabb&, NodeView*) {}
 };
 
 }  // namespace accel

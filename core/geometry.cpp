@@ -68,7 +68,12 @@ bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
   const float t_scaled = u_ * az + v_ * bz + w_ * cz;
   const float inv_det = 1.0f / det;
   const float t = t_scaled * inv_det;
-  if (!(t >= ray_.tmin && t <= tmax)) return false;
+  // t carries a rounding error of a few ulps of the terms summed into it. Close to tmin or
+  // tmax that error can flip the inclusive range test (origins on a surface, hits exactly
+  // at tmax), so there, and only there, the double-precision test decides.
+  const float t_err = 64.0f * gamma_bound(1) * (std::abs(u_ * az) + std::abs(v_ * bz) + std::abs(w_ * cz)) *
+                      std::abs(inv_det);
+  if (t - t_err <= ray_.tmin || t + t_err >= tmax) return reference(p0, p1, p2, tmax, out);
   *out = {t, v_ * inv_det, w_ * inv_det};
   return true;
 }

@@ -122,7 +122,13 @@ Scene make_stadium() {
     const Vec3 d0(std::cos(a0), 0.0f, std::sin(a0)), d1(std::cos(a1), 0.0f, std::sin(a1));
     m.quad(d0 * r_in, d0 * r_out + Vec3(0, 30, 0), d1 * r_out + Vec3(0, 30, 0), d1 * r_in);
   }
-  m.quad({-r_in, 0, -r_in}, {-r_in, 0, r_in}, {r_in, 0, r_in}, {r_in, 0, -r_in});  // the pitch
+  const uint32_t centre = m.vertex(Vec3(0.0f));  // the pitch: a disc under the stands' inner edge
+  for (int i = 0; i < segments; ++i) {
+    const float a0 = 2.0f * std::numbers::pi_v<float> * i / segments;
+    const float a1 = 2.0f * std::numbers::pi_v<float> * (i + 1) / segments;
+    m.triangle(centre, m.vertex(r_in * Vec3(std::cos(a1), 0.0f, std::sin(a1))),
+               m.vertex(r_in * Vec3(std::cos(a0), 0.0f, std::sin(a0))));
+  }
   return Scene(std::move(m.positions), std::move(m.triangles), "procedural:stadium");
 }
 

@@ -1,33 +1,35 @@
 #pragma once
-// STUB: replaced by the real implementation.
-#include "structure.h"
+// Bounding volume hierarchy with bounding spheres. Same builders and traversal orders as
+// the AABB tree (hierarchy.h); each node's sphere is fitted to the vertices of all
+// triangles below it with Ritter's algorithm (Ritter 1990, "An efficient bounding sphere",
+// Graphics Gems), its radius then tightened to the farthest vertex, and replaced by the
+// box's circumsphere when that is smaller.
+#include "hierarchy.h"
 
 namespace accel {
 
-class SphereTree final : public StructureWithTraversal<SphereTree> {
- public:
-  static std::vector<ParamSpec> param_specs() { return {}; }
-  std::string name() const override { return "spheretree"; }
-  void for_each_node(const std::function<void(const NodeView&)>&) const override {}
-  NodeView node_view(NodeId) const override { return {}; }
-  std::vector<uint32_t> node_prims(NodeId) const override { return {}; }
+/// The sphere test needs no per-ray precomputation.
+struct SphereRay {
+  explicit SphereRay(const Ray&) {}
+};
 
-  template <class Sink>
-  Hit traverse(const Ray& ray, Sink& sink) const {
-    const TriangleTester tester(ray, kernel_);
-    Hit closest = no_hit(ray);
-    for (uint32_t prim : scene_->valid_prims()) test_triangle(*scene_, tester, prim, closest, sink);
-    const Hit result = finish_hit(closest);
-    sink.done(result);
-    return result;
+class SphereTree final : public Hierarchy<SphereTree, BoundingSphere, SphereRay> {
+ public:
+  static std::vector<ParamSpec> param_specs() { return hierarchy_param_specs(); }
+  std::string name() const override { return "spheretree"; }
+
+  // Volume policy used by Hierarchy (see hierarchy.h).
+  static BoundingSphere fit(const Scene& scene, const uint32_t* prims, size_t n, const Aabb& box);
+  /// Surface area: the SAH's hit probability is proportional to it for any convex volume.
+  static float volume_area(const BoundingSphere& s) { return 4.0f * 3.14159265f * s.radius * s.radius; }
+  static bool hit(const BoundingSphere& s, const SphereRay&, const Ray& ray, float tmin, float tmax, float* t0,
+                  float* t1) {
+    return intersect_sphere(ray, s, tmin, tmax, t0, t1);
   }
+  static void describe(const BoundingSphere& s, NodeView* v) { v->sphere = s; }
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet&) override { scene_ = &scene; return true; }
-  BuildStats compute_stats() const override { return {}; }
-
- private:
-  const Scene* scene_ = nullptr;
+  BuildStats compute_stats() const override;
 };
 
 }  // namespace accel

@@ -1,15 +1,13 @@
 # Runs accelviz under a virtual X display to take a screenshot, then checks the PNG.
 #   cmake -DXVFB_RUN=... -DVIEWER=... -DCHECKER=... -DOUTPUT=x.png -DWIDTH=640 -DHEIGHT=360
-#         [-DSCENE=spec] -P run_screenshot.cmake
+#         [-DEXTRA_ARGS=a|b|c] -P run_screenshot.cmake
+# EXTRA_ARGS ("|"-separated: a scene, --no-ui, ...) go before --screenshot.
 # A 24-bit screen: xvfb-run's default depth 8 may offer no RGB visual for an OpenGL context.
 file(REMOVE "${OUTPUT}")
-set(scene_arg)
-if(DEFINED SCENE)
-  set(scene_arg "${SCENE}")
-endif()
+string(REPLACE "|" ";" extra_args "${EXTRA_ARGS}")
 execute_process(
   COMMAND "${XVFB_RUN}" -a -s "-screen 0 1920x1080x24"
-          "${VIEWER}" ${scene_arg} --screenshot "${OUTPUT}" --size "${WIDTH}x${HEIGHT}"
+          "${VIEWER}" ${extra_args} --screenshot "${OUTPUT}" --size "${WIDTH}x${HEIGHT}"
   RESULT_VARIABLE viewer_result
   OUTPUT_VARIABLE viewer_out
   ERROR_VARIABLE viewer_err

@@ -1,0 +1,55 @@
+#pragma once
+// Orbit camera: a target point, a distance, and yaw/pitch angles around it, Y up.
+// It knows no GLFW or ImGui; App feeds it mouse deltas only while ImGui does not want
+// the mouse (io.WantCaptureMouse), so dragging a slider never spins the scene.
+#include <glm/glm.hpp>
+
+#include "math.h"
+
+namespace viz {
+
+/// Perspective orbit camera with Y up.
+class Camera {
+ public:
+  /// Looks at the box from the front and above, at the smallest distance at which all
+  /// eight corners fit a viewport of the given aspect ratio (width / height), with a small
+  /// margin. An empty box frames the unit cube.
+  void frame(const accel::Aabb& bounds, float aspect);
+
+  /// Rotates around the target; dx/dy are pixels dragged (right/down positive).
+  void orbit(float dx, float dy);
+  /// Moves the target in the view plane so the point under the cursor follows it;
+  /// dx/dy are pixels dragged, `viewport_height` the framebuffer height in pixels.
+  void pan(float dx, float dy, float viewport_height);
+  /// Moves towards the target by `steps` wheel notches (positive = closer).
+  void zoom(float steps);
+
+  /// World-to-view matrix.
+  glm::mat4 view() const;
+  /// View-to-clip matrix for a viewport of the given aspect ratio (width / height).
+  /// Near and far planes follow the distance and the framed scene size, so depth precision
+  /// holds for both tiny and huge scenes.
+  glm::mat4 projection(float aspect) const;
+  /// Eye position in world space.
+  glm::vec3 eye() const;
+  glm::vec3 target() const { return target_; }
+  float distance() const { return distance_; }
+  /// Vertical field of view in radians.
+  float fov_y() const { return fov_y_; }
+
+ private:
+  // Front-right and about 30 degrees above: shows top and two sides of a box-like scene.
+  static constexpr float kDefaultYaw = 0.6f;
+  static constexpr float kDefaultPitch = -0.5f;
+
+  glm::vec3 forward() const;  // unit vector from the eye to the target
+
+  glm::vec3 target_{0.0f};
+  float distance_ = 3.0f;
+  float yaw_ = kDefaultYaw;      // radians around +Y; 0 looks down -Z
+  float pitch_ = kDefaultPitch;  // radians; negative looks down on the scene
+  float fov_y_ = glm::radians(45.0f);
+  float scene_radius_ = 1.0f;  // of the last framed box; sets the near/far range
+};
+
+}  // namespace viz

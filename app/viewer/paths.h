@@ -1,0 +1,23 @@
+#pragma once
+// Where the viewer finds its run-time files (the GLSL shaders).
+#include <string>
+#include <vector>
+
+#include "result.h"
+
+namespace viz {
+
+/// Directory holding the running executable, resolved through /proc/self/exe so it does
+/// not depend on the working directory. Empty if /proc is unavailable.
+std::string executable_dir();
+
+/// Candidate shader directories in search order: EXE_DIR/../../shaders (the build tree,
+/// build/bin -> source shaders/), EXE_DIR/../share/accelviz/shaders (an install), then the
+/// compile-time ACCEL_SHADER_DIR (the source tree this binary was built from).
+std::vector<std::string> shader_dir_candidates();
+
+/// The first candidate that holds every file in `required`. Error: one line naming the
+/// first missing file and every directory searched.
+accel::Result<std::string> find_shader_dir(const std::vector<std::string>& required);
+
+}  // namespace viz

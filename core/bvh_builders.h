@@ -1,0 +1,69 @@
+#pragma once
+// BVH builders shared by the AABB tree (bvh) and the sphere tree (spheretree): each
+// produces the same binary topology over the scene's triangles; the structure then fits its
+// bounding volumes (boxes or spheres) to it and flattens it. Every builder is its own
+// function, chosen by BvhBuilderKind.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "math.h"
+#include "params.h"
+#include "scene.h"
+
+namespace accel {
+
+enum class BvhBuilderKind : uint8_t {
+  Median,     ///< sort centres, split at the median (lecture: top-down, "median")
+  Sah,        ///< full sweep over sorted centroids on all three axes (MacDonald & Booth 1990)
+  BinnedSah,  ///< binned SAH approximation (Wald 2007, "On fast construction of SAH-based BVHs")
+  PcaSah,     ///< sweep along the principal axis of the centroids (lecture: "PCA", then SAH plane sweep)
+  BottomUp,   ///< agglomerative clustering, locally ordered (Meister & Bittner 2018, "PLOC")
+  Insertion,  ///< incremental insertion by least surface-area cost (Goldsmith & Salmon 1987)
+};
+
+/// Axis rule of the median builder.
+enum class MedianAxis : uint8_t { X, RoundRobin, Longest };
+
+/// Builder options, as parsed from the structure's parameters.
+struct BvhBuildOptions {
+  BvhBuilderKind builder = BvhBuilderKind::Sah;
+  MedianAxis axis = MedianAxis::Longest;
+  int bins = 16;
+  int leaf_size = 4;     ///< max triangles per leaf
+  float ct = 1.0f;       ///< SAH cost of one traversal step
+  float ci = 1.0f;       ///< SAH cost of one ray/triangle test
+};
+
+/// Parameters every hierarchy takes (bvh and spheretree alike), besides `traversal`.
+std::vector<ParamSpec> bvh_builder_param_specs();
+/// Reads BvhBuildOptions from validated parameters.
+BvhBuildOptions bvh_build_options(const ParamSet& params);
+const char* builder_name(BvhBuilderKind kind);
+
+/// One node of the builder's output. Leaves have count > 0 and cover
+/// prims[first, first + count); inner nodes have count == 0 and two children.
+struct BuildNode {
+  Aabb box;
+  uint32_t left = 0, right = 0;
+  uint32_t first = 0, count = 0;
+};
+
+/// A binary tree over triangle indices; nodes[root] is the root. Empty when the scene has no
+/// valid triangles.
+struct BuildTree {
+  std::vector<BuildNode> nodes;
+  std::vector<uint32_t> prims;
+  uint32_t root = 0;
+  bool empty() const { return nodes.empty(); }
+};
+
+/// Runs the chosen builder over scene.valid_prims(). Guarantees: every valid triangle is in
+/// exactly one leaf, leaves hold at most `leaf_size` triangles, each box bounds its subtree,
+/// and the depth stays below kMaxBvhDepth.
+BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options);
+
+/// Depth bound of every builder's output (the traversal stacks are sized from it).
+inline constexpr int kMaxBvhDepth = 96;
+
+}  // namespace accel

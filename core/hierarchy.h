@@ -1,0 +1,347 @@
+#pragma once
+// The bounding volume hierarchy shared by the AABB tree (bvh.h) and the sphere tree
+// (sphere_tree.h): the same builders (bvh_builders.h), the same flat node layout and the
+// same three traversal orders of the lecture, written once as templates over the bounding
+// volume. Index:
+//   [SECTION] Parameters and traversal order
+//   [SECTION] Node layout
+//   [SECTION] Hierarchy: build, stats, views
+//   [SECTION] Traversals: depth-first, ordered, priority queue
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "bvh_builders.h"
+#include "check.h"
+#include "structure.h"
+
+namespace accel {
+
+// ============================================================================
+// [SECTION] Parameters and traversal order
+// ============================================================================
+
+/// The lecture's three ways to walk a hierarchy.
+enum class TraversalOrder : uint8_t {
+  Dfs,            ///< depth-first in tree order (left before right), whatever the ray's direction
+  Ordered,        ///< depth-first, nearer child first; a popped node entered beyond the closest hit is skipped
+  PriorityQueue,  ///< nodes in order of entry distance (lecture: p-queue); stops when the nearest
+                  ///< pending node is farther than the closest hit
+};
+
+/// Builder parameters plus `traversal`.
+std::vector<ParamSpec> hierarchy_param_specs();
+TraversalOrder traversal_order(const ParamSet& params);
+
+// ============================================================================
+// [SECTION] Node layout
+// ============================================================================
+
+/// One flattened node, in depth-first order. Inner node: the first child is the next node
+/// (this + 1), `index` is the second child, `count` is 0. Leaf: `count` > 0 triangles at
+/// prims_[index, index + count). `Volume` is an Aabb (32-byte node) or a BoundingSphere.
+template <class Volume>
+struct HierarchyNode {
+  Volume volume;
+  uint32_t index = 0;
+  uint32_t count = 0;
+  bool leaf() const { return count != 0; }
+};
+static_assert(sizeof(HierarchyNode<Aabb>) == 32, "BVH nodes should stay 32 bytes (two per cache line)");
+static_assert(sizeof(HierarchyNode<BoundingSphere>) == 24);
+
+// ============================================================================
+// [SECTION] Hierarchy: build, stats, views
+// ============================================================================
+
+/// CRTP base. VolumeRay is the per-ray precomputation of the volume test, constructed from
+/// the Ray. Derived provides
+///   static Volume fit(const Scene&, const uint32_t* prims, size_t n, const Aabb& box);
+///   static float volume_area(const Volume&);      // SAH surface area
+///   static bool hit(const Volume&, const VolumeRay&, const Ray&, float tmin, float tmax, float* t0, float* t1);
+///   static void describe(const Volume&, NodeView*);
+template <class Derived, class Volume, class VolumeRay>
+class Hierarchy : public StructureWithTraversal<Derived> {
+ public:
+  using Node = HierarchyNode<Volume>;
+
+  void for_each_node(const std::function<void(const NodeView&)>& fn) const override {
+    for (NodeId i = 0; i < nodes_.size(); ++i) fn(node_view(i));
+  }
+  NodeView node_view(NodeId id) const override {
+    NodeView v;
+    if (id >= nodes_.size()) return v;
+    const Node& n = nodes_[id];
+    v.id = id;
+    v.depth = depth_[id];
+    v.leaf = n.leaf();
+    v.prim_count = n.count;
+    v.box = boxes_[id];
+    Derived::describe(n.volume, &v);
+    return v;
+  }
+  std::vector<uint32_t> node_prims(NodeId id) const override {
+    if (id >= nodes_.size() || !nodes_[id].leaf()) return {};
+    return {prims_.begin() + nodes_[id].index, prims_.begin() + nodes_[id].index + nodes_[id].count};
+  }
+  TraversalOrder order() const { return order_; }
+  const std::vector<Node>& nodes() const { return nodes_; }
+
+  /// The one query of this hierarchy; the traversal order was chosen at build time.
+  template <class Sink>
+  Hit traverse(const Ray& ray, Sink& sink) const {
+    Hit closest = no_hit(ray);
+    if (!nodes_.empty()) {
+      const TriangleTester tester(ray, this->kernel_);
+      const VolumeRay vray(ray);
+      switch (order_) {
+        case TraversalOrder::Dfs: traverse_dfs(ray, vray, tester, closest, sink); break;
+        case TraversalOrder::Ordered: traverse_ordered(ray, vray, tester, closest, sink); break;
+        case TraversalOrder::PriorityQueue: traverse_pqueue(ray, vray, tester, closest, sink); break;
+      }
+    }
+    const Hit result = finish_hit(closest);
+    sink.done(result);
+    return result;
+  }
+
+ protected:
+  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override {
+    scene_ = &scene;
+    options_ = bvh_build_options(params);
+    order_ = traversal_order(params);
+    const BuildTree tree = build_bvh_tree(scene, options_);
+    nodes_.clear();
+    boxes_.clear();
+    depth_.clear();
+    prims_ = tree.prims;
+    if (!tree.empty()) {
+      nodes_.reserve(tree.nodes.size());
+      flatten(tree, tree.root, 0);
+    }
+    return true;
+  }
+
+  BuildStats compute_stats() const override {
+    BuildStats s;
+    s.nodes = nodes_.size();
+    s.prims = prims_.size();
+    s.prim_references = prims_.size();
+    s.memory_bytes = nodes_.size() * sizeof(Node) + prims_.size() * sizeof(uint32_t);
+    s.sah_ct = options_.ct;
+    s.sah_ci = options_.ci;
+    double cost = 0.0;
+    const double root_area = nodes_.empty() ? 0.0 : double(Derived::volume_area(nodes_[0].volume));
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      const double rel = root_area > 0.0 ? double(Derived::volume_area(nodes_[i].volume)) / root_area : 1.0;
+      if (nodes_[i].leaf()) {
+        s.add_leaf(nodes_[i].count);
+        cost += double(options_.ci) * nodes_[i].count * rel;
+      } else {
+        cost += double(options_.ct) * rel;
+      }
+      s.max_depth = std::max(s.max_depth, int(depth_[i]));
+    }
+    if (!nodes_.empty()) s.sah_cost = cost;
+    s.extra.push_back({"builder", builder_name(options_.builder)});
+    static constexpr const char* kOrder[] = {"dfs", "ordered", "pqueue"};
+    s.extra.push_back({"traversal", kOrder[int(order_)]});
+    return s;
+  }
+
+  const Scene* scene_ = nullptr;
+  BvhBuildOptions options_;
+  TraversalOrder order_ = TraversalOrder::Ordered;
+  std::vector<Node> nodes_;
+  std::vector<Aabb> boxes_;        ///< subtree boxes, for drawing (the sphere tree's volume is a sphere)
+  std::vector<uint16_t> depth_;
+  std::vector<uint32_t> prims_;
+
+ private:
+  /// Depth-first flattening: the first child directly follows its parent.
+  uint32_t flatten(const BuildTree& tree, uint32_t src, int depth) {
+    const uint32_t dst = uint32_t(nodes_.size());
+    const BuildNode& b = tree.nodes[src];
+    nodes_.emplace_back();
+    boxes_.push_back(b.box);
+    depth_.push_back(uint16_t(depth));
+    ACCEL_CHECK(depth < kMaxBvhDepth);
+    if (b.count) {
+      nodes_[dst].index = b.first;
+      nodes_[dst].count = b.count;
+      nodes_[dst].volume = Derived::fit(*scene_, prims_.data() + b.first, b.count, b.box);
+      return dst;
+    }
+    flatten(tree, b.left, depth + 1);
+    nodes_[dst].index = flatten(tree, b.right, depth + 1);
+    nodes_[dst].volume = fit_inner(dst);
+    return dst;
+  }
+
+  /// Volume of an inner node: fitted to all triangles below it (not to the children's
+  /// volumes, which for spheres would grow at every level).
+  Volume fit_inner(uint32_t dst) {
+    // Leaves below dst are contiguous in prims_ because flattening is depth-first and each
+    // builder lays out a subtree's triangles contiguously.
+    uint32_t lo = ~0u, hi = 0;
+    for (size_t k = dst; k < nodes_.size(); ++k) {
+      if (nodes_[k].leaf()) {
+        lo = std::min(lo, nodes_[k].index);
+        hi = std::max(hi, nodes_[k].index + nodes_[k].count);
+      }
+    }
+    return Derived::fit(*scene_, prims_.data() + lo, hi - lo, boxes_[dst]);
+  }
+
+  // ==========================================================================
+  // [SECTION] Traversals
+  // ==========================================================================
+
+  struct Pending {
+    uint32_t node;
+    uint32_t depth;
+    float t0, t1;  ///< the ray's interval inside the node's volume (when known)
+  };
+  static constexpr int kStackSize = kMaxBvhDepth + 4;
+
+  /// Tests a node's volume against [tmin, closest.t]; on a miss tells the sink why.
+  template <class Sink>
+  bool test_volume(uint32_t node, uint32_t depth, const Ray& ray, const VolumeRay& vray,
+                   const Hit& closest, Sink& sink, float* t0, float* t1) const {
+    if (Derived::hit(nodes_[node].volume, vray, ray, ray.tmin, closest.t, t0, t1)) return true;
+    if constexpr (Sink::kRecords) {
+      float a, b;
+      const bool beyond = Derived::hit(nodes_[node].volume, vray, ray, ray.tmin, kInf, &a, &b);
+      sink.cull(node, int(depth), beyond ? CullReason::BeyondClosestHit : CullReason::MissedBounds, beyond ? a : 0.0f);
+    } else {
+      sink.cull(node, int(depth), CullReason::MissedBounds, 0.0f);
+    }
+    return false;
+  }
+
+  template <class Sink>
+  void test_leaf(const Node& n, const TriangleTester& tester, Hit& closest, Sink& sink) const {
+    for (uint32_t k = n.index; k < n.index + n.count; ++k) test_triangle(*scene_, tester, prims_[k], closest, sink);
+  }
+
+  /// Lecture: pure DFS -- the visiting order depends only on the tree's topology.
+  template <class Sink>
+  void traverse_dfs(const Ray& ray, const VolumeRay& vray, const TriangleTester& tester,
+                    Hit& closest, Sink& sink) const {
+    Pending stack[kStackSize];
+    int top = 0;
+    stack[top++] = {0, 0, ray.tmin, ray.tmin};
+    sink.push(0, 0, ray.tmin);
+    while (top > 0) {
+      const Pending p = stack[--top];
+      sink.pop(p.node, int(p.depth), p.t0);
+      float t0, t1;
+      if (!test_volume(p.node, p.depth, ray, vray, closest, sink, &t0, &t1)) continue;
+      sink.visit(p.node, int(p.depth), t0, t1);
+      const Node& n = nodes_[p.node];
+      if (n.leaf()) {
+        test_leaf(n, tester, closest, sink);
+        continue;
+      }
+      // Right first, so the left (first) child is popped next: tree order.
+      stack[top++] = {n.index, p.depth + 1, t0, t0};
+      sink.push(n.index, int(p.depth) + 1, t0);
+      stack[top++] = {p.node + 1, p.depth + 1, t0, t0};
+      sink.push(p.node + 1, int(p.depth) + 1, t0);
+    }
+  }
+
+  /// Nearer child first: both children's volumes are tested at the parent, the farther one
+  /// waits on the stack with its entry distance and is skipped if a hit closer than that
+  /// has been found by the time it is popped.
+  template <class Sink>
+  void traverse_ordered(const Ray& ray, const VolumeRay& vray, const TriangleTester& tester,
+                        Hit& closest, Sink& sink) const {
+    Pending stack[kStackSize];
+    int top = 0;
+    float t0, t1;
+    if (!test_volume(0, 0, ray, vray, closest, sink, &t0, &t1)) return;
+    stack[top++] = {0, 0, t0, t1};
+    sink.push(0, 0, t0);
+    while (top > 0) {
+      const Pending p = stack[--top];
+      sink.pop(p.node, int(p.depth), p.t0);
+      if (p.t0 > closest.t) {
+        sink.cull(p.node, int(p.depth), CullReason::BeyondClosestHit, p.t0);
+        continue;
+      }
+      sink.visit(p.node, int(p.depth), p.t0, p.t1);
+      const Node& n = nodes_[p.node];
+      if (n.leaf()) {
+        test_leaf(n, tester, closest, sink);
+        continue;
+      }
+      const uint32_t left = p.node + 1, right = n.index, d = p.depth + 1;
+      float l0, l1, r0, r1;
+      const bool hit_l = test_volume(left, d, ray, vray, closest, sink, &l0, &l1);
+      const bool hit_r = test_volume(right, d, ray, vray, closest, sink, &r0, &r1);
+      if (hit_l && hit_r) {
+        const bool left_first = l0 <= r0;
+        const Pending near = left_first ? Pending{left, d, l0, l1} : Pending{right, d, r0, r1};
+        const Pending far = left_first ? Pending{right, d, r0, r1} : Pending{left, d, l0, l1};
+        stack[top++] = far;
+        sink.push(far.node, int(d), far.t0);
+        stack[top++] = near;
+        sink.push(near.node, int(d), near.t0);
+      } else if (hit_l || hit_r) {
+        stack[top++] = hit_l ? Pending{left, d, l0, l1} : Pending{right, d, r0, r1};
+        sink.push(stack[top - 1].node, int(d), stack[top - 1].t0);
+      }
+    }
+  }
+
+  /// Lecture: a priority queue of nodes keyed by the distance along the ray to their volume.
+  /// Its warning holds: the nearest volume need not hold the nearest triangle, so the search
+  /// continues until the nearest pending volume is farther than the closest hit.
+  template <class Sink>
+  void traverse_pqueue(const Ray& ray, const VolumeRay& vray, const TriangleTester& tester,
+                       Hit& closest, Sink& sink) const {
+    // The queue can outgrow any fixed stack; a per-thread buffer avoids allocating per ray.
+    thread_local std::vector<Pending> heap;
+    heap.clear();
+    const auto later = [](const Pending& a, const Pending& b) { return a.t0 > b.t0 || (a.t0 == b.t0 && a.node > b.node); };
+    const auto push = [&](const Pending& p) {
+      heap.push_back(p);
+      std::push_heap(heap.begin(), heap.end(), later);
+      sink.push(p.node, int(p.depth), p.t0);
+    };
+    float t0, t1;
+    if (!test_volume(0, 0, ray, vray, closest, sink, &t0, &t1)) return;
+    push({0, 0, t0, t1});
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), later);
+      const Pending p = heap.back();
+      heap.pop_back();
+      sink.pop(p.node, int(p.depth), p.t0);
+      if (p.t0 > closest.t) {
+        // Every pending node is at least this far: all of them are skipped.
+        sink.cull(p.node, int(p.depth), CullReason::BeyondClosestHit, p.t0);
+        if constexpr (Sink::kRecords) {
+          std::sort_heap(heap.begin(), heap.end(), later);
+          for (auto it = heap.rbegin(); it != heap.rend(); ++it)
+            sink.cull(it->node, int(it->depth), CullReason::BeyondClosestHit, it->t0);
+        }
+        break;
+      }
+      sink.visit(p.node, int(p.depth), p.t0, p.t1);
+      const Node& n = nodes_[p.node];
+      if (n.leaf()) {
+        test_leaf(n, tester, closest, sink);
+        continue;
+      }
+      const uint32_t d = p.depth + 1;
+      for (uint32_t child : {p.node + 1, n.index}) {
+        float c0, c1;
+        if (test_volume(child, d, ray, vray, closest, sink, &c0, &c1)) push({child, d, c0, c1});
+      }
+    }
+  }
+};
+
+}  // namespace accel

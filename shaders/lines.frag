@@ -1,0 +1,11 @@
+#version 330 core
+in vec4 v_color;
+
+// Multiplies the vertex colour, e.g. to fade lines that fail the depth test.
+uniform vec4 u_tint;
+
+out vec4 frag_color;
+
+void main() {
+  frag_color = v_color * u_tint;
+}
