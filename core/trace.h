@@ -68,10 +68,10 @@ struct NullSink {
 
 /// Per-query counters, returned per query (never global).
 struct QueryStats {
-  uint32_t nodes_visited = 0;  ///< nodes entered, or grid cells stepped through
-  uint32_t nodes_culled = 0;   ///< nodes skipped (missed or beyond the closest hit)
-  uint32_t prims_tested = 0;   ///< ray/triangle tests
-  uint32_t max_stack = 0;      ///< deepest stack / largest priority queue
+  uint64_t nodes_visited = 0;  ///< nodes entered, or grid cells stepped through
+  uint64_t nodes_culled = 0;   ///< nodes skipped (missed or beyond the closest hit)
+  uint64_t prims_tested = 0;   ///< ray/triangle tests
+  uint64_t max_stack = 0;      ///< deepest stack / largest priority queue
   QueryStats& operator+=(const QueryStats& o) {
     nodes_visited += o.nodes_visited;
     nodes_culled += o.nodes_culled;
@@ -85,7 +85,7 @@ struct QueryStats {
 struct StatsSink {
   static constexpr bool kRecords = false;
   QueryStats stats;
-  uint32_t stack_size = 0;
+  uint64_t stack_size = 0;
   void visit(NodeId, int, float, float) { ++stats.nodes_visited; }
   void enter_cell(NodeId, float, float) { ++stats.nodes_visited; }
   void cull(NodeId, int, CullReason, float) { ++stats.nodes_culled; }

@@ -1,6 +1,8 @@
 #include "commands.h"
 
+#include <chrono>
 #include <cstdio>
+#include <thread>
 #include <memory>
 
 #include "batch.h"
@@ -63,8 +65,26 @@ int run_stats(const StatsOptions& o) {
   if (!built) return fail(built.error().message);
   const Built& b = *built.value();
   const accel::BuildStats stats = b.structure->build_stats();
-  const std::string text = o.json ? stats_json(o.build.scene, o.build.structure, b.params, b.scene, stats)
-                                  : stats_text(o.build.scene, o.build.structure, b.params, b.scene, stats);
+  QueryReport q;
+  if (!o.rays.empty()) {
+    auto rays = accel::make_rays(o.rays, b.scene);
+    if (!rays) return fail(rays.error().message);
+    accel::QueryStats total;
+    const auto start = std::chrono::steady_clock::now();
+    const auto hits = accel::trace_all(*b.structure, rays.value(), o.threads, &total);
+    q.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    q.present = true;
+    q.rays = o.rays;
+    q.n_rays = hits.size();
+    for (const auto& h : hits) q.hits += h.valid();
+    const double n = double(std::max<size_t>(1, hits.size()));
+    q.nodes_per_ray = double(total.nodes_visited) / n;
+    q.culled_per_ray = double(total.nodes_culled) / n;
+    q.prims_per_ray = double(total.prims_tested) / n;
+    q.threads = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+  }
+  const std::string text = o.json ? stats_json(o.build.scene, o.build.structure, b.params, b.scene, stats, q)
+                                  : stats_text(o.build.scene, o.build.structure, b.params, b.scene, stats, q);
   std::fputs(text.c_str(), stdout);
   return 0;
 }

@@ -24,6 +24,8 @@ struct TraceOptions {
 struct StatsOptions {
   StructureOptions build;
   bool json = false;
+  std::string rays;   ///< optional: also trace these rays and report per-ray counters
+  int threads = 0;
 };
 
 int run_trace(const TraceOptions& options);

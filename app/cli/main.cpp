@@ -56,6 +56,11 @@ int main(int argc, char** argv) {
   CLI::App* stats_cmd = app.add_subcommand("stats", "build a structure and print its statistics");
   add_structure_options(stats_cmd, &stats.build);
   stats_cmd->add_flag("--json", stats.json, "print JSON instead of text");
+  stats_cmd->add_option("--rays", stats.rays,
+                        "also trace these rays (file, primary:W:H or random:N:SEED) and report nodes visited and "
+                        "triangles tested per ray");
+  stats_cmd->add_option("--threads", stats.threads, "worker threads for --rays (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
 
   CLI::App* params_cmd = app.add_subcommand("params", "list the structures and their parameters");
 

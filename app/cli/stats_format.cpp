@@ -51,7 +51,7 @@ std::string json_quote(const std::string& s) {
 }
 
 std::string stats_text(const std::string& scene, const std::string& structure, const std::string& params,
-                       const accel::Scene& s, const accel::BuildStats& b) {
+                       const accel::Scene& s, const accel::BuildStats& b, const QueryReport& q) {
   std::string t;
   auto line = [&](const std::string& k, const std::string& v) { t += k + ": " + v + "\n"; };
   line("scene", scene);
@@ -71,11 +71,18 @@ std::string stats_text(const std::string& scene, const std::string& structure, c
   if (std::isfinite(b.sah_cost))
     line("sah_cost", num(b.sah_cost) + " (ct=" + num(b.sah_ct) + ", ci=" + num(b.sah_ci) + ", root area = 1)");
   for (const auto& [k, v] : b.extra) line(k, v);
+  if (q.present) {
+    line("rays", q.rays + " (" + std::to_string(q.n_rays) + " rays, " + std::to_string(q.hits) + " hits)");
+    line("nodes_visited_per_ray", num(q.nodes_per_ray));
+    line("nodes_culled_per_ray", num(q.culled_per_ray));
+    line("tris_tested_per_ray", num(q.prims_per_ray));
+    line("trace_ms", num(q.trace_ms) + " (" + std::to_string(q.threads) + " threads, counters on)");
+  }
   return t;
 }
 
 std::string stats_json(const std::string& scene, const std::string& structure, const std::string& params,
-                       const accel::Scene& s, const accel::BuildStats& b) {
+                       const accel::Scene& s, const accel::BuildStats& b, const QueryReport& q) {
   std::string j = "{";
   auto field = [&](const std::string& k, const std::string& v) {
     j += (j.size() > 1 ? ", " : "") + json_quote(k) + ": " + v;
@@ -103,6 +110,15 @@ std::string stats_json(const std::string& scene, const std::string& structure, c
   std::string extra = "{";
   for (const auto& [k, v] : b.extra) extra += (extra.size() > 1 ? ", " : "") + json_quote(k) + ": " + json_quote(v);
   field("extra", extra + "}");
+  if (q.present) {
+    field("rays", json_quote(q.rays));
+    field("n_rays", std::to_string(q.n_rays));
+    field("hits", std::to_string(q.hits));
+    field("nodes_visited_per_ray", num(q.nodes_per_ray));
+    field("nodes_culled_per_ray", num(q.culled_per_ray));
+    field("tris_tested_per_ray", num(q.prims_per_ray));
+    field("trace_ms", num(q.trace_ms));
+  }
   return j + "}\n";
 }
 

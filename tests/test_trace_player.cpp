@@ -1,0 +1,1 @@
+// STUB: tests for core/trace_player and core/heatmap
