@@ -132,22 +132,47 @@ Scene make_stadium() {
   return Scene(std::move(m.positions), std::move(m.triangles), "procedural:stadium");
 }
 
+Scene make_terrain() {
+  // About a million triangles: a 724 x 724 heightfield of rolling hills, for measuring the
+  // viewer's frame rate and the builders' speed at scale.
+  constexpr int n = 724;
+  MeshBuilder m;
+  m.positions.reserve(size_t(n + 1) * (n + 1));
+  for (int z = 0; z <= n; ++z)
+    for (int x = 0; x <= n; ++x) {
+      const float u = float(x) / n, v = float(z) / n;
+      const float h = 0.08f * std::sin(9.0f * u) * std::cos(7.0f * v) + 0.03f * std::sin(31.0f * u + 17.0f * v);
+      m.vertex(Vec3(u - 0.5f, h, v - 0.5f));
+    }
+  m.triangles.reserve(size_t(2) * n * n);
+  for (int z = 0; z < n; ++z)
+    for (int x = 0; x < n; ++x) {
+      const uint32_t i = uint32_t(z * (n + 1) + x);
+      m.triangle(i, i + n + 1, i + 1);
+      m.triangle(i + 1, i + n + 1, i + n + 2);
+    }
+  return Scene(std::move(m.positions), std::move(m.triangles), "procedural:terrain");
+}
+
 struct ProceduralEntry {
   const char* name;
   const char* description;
+  bool large;  ///< too big for the brute-force-checked test suites
 };
-constexpr std::array<ProceduralEntry, 4> kProcedural = {{
-    {"stadium", "teapot in a stadium: a dense 20k-triangle object in a huge sparse room"},
-    {"sphere", "icosphere, 5120 triangles, closed mesh with shared vertices"},
-    {"soup", "10k random triangles in the unit cube (seeded)"},
-    {"cornell", "Cornell-box-like room with two blocks and a ball, mostly axis-aligned"},
+constexpr std::array<ProceduralEntry, 5> kProcedural = {{
+    {"stadium", "teapot in a stadium: a dense 20k-triangle object in a huge sparse room", false},
+    {"sphere", "icosphere, 5120 triangles, closed mesh with shared vertices", false},
+    {"soup", "10k random triangles in the unit cube (seeded)", false},
+    {"cornell", "Cornell-box-like room with two blocks and a ball, mostly axis-aligned", false},
+    {"terrain", "heightfield of rolling hills, 1,048,352 triangles (for frame-rate and build-time tests)", true},
 }};
 
 }  // namespace
 
-std::vector<std::string> procedural_scene_names() {
+std::vector<std::string> procedural_scene_names(bool include_large) {
   std::vector<std::string> names;
-  for (const auto& e : kProcedural) names.emplace_back(e.name);
+  for (const auto& e : kProcedural)
+    if (include_large || !e.large) names.emplace_back(e.name);
   return names;
 }
 
@@ -162,6 +187,7 @@ Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed) {
   if (name == "soup") return make_soup(seed);
   if (name == "cornell") return make_cornell();
   if (name == "stadium") return make_stadium();
+  if (name == "terrain") return make_terrain();
   std::string valid;
   for (const auto& e : kProcedural) valid += std::string(valid.empty() ? "" : ", ") + e.name;
   return make_error("unknown procedural scene '" + std::string(name) + "' (valid: " + valid + ")");

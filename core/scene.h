@@ -56,8 +56,9 @@ class Scene {
 /// A missing .mtl is not an error.
 Result<Scene> load_obj(const std::string& path);
 
-/// Names accepted by make_procedural_scene(), e.g. "sphere", "soup", "cornell", "stadium".
-std::vector<std::string> procedural_scene_names();
+/// Names accepted by make_procedural_scene(), e.g. "sphere", "soup", "cornell", "stadium";
+/// the large ones ("terrain", ~1M triangles) only with include_large.
+std::vector<std::string> procedural_scene_names(bool include_large = false);
 /// One-line description of a procedural scene, for help texts and the viewer's presets.
 std::string procedural_scene_description(std::string_view name);
 /// Builds a procedural scene by name; `seed` varies the random ones. Unknown name -> Error.
