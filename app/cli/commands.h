@@ -28,7 +28,19 @@ struct StatsOptions {
   int threads = 0;
 };
 
+struct BenchOptions {
+  std::vector<std::string> scenes;
+  std::string structures = "all";   ///< comma list, or "all" (every structure but brute)
+  std::vector<std::string> params;  ///< key=value (to every structure that has the key) or structure:key=value
+  std::string rays = "primary:1024:1024";
+  int threads = 0;
+  std::string kernels = "watertight";
+  std::string out_md, out_csv, out_json;
+  bool embree = true;
+};
+
 int run_trace(const TraceOptions& options);
+int run_bench(const BenchOptions& options);
 int run_stats(const StatsOptions& options);
 
 /// Exit code for bad input.

@@ -62,6 +62,23 @@ int main(int argc, char** argv) {
   stats_cmd->add_option("--threads", stats.threads, "worker threads for --rays (0 = all cores)")
       ->check(CLI::Range(0, 1024));
 
+  cli::BenchOptions bench;
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench", "speed against error: build ms, MB, Mrays/s (1 and all threads), errors vs the double reference");
+  bench_cmd->add_option("--scene", bench.scenes, "OBJ file or procedural:NAME (repeatable)")->required();
+  bench_cmd->add_option("--structures", bench.structures, "comma list, or all (every structure except brute)")
+      ->capture_default_str();
+  bench_cmd->add_option("--param", bench.params,
+                        "key=value for every structure that has the key, or STRUCTURE:key=value (repeatable)");
+  bench_cmd->add_option("--rays", bench.rays, "primary:W:H, random:N:SEED or a rays file")->capture_default_str();
+  bench_cmd->add_option("--threads", bench.threads, "threads of the multi-threaded run (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
+  bench_cmd->add_option("--kernel", bench.kernels, "comma list of watertight, moller, double")->capture_default_str();
+  bench_cmd->add_option("--out-md", bench.out_md, "write the table as Markdown");
+  bench_cmd->add_option("--out-csv", bench.out_csv, "write the rows as CSV");
+  bench_cmd->add_option("--out-json", bench.out_json, "write the rows as a JSON array");
+  bench_cmd->add_flag("!--no-embree", bench.embree, "skip the Embree baseline rows");
+
   CLI::App* params_cmd = app.add_subcommand("params", "list the structures and their parameters");
 
   try {
@@ -77,6 +94,7 @@ int main(int argc, char** argv) {
   }
   if (trace_cmd->parsed()) return cli::run_trace(trace);
   if (stats_cmd->parsed()) return cli::run_stats(stats);
+  if (bench_cmd->parsed()) return cli::run_bench(bench);
   if (params_cmd->parsed()) return print_params();
   return cli::kExitBadInput;
 }

@@ -1,0 +1,346 @@
+// accelviz-cli bench: speed against error on the same rays. For every scene x structure x
+// kernel: build time, memory, Mrays/s with one and with all threads (tracing only, repeated
+// to >= 0.5 s, median of 3), and the errors against the double-precision reference. Embree 3
+// (rtcIntersect1, build quality medium and high) runs the same rays as the baseline.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <unistd.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "accuracy.h"
+#include "batch.h"
+#include "commands.h"
+#include "embree_baseline.h"
+#include "ray_gen.h"
+#include "rays_io.h"
+#include "registry.h"
+#include "stats_format.h"
+
+namespace cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Row {
+  std::string scene, structure, params, kernel, rays;
+  size_t n_rays = 0;
+  double build_ms = 0.0;
+  size_t memory_bytes = 0;
+  double mrays_1t = 0.0, mrays_mt = 0.0;
+  int threads = 0;
+  size_t false_miss = 0, false_hit = 0, wrong_prim = 0, wrong_t = 0;
+  double max_rel_t_err = 0.0, mean_rel_t_err = 0.0;
+  std::optional<double> embree_ratio_mt;
+  bool is_embree = false;
+};
+
+Row make_row(const std::string& scene, const std::string& structure, const std::string& params,
+             const std::string& kernel, const std::string& rays, size_t n_rays) {
+  Row r;
+  r.scene = scene;
+  r.structure = structure;
+  r.params = params;
+  r.kernel = kernel;
+  r.rays = rays;
+  r.n_rays = n_rays;
+  return r;
+}
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "accelviz-cli: %s\n", message.c_str());
+  return kExitBadInput;
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+/// Rays per second of `trace_pass` (one pass over n rays): passes are repeated until a
+/// sample lasts >= 0.5 s; the median of three samples is returned, in Mrays/s.
+template <class Pass>
+double measure_mrays(size_t n, Pass&& trace_pass) {
+  const auto t0 = Clock::now();
+  trace_pass();
+  const double first = std::chrono::duration<double>(Clock::now() - t0).count();
+  const int reps = std::max(1, int(std::ceil(0.5 / std::max(first, 1e-9))));
+  std::vector<double> rates;
+  for (int sample = 0; sample < 3; ++sample) {
+    const auto s0 = Clock::now();
+    for (int r = 0; r < reps; ++r) trace_pass();
+    const double secs = std::chrono::duration<double>(Clock::now() - s0).count();
+    rates.push_back(double(n) * reps / secs / 1e6);
+  }
+  std::sort(rates.begin(), rates.end());
+  return rates[1];
+}
+
+/// Runs `query(i)` for every ray on `threads` threads and returns the hits.
+template <class Query>
+std::vector<accel::Hit> run_parallel(size_t n, int threads, Query&& query) {
+  std::vector<accel::Hit> hits(n);
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) hits[i] = query(i);
+    });
+  });
+  return hits;
+}
+
+/// The reference answers: the double-precision kernel, found through a BVH (its box tests are
+/// conservative, and the test suite checks it against a brute-force double scan), with t
+/// recomputed exactly in double for the triangle it returns.
+std::vector<accel::ReferenceHit> reference_hits(const accel::Scene& scene, const std::vector<accel::Ray>& rays,
+                                                int threads) {
+  auto bvh = accel::build_structure("bvh", scene, {"builder=sah"}, accel::Kernel::Double);
+  std::vector<accel::ReferenceHit> ref(rays.size());
+  const auto hits = run_parallel(rays.size(), threads, [&](size_t i) { return bvh.value()->intersect(rays[i]); });
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (!hits[i].valid()) continue;
+    double t, u, v;
+    const uint32_t p = uint32_t(hits[i].prim);
+    if (accel::intersect_triangle_double(rays[i], scene.vertex(p, 0), scene.vertex(p, 1), scene.vertex(p, 2),
+                                         double(rays[i].tmax), &t, &u, &v))
+      ref[i] = {hits[i].prim, t};
+    else
+      ref[i] = {hits[i].prim, double(hits[i].t)};
+  }
+  return ref;
+}
+
+void score(Row& row, const accel::Scene& scene, const std::vector<accel::Ray>& rays,
+           const std::vector<accel::Hit>& hits, const std::vector<accel::ReferenceHit>& ref) {
+  double sum_err = 0.0;
+  size_t both_hit = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    switch (accel::judge_hit(scene, rays[i], hits[i], ref[i])) {
+      case accel::HitVerdict::FalseMiss: ++row.false_miss; break;
+      case accel::HitVerdict::FalseHit: ++row.false_hit; break;
+      case accel::HitVerdict::WrongPrim: ++row.wrong_prim; break;
+      case accel::HitVerdict::WrongT: ++row.wrong_t; break;
+      case accel::HitVerdict::Correct: break;
+    }
+    if (hits[i].valid() && ref[i].prim >= 0) {
+      const double err = std::abs(double(hits[i].t) - ref[i].t) / std::max(1e-30, std::abs(ref[i].t));
+      row.max_rel_t_err = std::max(row.max_rel_t_err, err);
+      sum_err += err;
+      ++both_hit;
+    }
+  }
+  row.mean_rel_t_err = both_hit ? sum_err / double(both_hit) : 0.0;
+}
+
+/// Parameters for one structure: unprefixed keys it knows, and "structure:key=value".
+std::vector<std::string> params_for(const accel::StructureInfo& info, const std::vector<std::string>& all) {
+  std::vector<std::string> out;
+  for (const std::string& p : all) {
+    const size_t colon = p.find(':'), eq = p.find('=');
+    if (colon != std::string::npos && colon < eq) {
+      if (p.substr(0, colon) == info.name) out.push_back(p.substr(colon + 1));
+      continue;
+    }
+    const std::string key = p.substr(0, eq);
+    for (const auto& spec : info.params)
+      if (spec.name == key) out.push_back(p);
+  }
+  return out;
+}
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string markdown(const std::vector<Row>& rows) {
+  std::string md =
+      "| scene | structure | params | kernel | build ms | MB | Mrays/s 1t | Mrays/s mt | vs Embree (mt) | false miss | "
+      "false hit | wrong tri | max rel t err |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows) {
+    md += "| " + r.scene + " | " + r.structure + " | " + (r.params.empty() ? "default" : r.params) + " | " + r.kernel +
+          " | " + fmt(r.build_ms, "%.0f") + " | " + fmt(double(r.memory_bytes) / 1048576.0, "%.1f") + " | " +
+          fmt(r.mrays_1t, "%.2f") + " | " + fmt(r.mrays_mt, "%.2f") + " | " +
+          (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.2f") : std::string(r.is_embree ? "1 (baseline)" : "")) +
+          " | " + std::to_string(r.false_miss) + " | " + std::to_string(r.false_hit) + " | " +
+          std::to_string(r.wrong_prim + r.wrong_t) + " | " + fmt(r.max_rel_t_err, "%.2g") + " |\n";
+  }
+  return md;
+}
+
+std::string csv(const std::vector<Row>& rows) {
+  std::string out =
+      "scene,structure,params,kernel,rays,n_rays,build_ms,memory_bytes,mrays_1t,mrays_mt,threads,false_miss,false_hit,"
+      "wrong_prim,wrong_t,max_rel_t_err,mean_rel_t_err,embree_ratio_mt\n";
+  auto q = [](const std::string& s) { return "\"" + s + "\""; };
+  for (const Row& r : rows)
+    out += q(r.scene) + "," + r.structure + "," + q(r.params) + "," + r.kernel + "," + q(r.rays) + "," +
+           std::to_string(r.n_rays) + "," + fmt(r.build_ms, "%.3f") + "," + std::to_string(r.memory_bytes) + "," +
+           fmt(r.mrays_1t, "%.4f") + "," + fmt(r.mrays_mt, "%.4f") + "," + std::to_string(r.threads) + "," +
+           std::to_string(r.false_miss) + "," + std::to_string(r.false_hit) + "," + std::to_string(r.wrong_prim) + "," +
+           std::to_string(r.wrong_t) + "," + fmt(r.max_rel_t_err, "%.6g") + "," + fmt(r.mean_rel_t_err, "%.6g") + "," +
+           (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : "") + "\n";
+  return out;
+}
+
+std::string json(const std::vector<Row>& rows) {
+  std::string out = "[\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    out += "  {\"scene\": " + json_quote(r.scene) + ", \"structure\": " + json_quote(r.structure) +
+           ", \"params\": " + json_quote(r.params) + ", \"kernel\": " + json_quote(r.kernel) +
+           ", \"rays\": " + json_quote(r.rays) + ", \"n_rays\": " + std::to_string(r.n_rays) +
+           ", \"build_ms\": " + fmt(r.build_ms, "%.3f") + ", \"memory_bytes\": " + std::to_string(r.memory_bytes) +
+           ", \"mrays_1t\": " + fmt(r.mrays_1t, "%.4f") + ", \"mrays_mt\": " + fmt(r.mrays_mt, "%.4f") +
+           ", \"threads\": " + std::to_string(r.threads) + ", \"false_miss\": " + std::to_string(r.false_miss) +
+           ", \"false_hit\": " + std::to_string(r.false_hit) + ", \"wrong_prim\": " + std::to_string(r.wrong_prim) +
+           ", \"wrong_t\": " + std::to_string(r.wrong_t) + ", \"max_rel_t_err\": " + fmt(r.max_rel_t_err, "%.6g") +
+           ", \"mean_rel_t_err\": " + fmt(r.mean_rel_t_err, "%.6g");
+    if (!r.is_embree)
+      out += ", \"embree_ratio_mt\": " + (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : std::string("null"));
+    out += std::string("}") + (i + 1 < rows.size() ? "," : "") + "\n";
+  }
+  return out + "]\n";
+}
+
+/// One progress line on stderr ("\r"-updated on a terminal, one line per step otherwise).
+void progress(size_t done, size_t total, const std::string& what) {
+  const bool tty = ::isatty(2);
+  const int width = 30, filled = int(double(width) * double(done) / double(std::max<size_t>(1, total)));
+  std::fprintf(stderr, "%s[%s%s] %zu/%zu %s%s", tty ? "\r" : "", std::string(size_t(filled), '#').c_str(),
+               std::string(size_t(width - filled), ' ').c_str(), done, total, what.c_str(), tty ? "\033[K" : "\n");
+  if (tty && done == total) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& o) {
+  // Validate everything before the first (slow) scene load.
+  std::vector<const accel::StructureInfo*> structures;
+  if (o.structures == "all") {
+    for (const auto& info : accel::structure_registry())
+      if (info.name != "brute") structures.push_back(&info);
+  } else {
+    for (const std::string& name : split_list(o.structures)) {
+      auto info = accel::find_structure(name);
+      if (!info) return fail("--structures: " + info.error().message);
+      structures.push_back(info.value());
+    }
+  }
+  if (structures.empty()) return fail("--structures: empty list");
+  std::vector<accel::Kernel> kernels;
+  for (const std::string& k : split_list(o.kernels)) {
+    accel::Kernel kernel;
+    if (!accel::parse_kernel(k, &kernel)) return fail("--kernel '" + k + "' is invalid (valid: watertight, moller, double)");
+    kernels.push_back(kernel);
+  }
+  if (kernels.empty()) return fail("--kernel: empty list");
+  std::vector<accel::ParamSet> param_sets;
+  for (const auto* info : structures) {
+    auto set = accel::ParamSet::parse(info->params, params_for(*info, o.params), info->name);
+    if (!set) return fail(set.error().message);
+    param_sets.push_back(set.value());
+  }
+  for (const std::string& p : o.params) {  // every --param must be used by some structure
+    bool used = false;
+    for (const auto* info : structures)
+      for (const std::string& q : params_for(*info, {p})) used |= !q.empty();
+    if (!used) return fail("--param '" + p + "' matches no parameter of the benchmarked structures");
+  }
+  const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const bool with_embree = o.embree && embree_available();
+
+  std::vector<Row> rows;
+  const size_t steps_per_scene = structures.size() * kernels.size() + (with_embree ? 2 : 0) + 1;
+  const size_t total_steps = o.scenes.size() * steps_per_scene;
+  size_t step = 0;
+  for (const std::string& scene_spec : o.scenes) {
+    auto scene = accel::load_scene(scene_spec);
+    if (!scene) return fail(scene.error().message);
+    auto rays_or = accel::make_rays(o.rays, scene.value());
+    if (!rays_or) return fail(rays_or.error().message);
+    const std::vector<accel::Ray>& rays = rays_or.value();
+    const accel::Scene& s = scene.value();
+    progress(step, total_steps, scene_spec + ": reference (double kernel)");
+    const auto ref = reference_hits(s, rays, threads);
+    ++step;
+
+    std::optional<double> embree_mt;
+    std::vector<Row> scene_rows;
+    if (with_embree) {
+      for (const char* quality : {"medium", "high"}) {
+        progress(step, total_steps, scene_spec + ": embree-" + quality);
+        EmbreeScene embree(s, quality);
+        Row row = make_row(scene_spec, std::string("embree-") + quality, "", "embree", o.rays, rays.size());
+        row.is_embree = true;
+        row.build_ms = embree.build_ms();
+        row.memory_bytes = embree.memory_bytes();
+        row.threads = threads;
+        row.mrays_1t = measure_mrays(rays.size(), [&] {
+          for (const auto& r : rays) (void)embree.intersect(r);
+        });
+        std::vector<accel::Hit> hits;
+        row.mrays_mt = measure_mrays(rays.size(), [&] {
+          hits = run_parallel(rays.size(), threads, [&](size_t i) { return embree.intersect(rays[i]); });
+        });
+        score(row, s, rays, hits, ref);
+        embree_mt = std::max(embree_mt.value_or(0.0), row.mrays_mt);
+        scene_rows.push_back(row);
+        ++step;
+      }
+    }
+    for (size_t k = 0; k < structures.size(); ++k) {
+      for (accel::Kernel kernel : kernels) {
+        const std::string name = structures[k]->name;
+        progress(step, total_steps, scene_spec + ": " + name + " " + std::string(accel::kernel_name(kernel)));
+        auto structure = structures[k]->create();
+        structure->set_kernel(kernel);
+        auto built = structure->build(s, param_sets[k]);
+        if (!built) return fail(built.error().message);
+        const accel::BuildStats stats = structure->build_stats();
+        Row row = make_row(scene_spec, name, param_sets[k].to_string(), std::string(accel::kernel_name(kernel)), o.rays,
+                           rays.size());
+        row.build_ms = stats.build_ms;
+        row.memory_bytes = stats.memory_bytes;
+        row.threads = threads;
+        row.mrays_1t = measure_mrays(rays.size(), [&] {
+          for (const auto& r : rays) (void)structure->intersect(r);
+        });
+        std::vector<accel::Hit> hits;
+        row.mrays_mt = measure_mrays(rays.size(), [&] { hits = accel::trace_all(*structure, rays, threads); });
+        score(row, s, rays, hits, ref);
+        if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
+        scene_rows.push_back(row);
+        ++step;
+      }
+    }
+    rows.insert(rows.end(), scene_rows.begin(), scene_rows.end());
+  }
+  progress(total_steps, total_steps, "done");
+
+  const std::string md = markdown(rows);
+  std::fputs(md.c_str(), stdout);
+  for (const auto& [path, content] : {std::pair{o.out_md, md}, std::pair{o.out_csv, csv(rows)},
+                                      std::pair{o.out_json, json(rows)}}) {
+    if (path.empty()) continue;
+    auto written = accel::write_file_atomic(path, content);
+    if (!written) return fail(written.error().message);
+  }
+  return 0;
+}
+
+}  // namespace cli

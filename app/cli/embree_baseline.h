@@ -1,0 +1,38 @@
+#pragma once
+// Embree 3 as the industry baseline of `accelviz-cli bench`: the same scene and rays through
+// rtcIntersect1, at build quality medium or high. Compiled only when libembree-dev is present
+// (ACCEL_HAVE_EMBREE); otherwise embree_available() is false and the bench leaves the column empty.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry.h"
+#include "scene.h"
+
+namespace cli {
+
+/// True when this binary was built with Embree.
+bool embree_available();
+
+/// An Embree scene built from an accelviz Scene (degenerate triangles included: Embree
+/// skips them itself, and prim ids stay the scene's triangle numbers).
+class EmbreeScene {
+ public:
+  /// quality: "medium" or "high".
+  EmbreeScene(const accel::Scene& scene, const std::string& quality);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  double build_ms() const { return build_ms_; }
+  size_t memory_bytes() const;
+  /// Closest hit via rtcIntersect1 (prim = Embree's primID, t = tfar, u, v its barycentrics).
+  accel::Hit intersect(const accel::Ray& ray) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  double build_ms_ = 0.0;
+};
+
+}  // namespace cli
