@@ -51,17 +51,28 @@ bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
   const float bx = b[kx_] - sx_ * b[kz_], by = b[ky_] - sy_ * b[kz_];
   const float cx = c[kx_] - sx_ * c[kz_], cy = c[ky_] - sy_ * c[kz_];
   // Scaled barycentrics: u_ weights p0, v_ weights p1, w_ weights p2.
-  float u_ = cx * by - cy * bx;
-  float v_ = ax * cy - ay * cx;
-  float w_ = bx * ay - by * ax;
-  // A zero in float may be a rounding artefact on an edge: redo that edge in double
-  // (the paper's fallback), which is exact for these products.
-  if (u_ == 0.0f || v_ == 0.0f || w_ == 0.0f) {
-    u_ = float(double(cx) * double(by) - double(cy) * double(bx));
-    v_ = float(double(ax) * double(cy) - double(ay) * double(cx));
-    w_ = float(double(bx) * double(ay) - double(by) * double(ax));
-  }
-  if ((u_ < 0.0f || v_ < 0.0f || w_ < 0.0f) && (u_ > 0.0f || v_ > 0.0f || w_ > 0.0f)) return false;
+  const float u_ = cx * by - cy * bx;
+  const float v_ = ax * cy - ay * cx;
+  const float w_ = bx * ay - by * ax;
+  // The float edge functions carry rounding errors from the translation, the shear and the
+  // products. Where one of them is within its error bound of zero (the ray passes within
+  // float precision of an edge or vertex), its sign is unknown and the double-precision test
+  // decides -- the paper's fallback for an exact zero, widened to the whole uncertain band.
+  // Both triangles of a shared edge fall back together, so the result stays watertight.
+  // Bound: each sheared coordinate is off by at most ~4 eps of its unsheared magnitude m,
+  // so an edge function (products of sheared coordinates s) is off by ~8 eps (m s' + s m').
+  const float sxa = std::abs(sx_), sya = std::abs(sy_);
+  const float m_a = std::abs(a[kx_]) + std::abs(a[ky_]) + (sxa + sya) * std::abs(a[kz_]);
+  const float m_b = std::abs(b[kx_]) + std::abs(b[ky_]) + (sxa + sya) * std::abs(b[kz_]);
+  const float m_c = std::abs(c[kx_]) + std::abs(c[ky_]) + (sxa + sya) * std::abs(c[kz_]);
+  const float s_a = std::abs(ax) + std::abs(ay), s_b = std::abs(bx) + std::abs(by), s_c = std::abs(cx) + std::abs(cy);
+  const float bound =
+      10.0f * gamma_bound(1) * (m_a * (s_b + s_c) + m_b * (s_a + s_c) + m_c * (s_a + s_b));
+  const bool some_negative = u_ < -bound || v_ < -bound || w_ < -bound;
+  const bool some_positive = u_ > bound || v_ > bound || w_ > bound;
+  if (some_negative && some_positive) return false;  // certainly outside
+  if (std::abs(u_) <= bound || std::abs(v_) <= bound || std::abs(w_) <= bound)
+    return reference(p0, p1, p2, tmax, out);
   const float det = u_ + v_ + w_;
   if (det == 0.0f) return false;  // ray lies in the triangle's plane (or is parallel to it)
   const float az = sz_ * a[kz_], bz = sz_ * b[kz_], cz = sz_ * c[kz_];
