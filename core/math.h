@@ -7,6 +7,14 @@
 
 #include <glm/glm.hpp>
 
+/// Forces inlining of the few functions in the innermost traversal loops, which GCC would
+/// otherwise keep out of line across the template layers.
+#if defined(__GNUC__)
+#define ACCEL_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define ACCEL_FORCE_INLINE inline
+#endif
+
 namespace accel {
 
 using Vec3 = glm::vec3;
