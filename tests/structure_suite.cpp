@@ -100,6 +100,16 @@ TEST_P(StructureVsReference, SameHitsAsReferenceOnEveryScene) {
   }
 }
 
+// Run first by ctest (fixture "reference_cache"): computes every scene's reference answers
+// once into the on-disk cache, so the structure tests that run in parallel after it do not
+// all compute the same references at the same time.
+TEST(SuiteWarmup, ComputeReferences) {
+  for (const SuiteScene& ss : suite_scenes()) {
+    const Workload& w = workload(ss.key, ss.make, ss.random_rays, ss.primary_w, ss.primary_h);
+    EXPECT_EQ(w.reference.size(), w.rays.size()) << ss.key;
+  }
+}
+
 TEST_P(StructureVsReference, EmptySceneBuildsAndMisses) {
   const SuiteCase& c = GetParam();
   Scene empty;

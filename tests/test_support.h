@@ -1,6 +1,7 @@
 #pragma once
 // Shared test data: scenes, ray sets and their reference answers, computed once per test
 // binary (the double-precision reference is the slow part) and reused by every structure.
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -37,11 +38,14 @@ inline std::string shared_scene_path(const std::string& file) {
 
 /// Ray counts are multiplied by ACCEL_TEST_RAY_SCALE (default 1); the sanitizer run of
 /// scripts/test.sh uses 0.1 because instrumented code is several times slower.
-inline size_t scaled(size_t n) {
+inline double ray_scale() {
   const char* s = std::getenv("ACCEL_TEST_RAY_SCALE");
   const double f = s ? std::atof(s) : 1.0;
-  return std::max<size_t>(1, size_t(double(n) * (f > 0.0 ? f : 1.0)));
+  return f > 0.0 ? f : 1.0;
 }
+inline size_t scaled(size_t n) { return std::max<size_t>(1, size_t(double(n) * ray_scale())); }
+/// An image side scaled so the pixel count scales like the ray count.
+inline int scaled_side(int side) { return std::max(1, int(double(side) * std::sqrt(ray_scale()))); }
 
 /// FNV-1a over raw bytes: identifies a scene + ray set for the reference cache.
 inline uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ull) {
@@ -88,7 +92,8 @@ inline const Workload& workload(const std::string& key, const std::function<Scen
     slot = std::make_unique<Workload>();
     slot->scene = make_scene();
     slot->rays = random_rays(slot->scene.bounds(), scaled(n_random), 12345);
-    const auto primary = primary_rays(default_camera(slot->scene.bounds()), primary_w, primary_h);
+    const auto primary =
+        primary_rays(default_camera(slot->scene.bounds()), scaled_side(primary_w), scaled_side(primary_h));
     slot->rays.insert(slot->rays.end(), primary.begin(), primary.end());
     slot->reference = reference_hits(slot->scene, slot->rays);
   }
