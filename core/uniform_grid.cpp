@@ -1,1 +1,373 @@
 #include "uniform_grid.h"
+
+#include <cstdio>
+#include <string>
+
+namespace accel {
+namespace {
+
+std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string res_text(const std::array<int, 3>& r) {
+  return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
+}
+
+/// The parameter an over-budget error should name: `res` when given, else the rule's lambda.
+std::string driving_param_text(const GridConfig& c) {
+  if (c.explicit_res)
+    return "grid parameter 'res' = " + std::to_string(c.res[0]) + "," + std::to_string(c.res[1]) + "," +
+           std::to_string(c.res[2]);
+  return "grid parameter 'lambda' = " + format_number(c.lambda) +
+         (c.rule == GridResolutionRule::Cbrt ? " (resolution=cbrt)" : " (resolution=avgsize)");
+}
+
+/// The lecture's rule "resolution = lambda * cbrt(N)" per axis of a cube, generalised to
+/// any box with cuboid-like cells (Cleary & Wyvill 1988; Wald et al. 2006 write it as
+/// n_axis = extent_axis * cbrt(density * N / volume), density = lambda^3): choose the cell
+/// edge s so that the box holds lambda^3 * N cubic cells. Axes shorter than one cell
+/// (flat or thin scenes) get a single cell and the others share the cell budget, so a flat
+/// scene gets lambda^3 * N square cells rather than one huge row. Returns real-valued
+/// cells per axis (rounded by fit_resolution).
+DVec3 resolution_cbrt(const DVec3& extent, size_t n_prims, double lambda) {
+  const double target = lambda * lambda * lambda * double(n_prims);
+  bool active[3] = {extent.x > 0.0, extent.y > 0.0, extent.z > 0.0};
+  double s = 0.0;
+  for (int iter = 0; iter < 3; ++iter) {
+    int k = 0;
+    double product = 1.0;
+    for (int a = 0; a < 3; ++a)
+      if (active[a]) ++k, product *= extent[a];
+    if (k == 0) break;
+    s = std::pow(product / std::max(target, 1e-300), 1.0 / k);
+    bool changed = false;
+    for (int a = 0; a < 3; ++a)
+      if (active[a] && extent[a] < s) active[a] = false, changed = true;
+    if (!changed) break;
+  }
+  DVec3 n(1.0);
+  for (int a = 0; a < 3; ++a)
+    if (active[a] && s > 0.0) n[a] = extent[a] / s;
+  return n;
+}
+
+/// The lecture's other rule of thumb: cell edge about the average triangle size, measured
+/// by its bounding box (the mean of the box's three extents), divided by lambda.
+DVec3 resolution_avgsize(const Scene& scene, const DVec3& extent, double lambda) {
+  double sum = 0.0;
+  for (uint32_t prim : scene.valid_prims()) {
+    const Vec3 e = scene.triangle_bounds(prim).extent();
+    sum += (double(e.x) + double(e.y) + double(e.z)) / 3.0;
+  }
+  const size_t count = scene.valid_prims().size();
+  const double s = count ? sum / double(count) / lambda : 0.0;
+  DVec3 n(1.0);
+  for (int a = 0; a < 3; ++a)
+    if (extent[a] > 0.0 && s > 0.0) n[a] = extent[a] / s;
+  return n;
+}
+
+/// Rounds a rule's real-valued resolution to whole cells in [1, kGridMaxRes] per axis and at
+/// most kGridMaxCells in all. Over either limit every axis shrinks by the same factor, so the
+/// cells keep the shape the rule gave them.
+GridResolution fit_resolution(DVec3 n) {
+  GridResolution out;
+  n = glm::max(n, DVec3(1.0));
+  double f = std::min(1.0, double(kGridMaxRes) / std::max({n.x, n.y, n.z}));
+  const double wanted = n.x * n.y * n.z * f * f * f;
+  if (wanted > double(kGridMaxCells)) f *= std::cbrt(double(kGridMaxCells) / wanted);
+  out.clamped_to_budget = f < 1.0;
+  for (int a = 0; a < 3; ++a) out.res[a] = std::clamp(int(std::lround(std::max(1.0, n[a] * f))), 1, kGridMaxRes);
+  // Rounding up may overshoot the budget by a little: take whole cells off the largest axis.
+  while (size_t(out.res[0]) * size_t(out.res[1]) * size_t(out.res[2]) > kGridMaxCells) {
+    int& largest = *std::max_element(out.res.begin(), out.res.end());
+    largest = std::max(1, largest - 1);
+  }
+  return out;
+}
+
+/// Index of the cell holding coordinate x on `axis`, clamped to the grid.
+int cell_index(const GridData& g, int axis, double x) {
+  const int n = g.res[axis];
+  if (n == 1) return 0;
+  const double f = std::floor((x - double(g.bounds.min[axis])) / g.cell_size[axis]);
+  return f > 0.0 ? (f < double(n - 1) ? int(f) : n - 1) : 0;
+}
+
+/// Closed box of cell (i, j, k) in double; the last cell ends exactly at the grid's max.
+void cell_bounds(const GridData& g, const int idx[3], DVec3* lo, DVec3* hi) {
+  for (int a = 0; a < 3; ++a) {
+    (*lo)[a] = double(g.bounds.min[a]) + double(idx[a]) * g.cell_size[a];
+    (*hi)[a] = idx[a] + 1 == g.res[a] ? double(g.bounds.max[a])
+                                      : double(g.bounds.min[a]) + double(idx[a] + 1) * g.cell_size[a];
+  }
+}
+
+/// Range of cells [lo, hi] (per axis) touched by the prim's box grown by the pad.
+void prim_cell_range(const GridData& g, const Aabb& b, int lo[3], int hi[3]) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = cell_index(g, a, double(b.min[a]) - g.pad);
+    hi[a] = cell_index(g, a, double(b.max[a]) + g.pad);
+  }
+}
+
+/// insert=bbox: every cell of the prim's (padded) box range.
+template <class Fn>
+void insert_bbox(const GridData& g, const Scene& scene, uint32_t prim, Fn&& fn) {
+  int lo[3], hi[3];
+  prim_cell_range(g, scene.triangle_bounds(prim), lo, hi);
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x) fn(size_t(x) + size_t(g.res[0]) * (size_t(y) + size_t(g.res[1]) * size_t(z)));
+}
+
+/// insert=exact: the cells of the box range that the triangle itself overlaps
+/// (Akenine-Moller 2001), tested against the cell grown by the pad so no cell is lost.
+/// `memo` carries the answers for the first 64 candidate cells from the counting pass
+/// (memo_valid = false) to the filling pass (true), which then skips those tests.
+template <class Fn>
+void insert_exact(const GridData& g, const Scene& scene, uint32_t prim, uint64_t& memo, bool memo_valid, Fn&& fn) {
+  int lo[3], hi[3];
+  prim_cell_range(g, scene.triangle_bounds(prim), lo, hi);
+  const Vec3 &p0 = scene.vertex(prim, 0), &p1 = scene.vertex(prim, 1), &p2 = scene.vertex(prim, 2);
+  // A triangle whose box range is a single cell, or a single row of cells, overlaps every
+  // cell of it: it is connected and spans the row, and the row's other two extents hold
+  // it whole. Only ranges two or three cells wide need the test.
+  const bool single = (lo[0] != hi[0]) + (lo[1] != hi[1]) + (lo[2] != hi[2]) <= 1;
+  if (!memo_valid) memo = 0;
+  int k = 0;
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x, ++k) {
+        bool overlap = single;
+        if (!overlap && memo_valid && k < 64) {
+          overlap = (memo >> k) & 1u;
+        } else if (!overlap) {
+          const int idx[3] = {x, y, z};
+          DVec3 cmin, cmax;
+          cell_bounds(g, idx, &cmin, &cmax);
+          overlap = triangle_box_overlap(cmin, cmax, p0, p1, p2, g.pad);
+          if (k < 64 && overlap) memo |= uint64_t(1) << k;
+        }
+        if (overlap) fn(size_t(x) + size_t(g.res[0]) * (size_t(y) + size_t(g.res[1]) * size_t(z)));
+      }
+}
+
+/// True when the projections of the triangle (vertices v relative to the box centre) and
+/// of the box (half extents h) onto `axis` are disjoint. All three vertices are projected,
+/// so the test is a valid separating-axis test even for an axis rounded off its ideal
+/// direction; the pad inside h absorbs the rounding of the projections.
+bool separated(const DVec3& axis, const DVec3 v[3], const DVec3& h) {
+  const double p0 = glm::dot(axis, v[0]), p1 = glm::dot(axis, v[1]), p2 = glm::dot(axis, v[2]);
+  const double r = h.x * std::abs(axis.x) + h.y * std::abs(axis.y) + h.z * std::abs(axis.z);
+  return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+}
+
+}  // namespace
+
+bool triangle_box_overlap(const DVec3& box_min, const DVec3& box_max, const Vec3& p0, const Vec3& p1,
+                          const Vec3& p2, double pad) {
+  // Akenine-Moller 2001: the triangle and the box are disjoint iff one of 13 axes separates
+  // them: the 3 box normals, the triangle normal, and the 9 cross products of box and
+  // triangle edges. Done in double about the box centre, box grown by pad.
+  const DVec3 c = 0.5 * (box_min + box_max);
+  const DVec3 h = 0.5 * (box_max - box_min) + DVec3(pad);
+  const DVec3 v[3] = {DVec3(p0) - c, DVec3(p1) - c, DVec3(p2) - c};
+  const DVec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  for (int a = 0; a < 3; ++a) {
+    DVec3 axis(0.0);
+    axis[a] = 1.0;
+    if (separated(axis, v, h)) return false;
+  }
+  if (separated(glm::cross(e[0], e[1]), v, h)) return false;
+  for (int a = 0; a < 3; ++a) {
+    DVec3 unit(0.0);
+    unit[a] = 1.0;
+    for (const DVec3& edge : e)
+      if (separated(glm::cross(unit, edge), v, h)) return false;
+  }
+  return true;
+}
+
+Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, const GridConfig& config) {
+  const DVec3 extent = DVec3(bounds.extent());
+  if (config.explicit_res) {
+    GridResolution out;
+    for (int a = 0; a < 3; ++a) out.res[a] = std::clamp(config.res[a], 1, kGridMaxRes);
+    const size_t cells = size_t(out.res[0]) * size_t(out.res[1]) * size_t(out.res[2]);
+    if (cells > kGridMaxCells)
+      return make_error(driving_param_text(config) + ": would create " + res_text(out.res) + " = " +
+                        std::to_string(cells) + " cells (limit " + std::to_string(kGridMaxCells) + "); lower it");
+    return out;
+  }
+  // A rule of thumb (avgsize on a teapot in a stadium, or a large lambda) may ask for more
+  // than the budget: it is shrunk to fit rather than refused.
+  if (config.rule == GridResolutionRule::AvgSize) return fit_resolution(resolution_avgsize(scene, extent, config.lambda));
+  return fit_resolution(resolution_cbrt(extent, scene.valid_prims().size(), config.lambda));
+}
+
+Result<GridData> build_grid(const Scene& scene, const GridConfig& config) {
+  GridData g;
+  const std::vector<uint32_t>& valid = scene.valid_prims();
+  if (valid.empty()) {
+    g.cell_start = {0, 0};
+    return g;
+  }
+  for (uint32_t prim : valid) g.bounds.extend(scene.triangle_bounds(prim));
+  auto res = grid_resolution(scene, g.bounds, config);
+  if (!res) return res.error();
+  g.res = res.value().res;
+  g.clamped_to_budget = res.value().clamped_to_budget;
+  const DVec3 extent = DVec3(g.bounds.extent());
+  const double m = std::max({std::abs(double(g.bounds.min.x)), std::abs(double(g.bounds.min.y)),
+                             std::abs(double(g.bounds.min.z)), std::abs(double(g.bounds.max.x)),
+                             std::abs(double(g.bounds.max.y)), std::abs(double(g.bounds.max.z))});
+  g.pad = std::ldexp(m, -28);
+
+  // Bound the work and memory before doing it: the box ranges give an upper bound on the
+  // references of either insertion (and on the overlap tests of insert=exact). A rule's
+  // resolution shrinks until it fits; an explicit res is refused.
+  for (;;) {
+    for (int a = 0; a < 3; ++a) g.cell_size[a] = extent[a] / double(g.res[a]);
+    uint64_t candidates = 0;
+    for (uint32_t prim : valid) {
+      int lo[3], hi[3];
+      prim_cell_range(g, scene.triangle_bounds(prim), lo, hi);
+      candidates += uint64_t(hi[0] - lo[0] + 1) * uint64_t(hi[1] - lo[1] + 1) * uint64_t(hi[2] - lo[2] + 1);
+    }
+    if (candidates <= config.max_references) break;
+    if (config.explicit_res || g.cell_count() == 1)
+      return make_error(driving_param_text(config) + ": would create " + std::to_string(candidates) +
+                        " triangle references in " + res_text(g.res) + " cells (limit " +
+                        std::to_string(config.max_references) + "); lower it");
+    // References shrink at least as fast as the cell count's cube root: one or two rounds.
+    const double f = std::min(0.9, std::cbrt(double(config.max_references) / double(candidates)));
+    for (int& n : g.res) n = std::max(1, int(double(n) * f));
+    g.clamped_to_budget = true;
+  }
+
+  // Counting sort into CSR: cell_start[c + 1] counts, then holds the start of c, then
+  // (after the fill) the end of c = the start of c + 1.
+  const size_t cells = g.cell_count();
+  g.cell_start.assign(cells + 1, 0);
+  const bool exact = config.insertion == GridInsertion::Exact;
+  std::vector<uint64_t> memo(exact ? valid.size() : 0);
+  auto for_each_cell = [&](size_t k, bool second_pass, auto&& fn) {
+    if (exact)
+      insert_exact(g, scene, valid[k], memo[k], second_pass, fn);
+    else
+      insert_bbox(g, scene, valid[k], fn);
+  };
+  for (size_t k = 0; k < valid.size(); ++k) for_each_cell(k, false, [&](size_t c) { ++g.cell_start[c + 1]; });
+  uint32_t run = 0;
+  for (size_t c = 0; c < cells; ++c) {
+    const uint32_t count = g.cell_start[c + 1];
+    g.cell_start[c + 1] = run;
+    run += count;
+  }
+  g.prim_ids.resize(run);
+  for (size_t k = 0; k < valid.size(); ++k)
+    for_each_cell(k, true, [&](size_t c) { g.prim_ids[g.cell_start[c + 1]++] = valid[k]; });
+  ACCEL_CHECK(g.cell_start[cells] == run);
+  return g;
+}
+
+std::vector<ParamSpec> UniformGrid::param_specs() {
+  using T = ParamSpec::Type;
+  return {
+      {"resolution", T::Choice, "cbrt", 0, 0, {"cbrt", "avgsize"},
+       "How cells are sized when res is not given: cbrt = lambda*cbrt(N) cells per axis of a cube-shaped "
+       "scene (lambda^3*N cuboid-like cells in all), avgsize = cell edge of the mean triangle bbox extent / lambda."},
+      {"lambda", T::Float, "2", 0.01, 16, {},
+       "Per-axis factor of the resolution rule (lambda=2: 2*cbrt(N) cells per axis of a cube, 8 cells per "
+       "triangle); a result over the memory budget is shrunk to fit."},
+      {"res", T::Int3, "16,16,16", 1, kGridMaxRes, {},
+       "Cells per axis NX,NY,NZ; when given it overrides resolution and lambda (at most 2^26 cells in all)."},
+      {"insert", T::Choice, "exact", 0, 0, {"bbox", "exact"},
+       "Cells a triangle is stored in: every cell of its bounding box (the lecture's choice), or only the cells "
+       "it overlaps (Akenine-Moller 2001 test: slower build, fewer references, faster queries)."},
+      {"mailbox", T::Choice, "on", 0, 0, {"off", "on"},
+       "Skip triangles the ray already tested in an earlier cell (a 32-entry per-ray table on the stack)."},
+  };
+}
+
+Result<bool> UniformGrid::build_impl(const Scene& scene, const ParamSet& params) {
+  scene_ = &scene;
+  GridConfig config;
+  config.rule = params.get_choice("resolution") == "avgsize" ? GridResolutionRule::AvgSize : GridResolutionRule::Cbrt;
+  config.lambda = params.get_float("lambda");
+  config.explicit_res = params.is_set("res");
+  config.res = params.get_int3("res");
+  config.insertion = params.get_choice("insert") == "exact" ? GridInsertion::Exact : GridInsertion::Bbox;
+  mailbox_ = params.get_choice("mailbox") == "on";
+
+  auto built = build_grid(scene, config);
+  if (!built) {
+    grid_ = GridData{};
+    grid_.cell_start = {0, 0};
+    stats_ = BuildStats{};
+    return built.error();
+  }
+  grid_ = std::move(built.value());
+  const DVec3 pad(grid_.pad);
+  lo_ = DVec3(grid_.bounds.min) - pad;
+  hi_ = DVec3(grid_.bounds.max) + pad;
+
+  stats_ = BuildStats{};
+  const size_t cells = grid_.cell_count();
+  stats_.nodes = cells;
+  stats_.prims = scene.valid_prims().size();
+  stats_.prim_references = grid_.prim_ids.size();
+  stats_.memory_bytes = grid_.cell_start.size() * sizeof(uint32_t) + grid_.prim_ids.size() * sizeof(uint32_t);
+  for (size_t c = 0; c < cells; ++c) stats_.add_leaf(grid_.cell_start[c + 1] - grid_.cell_start[c]);
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.4g x %.4g x %.4g", grid_.cell_size.x, grid_.cell_size.y, grid_.cell_size.z);
+  stats_.extra = {{"resolution", res_text(grid_.res)},
+                  {"cell_size", buf},
+                  {"rule", config.explicit_res ? "res (explicit)"
+                                               : std::string(config.rule == GridResolutionRule::Cbrt ? "cbrt" : "avgsize") +
+                                                     ", lambda " + format_number(config.lambda) +
+                                                     (grid_.clamped_to_budget ? ", shrunk to the memory budget" : "")},
+                  {"insert", config.insertion == GridInsertion::Exact ? "exact" : "bbox"},
+                  {"mailbox", mailbox_ ? "on" : "off"}};
+  return true;
+}
+
+Aabb UniformGrid::cell_box(NodeId id) const {
+  const int nx = grid_.res[0], ny = grid_.res[1];
+  const int idx[3] = {int(id % uint32_t(nx)), int((id / uint32_t(nx)) % uint32_t(ny)), int(id / uint32_t(nx * ny))};
+  DVec3 lo, hi;
+  cell_bounds(grid_, idx, &lo, &hi);
+  Aabb box;
+  box.min = Vec3(lo);
+  box.max = Vec3(hi);
+  return box;
+}
+
+void UniformGrid::for_each_node(const std::function<void(const NodeView&)>& fn) const {
+  const size_t cells = grid_.cell_count();
+  if (grid_.prim_ids.empty()) return;
+  for (size_t c = 0; c < cells; ++c)
+    if (grid_.cell_start[c + 1] != grid_.cell_start[c]) fn(node_view(NodeId(c)));
+}
+
+NodeView UniformGrid::node_view(NodeId id) const {
+  NodeView v;
+  v.id = id;
+  v.leaf = true;
+  if (grid_.prim_ids.empty() || size_t(id) >= grid_.cell_count()) return v;
+  v.prim_count = grid_.cell_start[id + 1] - grid_.cell_start[id];
+  v.box = cell_box(id);
+  return v;
+}
+
+std::vector<uint32_t> UniformGrid::node_prims(NodeId id) const {
+  if (grid_.prim_ids.empty() || size_t(id) >= grid_.cell_count()) return {};
+  return std::vector<uint32_t>(grid_.prim_ids.begin() + grid_.cell_start[id],
+                               grid_.prim_ids.begin() + grid_.cell_start[id + 1]);
+}
+
+}  // namespace accel
