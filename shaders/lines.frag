@@ -1,4 +1,5 @@
 #version 330 core
+// Shared by lines.vert, nodes.vert and segments.vert: the vertex colour times a tint.
 in vec4 v_color;
 
 // Multiplies the vertex colour, e.g. to fade lines that fail the depth test.

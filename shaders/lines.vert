@@ -1,6 +1,6 @@
 #version 330 core
-// Coloured line segments in world space: the scene's bounds now; acceleration-structure
-// node boxes, split planes and debug rays later (all plain vertex lists with a colour).
+// Thin coloured line segments in world space (the scene's bounds, highlighted nodes): plain
+// vertex lists with a colour. Structure nodes use nodes.vert, thick lines segments.vert.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec4 a_color;
 

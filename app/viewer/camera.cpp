@@ -70,6 +70,37 @@ void Camera::zoom(float steps) {
   distance_ = std::clamp(distance_, scene_radius_ * 1e-3f, scene_radius_ * 1e3f);
 }
 
+void Camera::look_at(const glm::vec3& eye, const glm::vec3& target, float fovy_deg, const accel::Aabb& scene_bounds) {
+  const glm::vec3 offset = target - eye;
+  const float distance = glm::length(offset);
+  if (!(distance > 0.0f)) return;
+  const glm::vec3 f = offset / distance;
+  target_ = target;
+  distance_ = distance;
+  // forward() = (cos p * -sin y, sin p, cos p * -cos y), inverted.
+  pitch_ = std::clamp(std::asin(std::clamp(f.y, -1.0f, 1.0f)), -kMaxPitch, kMaxPitch);
+  yaw_ = std::atan2(-f.x, -f.z);
+  fov_y_ = glm::radians(std::clamp(fovy_deg, 1.0f, 170.0f));
+  if (!scene_bounds.empty()) scene_radius_ = std::max(0.5f * glm::length(scene_bounds.extent()), 1e-4f);
+}
+
+accel::PinholeCamera Camera::pinhole() const {
+  accel::PinholeCamera cam;
+  cam.eye = eye();
+  cam.target = target_;
+  cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  cam.fovy_deg = glm::degrees(fov_y_);
+  return cam;
+}
+
+glm::vec3 Camera::project(const glm::vec3& p, int width, int height) const {
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
+  const glm::vec4 clip = projection(aspect) * view() * glm::vec4(p, 1.0f);
+  const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+  return {(ndc.x * 0.5f + 0.5f) * static_cast<float>(width), (0.5f - ndc.y * 0.5f) * static_cast<float>(height),
+          ndc.z};
+}
+
 glm::vec3 Camera::forward() const {
   return {std::cos(pitch_) * -std::sin(yaw_), std::sin(pitch_), std::cos(pitch_) * -std::cos(yaw_)};
 }

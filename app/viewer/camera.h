@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "math.h"
+#include "ray_gen.h"
 
 namespace viz {
 
@@ -23,6 +24,21 @@ class Camera {
   void pan(float dx, float dy, float viewport_height);
   /// Moves towards the target by `steps` wheel notches (positive = closer).
   void zoom(float steps);
+
+  /// Looks from `eye` at `target` with a vertical field of view of `fovy_deg` degrees (a
+  /// preset's or a script's saved view). The pitch is limited to just short of straight up
+  /// or down, as when orbiting; `scene_bounds` sets the clip range as frame() does.
+  void look_at(const glm::vec3& eye, const glm::vec3& target, float fovy_deg, const accel::Aabb& scene_bounds);
+
+  /// The camera as the core's pinhole model (eye, target, up = +Y, vertical field of view).
+  /// accel::camera_ray(pinhole(), px, py, width, height) is the ray through framebuffer pixel
+  /// (px, py) from the top-left of exactly what view() and projection() draw, so picking,
+  /// the heat map and the rendered image agree.
+  accel::PinholeCamera pinhole() const;
+
+  /// Framebuffer position (from the top-left, pixels) of world point `p` in a viewport of
+  /// width x height; z is the point's NDC depth. For tests of the picking round trip.
+  glm::vec3 project(const glm::vec3& p, int width, int height) const;
 
   /// World-to-view matrix.
   glm::mat4 view() const;

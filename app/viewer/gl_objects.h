@@ -40,6 +40,7 @@ class Shader {
   void set(const char* name, const glm::mat4& value);
   void set(const char* name, const glm::vec4& value);
   void set(const char* name, const glm::vec3& value);
+  void set(const char* name, const glm::vec2& value);
   void set(const char* name, float value);
   void set(const char* name, int value);
 

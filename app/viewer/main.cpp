@@ -3,7 +3,9 @@
 // context and backends, a main loop that sleeps while iconified, cleanup in reverse.
 //
 // Exit codes: 0 success, 1 no display / no OpenGL 3.3 / missing shaders / screenshot not
-// written, 2 bad command line (unknown option, invalid --size, scene that fails to load).
+// written, 2 bad command line (unknown option, invalid --size, scene that fails to load) or
+// a failing --script command ("accelviz: SCRIPT:LINE: message").
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -19,8 +21,10 @@
 
 #include "app.h"
 #include "paths.h"
+#include "renderer.h"
 #include "scene.h"
 #include "screenshot.h"
+#include "script.h"
 
 namespace {
 
@@ -28,9 +32,11 @@ namespace {
 struct Options {
   std::string scene;            ///< OBJ path or procedural:NAME
   std::string screenshot;       ///< PNG path; empty = interactive
+  std::string script;           ///< command script; empty = none
   int frames = 3;               ///< frames rendered before the screenshot
   int width = 1280, height = 720;
   bool no_ui = false;           ///< start with the panels hidden
+  int msaa = 4;                 ///< multisample anti-aliasing samples (0 = off)
 };
 
 constexpr int kMinSize = 64;
@@ -91,7 +97,14 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   cli.add_option("--frames", options.frames, "frames rendered before the screenshot, 1..1000")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
+  cli.add_option("--script", options.script,
+                 "run the viewer commands of this file (size, scene, structure, camera, ray-at-pixel, step, "
+                 "screenshot, print-hit, ...; see app/viewer/script.h), then exit");
   cli.add_flag("--no-ui", options.no_ui, "hide the panels (H shows them): clean screenshots for slides");
+  cli.add_option("--msaa", options.msaa, "anti-aliasing samples per pixel, 0 (off) .. 16; 0 is much faster on "
+                                         "software renderers (Mesa llvmpipe)")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
   cli.add_option("--size", size_text, "window size WxH, W and H in 64..8192")->capture_default_str();
   try {
     cli.parse(argc, argv);
@@ -114,22 +127,168 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   return std::nullopt;
 }
 
+// Fonts: DejaVu (most Linux desktops) at the normal and the lecture size, proportional and
+// mono; ImGui's built-in font, scaled, where a file is missing.
+viz::Fonts load_fonts(ImGuiIO& io) {
+  auto load = [&io](const char* path, float size) -> ImFont* {
+    if (std::FILE* f = std::fopen(path, "rb")) {
+      std::fclose(f);
+      return io.Fonts->AddFontFromFileTTF(path, size);
+    }
+    ImFontConfig config;
+    config.SizePixels = size;
+    return io.Fonts->AddFontDefault(&config);
+  };
+  const char* sans = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  const char* mono = "/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf";
+  viz::Fonts fonts;
+  fonts.ui = load(sans, 18.0f);  // the first font added is ImGui's default
+  fonts.ui_large = load(sans, 27.0f);
+  fonts.mono = load(mono, 16.0f);
+  fonts.mono_large = load(mono, 22.0f);
+  return fonts;
+}
+
+/// One frame: events, ImGui, the app's update and draw. Returns the framebuffer size.
+glm::ivec2 render_frame(GLFWwindow* window, viz::App& app, float dt) {
+  glfwPollEvents();
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  app.update(dt);
+  ImGui::Render();
+  int fb_width = 0, fb_height = 0;
+  glfwGetFramebufferSize(window, &fb_width, &fb_height);
+  app.draw(fb_width, fb_height);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  return {fb_width, fb_height};
+}
+
+/// Rendering for --script.
+class WindowScriptHost final : public viz::ScriptHost {
+ public:
+  WindowScriptHost(GLFWwindow* window, viz::App& app) : window_(window), app_(app) {}
+
+  std::optional<accel::Error> resize(int width, int height) override {
+    glfwSetWindowSize(window_, width, height);
+    // The X server answers asynchronously: wait (up to 2 s) until the framebuffer follows.
+    for (int i = 0; i < 200; ++i) {
+      glfwWaitEventsTimeout(0.01);
+      const glm::ivec2 fb = framebuffer_size();
+      if (fb.x == width && fb.y == height) return std::nullopt;
+    }
+    const glm::ivec2 fb = framebuffer_size();
+    return accel::make_error("size: the window stayed " + std::to_string(fb.x) + "x" + std::to_string(fb.y) +
+                             " instead of " + std::to_string(width) + "x" + std::to_string(height));
+  }
+
+  void render(int frames) override {
+    for (int i = 0; i < frames; ++i) {
+      render_frame(window_, app_, dt());
+      glfwSwapBuffers(window_);
+    }
+  }
+
+  std::optional<accel::Error> screenshot(const std::string& path) override {
+    // ImGui sizes auto-resized windows and scrolls lists one frame late: settle first.
+    render(2);
+    const glm::ivec2 fb = render_frame(window_, app_, dt());
+    auto error = viz::save_framebuffer_png(path, fb.x, fb.y);
+    glfwSwapBuffers(window_);
+    return error;
+  }
+
+  double measure_frames(int frames) override {
+    render(3);  // warm up: uploads, shader compilation on first use
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < frames; ++i) {
+      render_frame(window_, app_, dt());
+      glFinish();
+      glfwSwapBuffers(window_);
+    }
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+  }
+
+  std::string gl_renderer() const override {
+    const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return name != nullptr ? name : "unknown";
+  }
+
+  glm::ivec2 framebuffer_size() const override {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    return {w, h};
+  }
+
+ private:
+  // Real seconds since the previous frame, so the panel's frame time is true (the animation
+  // does not advance on its own in script mode).
+  float dt() {
+    const double now = glfwGetTime();
+    const float seconds = last_ < 0.0 ? 1.0f / 60.0f : static_cast<float>(now - last_);
+    last_ = now;
+    return seconds;
+  }
+  double last_ = -1.0;
+  GLFWwindow* window_;
+  viz::App& app_;
+};
+
+// Runs every command; the first error is printed as "accelviz: SCRIPT:LINE: message".
+int run_script(const std::string& script_name, const std::vector<viz::ScriptCommand>& commands,
+               GLFWwindow* window, viz::App& app) {
+  WindowScriptHost host(window, app);
+  host.render(1);
+  for (const viz::ScriptCommand& command : commands) {
+    if (auto error = app.execute(command, host)) {
+      std::fprintf(stderr, "accelviz: %s\n", viz::script_error(script_name, command.line, error->message).c_str());
+      return 2;
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
   if (const auto code = parse_command_line(argc, argv, options)) return *code;
   const bool screenshot_mode = !options.screenshot.empty();
+  const bool script_mode = !options.script.empty();
+  const bool headless = screenshot_mode || script_mode;
 
-  // The scene first: a bad path is the user's mistake (exit 2) whether or not there is a
-  // display, and scripts get the same answer everywhere.
+  // The script first: a typo is reported with its line before any window opens.
+  std::vector<viz::ScriptCommand> script;
+  if (script_mode) {
+    auto parsed = viz::load_script(options.script);
+    if (!parsed) {
+      std::fprintf(stderr, "accelviz: %s\n", parsed.error().message.c_str());
+      return 2;
+    }
+    script = std::move(parsed.value());
+    // A leading `size` sets the window's size from the start (no resize round trip).
+    for (const viz::ScriptCommand& c : script) {
+      if (c.kind == viz::CommandKind::Size) {
+        options.width = c.ints[0];
+        options.height = c.ints[1];
+      }
+      if (c.kind != viz::CommandKind::Size && c.kind != viz::CommandKind::Scene && c.kind != viz::CommandKind::Structure &&
+          c.kind != viz::CommandKind::Kernel)
+        break;
+    }
+  }
+
+  // The scene next: a bad path is the user's mistake (exit 2) whether or not there is a
+  // display, and scripts get the same answer everywhere. Its structure starts building in
+  // the background while the window opens (synchronously for a script).
   viz::App app;
+  app.set_synchronous(script_mode);
   if (const auto error = app.load_scene(options.scene)) {
     std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
     return 2;
   }
-  const auto shader_dir =
-      viz::find_shader_dir({"mesh.vert", "mesh.frag", "lines.vert", "lines.frag"});
+  const auto shader_dir = viz::find_shader_dir(viz::Renderer::shader_files());
   if (!shader_dir) {
     std::fprintf(stderr, "accelviz: %s\n", shader_dir.error().message.c_str());
     return 1;
@@ -157,9 +316,10 @@ int main(int argc, char** argv) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, 4);  // smooth edges on a projector; ignored if unsupported
-  // A screenshot must have exactly the requested size: keep window managers from resizing.
-  if (screenshot_mode) glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  glfwWindowHint(GLFW_SAMPLES, options.msaa);  // smooth edges on a projector; ignored if unsupported
+  // A screenshot must have exactly the requested size: keep window managers from resizing
+  // (a script's `size` command still resizes it).
+  if (headless) glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
   report_glfw_errors = false;  // a failure here gets its own single line below
   GLFWwindow* window = glfwCreateWindow(options.width, options.height, "accelviz", nullptr, nullptr);
   report_glfw_errors = true;
@@ -172,7 +332,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   glfwMakeContextCurrent(window);
-  glfwSwapInterval(screenshot_mode ? 0 : 1);  // vsync when interactive; no waiting otherwise
+  glfwSwapInterval(headless ? 0 : 1);  // vsync when interactive; no waiting otherwise
 
   // glad serves our renderer only; ImGui's OpenGL3 backend loads its own functions.
   if (gladLoadGL(glfwGetProcAddress) == 0) {
@@ -191,33 +351,48 @@ int main(int argc, char** argv) {
   style.WindowRounding = 4.0f;
   style.FrameRounding = 3.0f;
   style.ScaleAllSizes(1.25f);
-  // A larger, smooth font reads at the back of a lecture hall. DejaVu Sans comes with most
-  // Linux desktops; otherwise ImGui's built-in font, scaled.
-  const char* font_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-  if (std::FILE* font = std::fopen(font_path, "rb")) {
-    std::fclose(font);
-    io.Fonts->AddFontFromFileTTF(font_path, 18.0f);
-  } else {
-    io.FontGlobalScale = 1.25f;
-  }
+  // Larger, smooth fonts read at the back of a lecture hall; the lecture mode (L) switches
+  // to the larger size.
+  const viz::Fonts fonts = load_fonts(io);
 
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   app.set_ui_visible(!options.no_ui);
   int exit_code = 0;
-  if (const auto error = app.init(window, shader_dir.value())) {
+  if (const auto error = app.init(window, shader_dir.value(), fonts)) {
     std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
     exit_code = 1;
     glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
 
-  int frame = 0;
+  if (exit_code == 0 && script_mode) {
+    exit_code = run_script(options.script, script, window, app);
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+  }
+  if (exit_code == 0 && screenshot_mode) {
+    // ImGui needs a frame or two to size its windows, hence --frames. The back buffer holds
+    // the finished frame until the swap: read it then.
+    glm::ivec2 fb{0, 0};
+    for (int frame = 0; frame < options.frames; ++frame) {
+      fb = render_frame(window, app, 1.0f / 60.0f);
+      if (frame + 1 < options.frames) glfwSwapBuffers(window);
+    }
+    if (fb.x != options.width || fb.y != options.height) {
+      std::fprintf(stderr, "accelviz: warning: framebuffer is %dx%d, not the requested %dx%d\n", fb.x, fb.y,
+                   options.width, options.height);
+    }
+    if (const auto error = viz::save_framebuffer_png(options.screenshot, fb.x, fb.y)) {
+      std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
+      exit_code = 1;
+    }
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+  }
+
   double last_time = glfwGetTime();
   while (!glfwWindowShouldClose(window)) {
-    glfwPollEvents();
     // Minimised: nothing to draw, so sleep until something happens.
-    if (!screenshot_mode && glfwGetWindowAttrib(window, GLFW_ICONIFIED) != 0) {
+    if (glfwGetWindowAttrib(window, GLFW_ICONIFIED) != 0) {
       glfwWaitEvents();
       last_time = glfwGetTime();  // the sleep is not a frame
       continue;
@@ -225,31 +400,7 @@ int main(int argc, char** argv) {
     const double now = glfwGetTime();
     const float dt = static_cast<float>(now - last_time);
     last_time = now;
-
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    app.update(dt);
-    ImGui::Render();
-
-    int fb_width = 0, fb_height = 0;
-    glfwGetFramebufferSize(window, &fb_width, &fb_height);
-    app.draw(fb_width, fb_height);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
-    // The back buffer holds the finished frame until the swap: read it now. ImGui needs a
-    // frame or two to size its windows, hence --frames.
-    if (screenshot_mode && ++frame >= options.frames) {
-      if (fb_width != options.width || fb_height != options.height) {
-        std::fprintf(stderr, "accelviz: warning: framebuffer is %dx%d, not the requested %dx%d\n",
-                     fb_width, fb_height, options.width, options.height);
-      }
-      if (const auto error = viz::save_framebuffer_png(options.screenshot, fb_width, fb_height)) {
-        std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
-        exit_code = 1;
-      }
-      break;
-    }
+    render_frame(window, app, dt);
     glfwSwapBuffers(window);
   }
 

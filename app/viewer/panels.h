@@ -1,8 +1,6 @@
 #pragma once
-// ImGui panels, one function each (imgui_demo's ShowDemoWindow...() habit). A panel
-// reads plain data and returns what the user asked for; App carries the requests out,
-// so panels never touch the scene or GL themselves.
-#include <optional>
+// Plain data the panels show, and small ImGui helpers shared by them (app_ui.cpp has the
+// panels themselves, one App member function each).
 #include <string>
 #include <vector>
 
@@ -10,7 +8,7 @@
 
 namespace viz {
 
-/// What the scene panel shows about the loaded scene.
+/// What the scene section shows about the loaded scene.
 struct SceneInfo {
   std::string spec;        ///< as loaded: a path or "procedural:NAME"
   std::string name;        ///< Scene::name()
@@ -27,23 +25,30 @@ struct FrameTiming {
   double fps = 0.0;
 };
 
-/// Mutable UI state of the scene panel, owned by App.
+/// Mutable UI state of the scene section, owned by App.
 struct ScenePanelState {
   std::string obj_path;                   ///< the "Load OBJ" text field
-  std::vector<std::string> presets;       ///< procedural scene names for the preset combo
-  int preset = 0;                         ///< index into presets
   std::string load_error;                 ///< last load error (shown in red), empty if none
 };
 
-/// Requests from the scene panel, carried out by App after the frame's UI is built.
-struct ScenePanelActions {
-  std::optional<std::string> load;  ///< scene spec to load (OBJ path or "procedural:NAME")
-  bool frame_scene = false;         ///< reset the camera to frame the scene bounds
-};
+namespace ui {
 
-/// The "Scene" window: statistics, timing, OBJ/procedural loading, the last load error
-/// and a short mouse help. Call between ImGui::NewFrame() and ImGui::Render().
-ScenePanelActions scene_panel(const SceneInfo& scene, const FrameTiming& timing,
-                              ScenePanelState& state);
+/// 1234567 -> "1,234,567": triangle counts of real scenes are long numbers.
+std::string with_separators(size_t n);
+/// "(x, y, z)" with 4 significant digits.
+std::string format_vec(const accel::Vec3& v);
+/// Bytes as "12.3 MB".
+std::string format_bytes(size_t bytes);
+/// One label/value row of a two-column table.
+void stat_row(const char* label, const std::string& value);
+/// A row whose long value keeps its tail, with the whole text as tooltip.
+void path_row(const char* label, const std::string& path);
+/// A row whose long value keeps its head ("..." at the end), with the whole text as tooltip.
+void text_row(const char* label, const std::string& value, size_t max_chars = 20);
+/// A "(?)" marker whose tooltip is `text` (imgui_demo's HelpMarker).
+void help_marker(const char* text);
+/// Red error text wrapped at `width` pixels.
+void error_text(const std::string& text, float width);
 
+}  // namespace ui
 }  // namespace viz

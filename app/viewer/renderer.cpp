@@ -8,30 +8,19 @@
 namespace viz {
 namespace {
 
-// Attribute locations shared by both programs (layout(location = N) in the shaders).
+// Attribute locations shared by the programs (layout(location = N) in the shaders).
 constexpr GLuint kPositionAttribute = 0;
 constexpr GLuint kColorAttribute = 1;
+constexpr GLuint kInstance0 = 2;
+constexpr GLuint kInstance1 = 3;
+constexpr GLuint kInstance2 = 4;
+constexpr GLuint kInstance3 = 5;
+
+// Unit quad of a thick segment: x = 0 at end a, 1 at end b; y = side (-1 / +1).
+constexpr std::array<glm::vec2, 6> kSegmentQuad = {
+    glm::vec2(0, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(0, -1), glm::vec2(1, 1), glm::vec2(0, 1)};
 
 }  // namespace
-
-void append_box_edges(std::vector<ColorVertex>& lines, const accel::Aabb& box, const glm::vec4& color) {
-  if (box.empty()) return;
-  // Corner i has x from bit 0, y from bit 1, z from bit 2; an edge joins corners that
-  // differ in exactly one bit.
-  std::array<glm::vec3, 8> corners;
-  for (int i = 0; i < 8; ++i) {
-    corners[i] = {(i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
-                  (i & 4) ? box.max.z : box.min.z};
-  }
-  for (int i = 0; i < 8; ++i) {
-    for (int bit = 1; bit < 8; bit <<= 1) {
-      if ((i & bit) == 0) {
-        lines.push_back({corners[i], color});
-        lines.push_back({corners[i | bit], color});
-      }
-    }
-  }
-}
 
 // ---------------------------------------------------------------------------------------
 // MeshBuffers
@@ -82,21 +71,138 @@ void ColorBatch::draw() const {
 }
 
 // ---------------------------------------------------------------------------------------
+// InstancedNodes
+
+InstancedNodes::InstancedNodes(NodeStyle::Shape shape)
+    : shape_(shape), mode_(shape == NodeStyle::Shape::Plane ? GL_TRIANGLES : GL_LINES) {
+  const std::vector<glm::vec3> unit = shape == NodeStyle::Shape::Box      ? unit_cube_edges()
+                                      : shape == NodeStyle::Shape::Sphere ? unit_sphere_circles(24)
+                                                                          : unit_square_triangles();
+  unit_.upload(unit.data(), unit.size() * sizeof(glm::vec3));
+  unit_vertices_ = unit.size();
+  vao_.attribute(kPositionAttribute, unit_, 3, sizeof(glm::vec3), 0);
+  vao_.attribute(kInstance0, instances_, 3, sizeof(NodeInstance), offsetof(NodeInstance, lo), 1);
+  vao_.attribute(kInstance1, instances_, 3, sizeof(NodeInstance), offsetof(NodeInstance, hi), 1);
+  vao_.attribute(kInstance2, instances_, 4, sizeof(NodeInstance), offsetof(NodeInstance, depth), 1);
+  glBindVertexArray(0);
+}
+
+void InstancedNodes::upload(std::span<const NodeInstance> instances) {
+  instances_.upload(instances.data(), instances.size_bytes(), GL_STATIC_DRAW);
+  count_ = instances.size();
+}
+
+void InstancedNodes::draw() const {
+  if (count_ == 0) return;
+  vao_.bind();
+  glDrawArraysInstanced(mode_, 0, static_cast<GLsizei>(unit_vertices_), static_cast<GLsizei>(count_));
+  glBindVertexArray(0);
+}
+
+// ---------------------------------------------------------------------------------------
+// SegmentBatch
+
+SegmentBatch::SegmentBatch() {
+  unit_.upload(kSegmentQuad.data(), sizeof(kSegmentQuad));
+  vao_.attribute(kPositionAttribute, unit_, 2, sizeof(glm::vec2), 0);
+  vao_.attribute(kInstance0, instances_, 3, sizeof(Segment), offsetof(Segment, a), 1);
+  vao_.attribute(kInstance1, instances_, 3, sizeof(Segment), offsetof(Segment, b), 1);
+  vao_.attribute(kInstance2, instances_, 4, sizeof(Segment), offsetof(Segment, color), 1);
+  vao_.attribute(kInstance3, instances_, 1, sizeof(Segment), offsetof(Segment, width), 1);
+  glBindVertexArray(0);
+}
+
+void SegmentBatch::upload(std::span<const Segment> segments) {
+  instances_.upload(segments.data(), segments.size_bytes(), GL_DYNAMIC_DRAW);
+  count_ = segments.size();
+}
+
+void SegmentBatch::draw() const {
+  if (count_ == 0) return;
+  vao_.bind();
+  glDrawArraysInstanced(GL_TRIANGLES, 0, static_cast<GLsizei>(kSegmentQuad.size()), static_cast<GLsizei>(count_));
+  glBindVertexArray(0);
+}
+
+// ---------------------------------------------------------------------------------------
+// HeatmapTexture
+
+HeatmapTexture::HeatmapTexture() { glGenTextures(1, &texture_); }
+
+HeatmapTexture::~HeatmapTexture() {
+  if (texture_ != 0) glDeleteTextures(1, &texture_);
+}
+
+HeatmapTexture::HeatmapTexture(HeatmapTexture&& other) noexcept
+    : texture_(std::exchange(other.texture_, 0u)), width_(std::exchange(other.width_, 0)),
+      height_(std::exchange(other.height_, 0)) {}
+
+HeatmapTexture& HeatmapTexture::operator=(HeatmapTexture&& other) noexcept {
+  if (this != &other) {
+    if (texture_ != 0) glDeleteTextures(1, &texture_);
+    texture_ = std::exchange(other.texture_, 0u);
+    width_ = std::exchange(other.width_, 0);
+    height_ = std::exchange(other.height_, 0);
+  }
+  return *this;
+}
+
+void HeatmapTexture::upload(const float* values, int width, int height) {
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, values);
+  // Nearest: each texel is one traced ray; blurring would invent costs between them.
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  width_ = width;
+  height_ = height;
+}
+
+void HeatmapTexture::bind(int unit) const {
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+  glBindTexture(GL_TEXTURE_2D, texture_);
+}
+
+// ---------------------------------------------------------------------------------------
 // Renderer
+
+std::vector<std::string> Renderer::shader_files() {
+  return {"mesh.vert", "mesh.frag", "lines.vert", "lines.frag", "nodes.vert", "segments.vert", "overlay.vert",
+          "overlay.frag"};
+}
 
 accel::Result<Renderer> Renderer::create(const std::string& shader_dir) {
   auto mesh = Shader::from_files(shader_dir, "mesh.vert", "mesh.frag");
   if (!mesh) return mesh.error();
   auto lines = Shader::from_files(shader_dir, "lines.vert", "lines.frag");
   if (!lines) return lines.error();
-  return Renderer(std::move(mesh.value()), std::move(lines.value()));
+  auto nodes = Shader::from_files(shader_dir, "nodes.vert", "lines.frag");
+  if (!nodes) return nodes.error();
+  auto segments = Shader::from_files(shader_dir, "segments.vert", "lines.frag");
+  if (!segments) return segments.error();
+  auto overlay = Shader::from_files(shader_dir, "overlay.vert", "overlay.frag");
+  if (!overlay) return overlay.error();
+  return Renderer(std::move(mesh.value()), std::move(lines.value()), std::move(nodes.value()),
+                  std::move(segments.value()), std::move(overlay.value()));
 }
+
+Renderer::Renderer(Shader mesh, Shader lines, Shader nodes, Shader segments, Shader overlay)
+    : mesh_shader_(std::move(mesh)), line_shader_(std::move(lines)), node_shader_(std::move(nodes)),
+      segment_shader_(std::move(segments)), overlay_shader_(std::move(overlay)) {}
 
 void Renderer::set_scene(const accel::Scene& scene) { mesh_.upload(scene); }
 
+void Renderer::set_camera(Shader& shader) {
+  shader.set("u_view", frame_.view);
+  shader.set("u_projection", frame_.projection);
+}
+
 void Renderer::begin_frame(const FrameView& view, const glm::vec4& background) {
   frame_ = view;
-  glViewport(0, 0, view.viewport.x, view.viewport.y);
+  glViewport(view.origin.x, view.origin.y, view.viewport.x, view.viewport.y);
   glClearColor(background.r, background.g, background.b, background.a);
   glClearDepth(1.0);
   glEnable(GL_DEPTH_TEST);
@@ -108,40 +214,74 @@ void Renderer::begin_frame(const FrameView& view, const glm::vec4& background) {
 }
 
 void Renderer::draw_mesh(const MeshStyle& style) {
+  if (style.mode == MeshStyle::Mode::Hidden) return;
   mesh_shader_.use();
-  mesh_shader_.set("u_view", frame_.view);
-  mesh_shader_.set("u_projection", frame_.projection);
+  set_camera(mesh_shader_);
   mesh_shader_.set("u_eye", frame_.eye);
-  mesh_shader_.set("u_tint", style.color);
+  glm::vec4 color = style.color;
   // The mesh has no colour array (MeshBuffers leaves attribute 1 disabled), so the
   // shader reads this constant instead: white, and u_tint carries the colour.
   glVertexAttrib4f(kColorAttribute, 1.0f, 1.0f, 1.0f, 1.0f);
-  glDisable(GL_BLEND);
-  mesh_.draw();
+  switch (style.mode) {
+    case MeshStyle::Mode::Solid:
+      glDisable(GL_BLEND);
+      mesh_shader_.set("u_tint", color);
+      mesh_.draw();
+      break;
+    case MeshStyle::Mode::Translucent:
+      // Depth is written by a colourless pass first, so only the nearest surface blends:
+      // no sorting, and the back faces of a closed mesh do not double its opacity.
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      mesh_shader_.set("u_tint", color);
+      mesh_.draw();
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      glDepthMask(GL_FALSE);
+      color.a = style.translucent_alpha;
+      mesh_shader_.set("u_tint", color);
+      mesh_.draw();
+      glDepthMask(GL_TRUE);
+      glDisable(GL_BLEND);
+      break;
+    case MeshStyle::Mode::Wireframe:
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      color.a = 0.5f;
+      mesh_shader_.set("u_tint", color);
+      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+      mesh_.draw();
+      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+      glDisable(GL_BLEND);
+      break;
+    case MeshStyle::Mode::Hidden: break;
+  }
 }
 
-void Renderer::draw_triangles(const ColorBatch& triangles, const glm::vec4& tint) {
+void Renderer::draw_triangles(const ColorBatch& triangles, const glm::vec4& tint, bool depth_test) {
   if (triangles.vertex_count() == 0) return;
   mesh_shader_.use();
-  mesh_shader_.set("u_view", frame_.view);
-  mesh_shader_.set("u_projection", frame_.projection);
+  set_camera(mesh_shader_);
   mesh_shader_.set("u_eye", frame_.eye);
   mesh_shader_.set("u_tint", tint);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  if (!depth_test) glDisable(GL_DEPTH_TEST);
   // Highlights coincide with scene faces; pull them forward so they win the depth test.
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(-1.0f, -1.0f);
+  glPolygonOffset(-1.0f, -4.0f);
+  glDepthMask(GL_FALSE);
   triangles.draw();
+  glDepthMask(GL_TRUE);
   glDisable(GL_POLYGON_OFFSET_FILL);
+  glEnable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
 }
 
 void Renderer::draw_lines(const ColorBatch& lines, const LineStyle& style) {
   if (lines.vertex_count() == 0) return;
   line_shader_.use();
-  line_shader_.set("u_view", frame_.view);
-  line_shader_.set("u_projection", frame_.projection);
+  set_camera(line_shader_);
   line_shader_.set("u_depth_bias", std::clamp(style.depth_bias, 0.0f, 0.01f));
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -165,6 +305,83 @@ void Renderer::draw_lines(const ColorBatch& lines, const LineStyle& style) {
   }
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
+}
+
+void Renderer::draw_segments(const SegmentBatch& segments, const LineStyle& style) {
+  if (segments.segment_count() == 0) return;
+  segment_shader_.use();
+  set_camera(segment_shader_);
+  segment_shader_.set("u_viewport", glm::vec2(frame_.viewport));
+  segment_shader_.set("u_depth_bias", std::clamp(style.depth_bias, 0.0f, 0.01f));
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  if (!style.depth_test) {
+    glDisable(GL_DEPTH_TEST);
+    segment_shader_.set("u_tint", style.tint);
+    segments.draw();
+    glEnable(GL_DEPTH_TEST);
+  } else {
+    if (style.hidden_tint.a > 0.0f) {
+      glDepthFunc(GL_GREATER);
+      segment_shader_.set("u_tint", style.hidden_tint);
+      segments.draw();
+      glDepthFunc(GL_LEQUAL);
+    }
+    segment_shader_.set("u_tint", style.tint);
+    segments.draw();
+  }
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+}
+
+void Renderer::draw_nodes(const InstancedNodes& nodes, NodeStyle style) {
+  if (nodes.instance_count() == 0) return;
+  style.shape = nodes.shape();
+  node_shader_.use();
+  set_camera(node_shader_);
+  node_shader_.set("u_shape", static_cast<int>(style.shape));
+  node_shader_.set("u_color_mode", static_cast<int>(style.coloring));
+  node_shader_.set("u_depth_min", static_cast<float>(style.depth_min));
+  node_shader_.set("u_depth_max", static_cast<float>(style.depth_max));
+  node_shader_.set("u_leaves_only", style.leaves_only ? 1 : 0);
+  node_shader_.set("u_hide_empty", style.hide_empty ? 1 : 0);
+  node_shader_.set("u_max_depth", std::max(style.max_depth, 1.0f));
+  node_shader_.set("u_max_prims", std::max(style.max_prims, 1.0f));
+  node_shader_.set("u_flat_color", style.flat_color);
+  node_shader_.set("u_alpha", style.alpha);
+  node_shader_.set("u_depth_bias", std::clamp(style.depth_bias, 0.0f, 0.01f));
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  if (style.hidden_alpha > 0.0f) {
+    glDepthFunc(GL_GREATER);
+    node_shader_.set("u_tint", glm::vec4(1.0f, 1.0f, 1.0f, style.hidden_alpha));
+    nodes.draw();
+    glDepthFunc(GL_LEQUAL);
+  }
+  node_shader_.set("u_tint", glm::vec4(1.0f));
+  nodes.draw();
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+}
+
+void Renderer::draw_overlay(const HeatmapTexture& texture, const OverlayStyle& style) {
+  if (texture.empty()) return;
+  overlay_shader_.use();
+  texture.bind(0);
+  overlay_shader_.set("u_values", 0);
+  overlay_shader_.set("u_scale_max", std::max(style.scale_max, 1e-6f));
+  overlay_shader_.set("u_alpha", style.alpha);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  empty_vao_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
 }
 
 void Renderer::end_frame() {

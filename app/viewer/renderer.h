@@ -1,16 +1,19 @@
 #pragma once
-// Renderer: draws the scene mesh and batches of coloured lines/triangles with two shader
-// programs (mesh.*, lines.*). Everything it draws arrives as plain world-space vertex
-// lists, so the core's DrawData (node boxes, split planes, rays) maps onto it directly:
+// Renderer: draws the scene mesh, the structure's nodes, highlights and the heat map with
+// five small shader programs. Everything it draws arrives as plain lists (structure_view.h):
 //
-//   pass              data                       shader   state
-//   mesh              MeshBuffers (scene)        mesh     depth test, flat shading
-//   highlighted tris  TriangleBatch              mesh     depth LEQUAL + polygon offset
-//   lines             LineBatch (boxes, rays)    lines    depth test, optional hidden pass
+//   pass              data                        shader           state
+//   mesh              MeshBuffers (scene)         mesh             solid / translucent / wireframe
+//   nodes             InstancedNodes              nodes + lines    one instanced draw per shape;
+//                                                                  depth/leaf filter on the GPU
+//   highlighted tris  ColorBatch (triangles)      mesh             depth LEQUAL + polygon offset
+//   thin lines        ColorBatch (lines)          lines            optional hidden ("x-ray") pass
+//   thick lines       SegmentBatch                segments + lines screen-space quads, instanced
+//   heat map          HeatmapTexture              overlay          fullscreen, blended
 //
-// Planned next (not yet here): instanced boxes, i.e. one unit-cube edge list drawn once
-// per node with per-instance min/max/colour attributes (VertexArray::attribute already
-// takes a divisor), for structures with millions of nodes.
+// Instancing: a structure's 200k boxes are one glDrawArraysInstanced of the unit cube's 24
+// edge vertices with per-instance min/max/depth/leaf/count; the depth range and leaves-only
+// filters are uniforms the vertex shader applies, so changing them uploads nothing.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -22,33 +25,28 @@
 #include "math.h"
 #include "result.h"
 #include "scene.h"
+#include "structure_view.h"
 
 namespace viz {
-
-/// One end of a line segment, or one corner of a highlighted triangle.
-struct ColorVertex {
-  glm::vec3 position{0.0f};
-  glm::vec4 color{1.0f};
-};
-static_assert(sizeof(ColorVertex) == 28, "ColorVertex is uploaded as 7 tightly packed floats");
-
-/// Appends the 12 edges of `box` as 24 line vertices. An empty box appends nothing.
-void append_box_edges(std::vector<ColorVertex>& lines, const accel::Aabb& box, const glm::vec4& color);
 
 /// Camera matrices and viewport of one frame.
 struct FrameView {
   glm::mat4 view{1.0f};
   glm::mat4 projection{1.0f};
   glm::vec3 eye{0.0f};        // camera position in world space (for lighting)
-  glm::ivec2 viewport{1, 1};  // framebuffer pixels
+  glm::ivec2 viewport{1, 1};  // size of the 3D view, framebuffer pixels
+  glm::ivec2 origin{0, 0};    // its lower-left corner in the framebuffer (GL convention)
 };
 
 /// How the scene mesh is drawn.
 struct MeshStyle {
+  enum class Mode { Solid, Translucent, Wireframe, Hidden };
+  Mode mode = Mode::Solid;
   glm::vec4 color{0.70f, 0.77f, 0.88f, 1.0f};  // light grey-blue: reads on dark projectors
+  float translucent_alpha = 0.45f;
 };
 
-/// How a LineBatch is drawn.
+/// How a ColorBatch of lines or a SegmentBatch is drawn.
 struct LineStyle {
   glm::vec4 tint{1.0f};  ///< multiplies every vertex colour
   bool depth_test = true;  ///< false: lines draw over everything (e.g. the debug ray)
@@ -58,6 +56,29 @@ struct LineStyle {
   /// If alpha > 0 (and depth_test), lines hidden behind the mesh are drawn too, with
   /// this tint: "x-ray" view of structure nodes inside a model.
   glm::vec4 hidden_tint{0.0f};
+};
+
+/// Which instanced nodes are shown and how they are coloured (uniforms, no upload).
+struct NodeStyle {
+  enum class Shape { Box = 0, Sphere = 1, Plane = 2 };
+  enum class Coloring { Depth = 0, Prims = 1, Flat = 2 };
+  Shape shape = Shape::Box;
+  Coloring coloring = Coloring::Depth;
+  int depth_min = 0, depth_max = 1 << 20;  ///< inclusive
+  bool leaves_only = false;
+  bool hide_empty = false;                 ///< hide leaves / cells without triangles
+  float max_depth = 1.0f;                  ///< colour scale of Depth
+  float max_prims = 1.0f;                  ///< colour scale of Prims (logarithmic)
+  float alpha = 0.6f;
+  glm::vec4 flat_color{1.0f};
+  float hidden_alpha = 0.0f;               ///< > 0: also draw nodes behind the mesh, this faint
+  float depth_bias = 0.0005f;
+};
+
+/// How the heat map overlay is drawn.
+struct OverlayStyle {
+  float scale_max = 1.0f;  ///< value mapped to the top of the colour map
+  float alpha = 0.75f;
 };
 
 /// The scene's triangles on the GPU: its positions and an index buffer, drawn indexed.
@@ -99,12 +120,69 @@ class ColorBatch {
   size_t count_ = 0;
 };
 
+/// One unit shape drawn once per NodeInstance.
+class InstancedNodes {
+ public:
+  /// `shape` picks the unit mesh: cube edges, three circles, or a square (triangles).
+  explicit InstancedNodes(NodeStyle::Shape shape);
+  /// Replaces the instances (only when the structure or the node list changes).
+  void upload(std::span<const NodeInstance> instances);
+  size_t instance_count() const { return count_; }
+  NodeStyle::Shape shape() const { return shape_; }
+  void draw() const;
+
+ private:
+  NodeStyle::Shape shape_;
+  GLenum mode_;
+  VertexArray vao_;
+  Buffer unit_{GL_ARRAY_BUFFER};
+  Buffer instances_{GL_ARRAY_BUFFER};
+  size_t unit_vertices_ = 0;
+  size_t count_ = 0;
+};
+
+/// Thick line segments (screen-space quads, instanced): the debug ray, the current node.
+class SegmentBatch {
+ public:
+  SegmentBatch();
+  void upload(std::span<const Segment> segments);
+  size_t segment_count() const { return count_; }
+  void draw() const;
+
+ private:
+  VertexArray vao_;
+  Buffer unit_{GL_ARRAY_BUFFER};
+  Buffer instances_{GL_ARRAY_BUFFER};
+  size_t count_ = 0;
+};
+
+/// A single-channel float image (the cost image) as a texture. Move-only.
+class HeatmapTexture {
+ public:
+  HeatmapTexture();
+  ~HeatmapTexture();
+  HeatmapTexture(HeatmapTexture&& other) noexcept;
+  HeatmapTexture& operator=(HeatmapTexture&& other) noexcept;
+  HeatmapTexture(const HeatmapTexture&) = delete;
+  HeatmapTexture& operator=(const HeatmapTexture&) = delete;
+  /// Uploads width x height values, the first row being the top of the image.
+  void upload(const float* values, int width, int height);
+  bool empty() const { return width_ == 0; }
+  void bind(int unit) const;
+
+ private:
+  GLuint texture_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
 /// Draws the passes of one frame. Create it with a current GL 3.3 core context whose
 /// functions glad has loaded; destroy it while that context is still current.
 class Renderer {
  public:
-  /// Compiles mesh.vert/.frag and lines.vert/.frag from `shader_dir`. The error is one
-  /// line naming the shader file and the first compiler message.
+  /// Every shader file the renderer loads (for find_shader_dir).
+  static std::vector<std::string> shader_files();
+  /// Compiles the programs from `shader_dir`. The error is one line naming the shader file
+  /// and the first compiler message.
   static accel::Result<Renderer> create(const std::string& shader_dir);
 
   /// Uploads the scene mesh (replacing the previous one).
@@ -113,22 +191,34 @@ class Renderer {
   /// Sets the viewport, clears colour and depth to `background`, and remembers `view`
   /// for the draw calls that follow.
   void begin_frame(const FrameView& view, const glm::vec4& background);
-  /// Draws the scene mesh uploaded by set_scene().
+  /// Draws the scene mesh uploaded by set_scene(). Translucent writes depth too (the nearest
+  /// surface), so draw it first, like a solid mesh.
   void draw_mesh(const MeshStyle& style);
   /// Draws coloured triangles over the mesh (highlighted primitives); they win the depth
   /// test against the mesh faces they lie on.
-  void draw_triangles(const ColorBatch& triangles, const glm::vec4& tint = glm::vec4(1.0f));
-  /// Draws coloured line segments.
+  void draw_triangles(const ColorBatch& triangles, const glm::vec4& tint = glm::vec4(1.0f), bool depth_test = true);
+  /// Draws coloured thin line segments.
   void draw_lines(const ColorBatch& lines, const LineStyle& style);
+  /// Draws thick segments.
+  void draw_segments(const SegmentBatch& segments, const LineStyle& style);
+  /// Draws instanced nodes with the filter and colours of `style`.
+  void draw_nodes(const InstancedNodes& nodes, NodeStyle style);
+  /// Blends the heat map over the whole viewport.
+  void draw_overlay(const HeatmapTexture& texture, const OverlayStyle& style);
   /// Restores the GL state ImGui's backend expects (it sets most state itself).
   void end_frame();
 
  private:
-  Renderer(Shader mesh, Shader lines) : mesh_shader_(std::move(mesh)), line_shader_(std::move(lines)) {}
+  Renderer(Shader mesh, Shader lines, Shader nodes, Shader segments, Shader overlay);
+  void set_camera(Shader& shader);
 
   Shader mesh_shader_;
   Shader line_shader_;
+  Shader node_shader_;
+  Shader segment_shader_;
+  Shader overlay_shader_;
   MeshBuffers mesh_;
+  VertexArray empty_vao_;  // the overlay's fullscreen triangle needs no attributes
   FrameView frame_;
 };
 

@@ -4,6 +4,8 @@
 //                                                 which at least MIN_FRACTION (default
 //                                                 0.05) of the pixels differ from the
 //                                                 background, in several shades
+//   png_check --differ A B [MIN_PIXELS]          exit 0 if A and B have the same size and at
+//                                                 least MIN_PIXELS (default 50) pixels differ
 //   png_check --skip REASON                      prints REASON, exits 77 (ctest SKIP)
 //
 // The background is the bottom-right corner pixel: ImGui's panel sits top-left, and the
@@ -31,6 +33,36 @@ int fail(const std::string& message) {
   return 1;
 }
 
+/// --differ: two screenshots of different states (structures, trace steps) must not be the
+/// same picture.
+int differ(const std::string& a_path, const std::string& b_path, size_t min_pixels) {
+  int aw = 0, ah = 0, bw = 0, bh = 0, channels = 0;
+  unsigned char* a = stbi_load(a_path.c_str(), &aw, &ah, &channels, 3);
+  if (a == nullptr) return fail("cannot read " + a_path);
+  unsigned char* b = stbi_load(b_path.c_str(), &bw, &bh, &channels, 3);
+  if (b == nullptr) {
+    stbi_image_free(a);
+    return fail("cannot read " + b_path);
+  }
+  if (aw != bw || ah != bh) {
+    stbi_image_free(a);
+    stbi_image_free(b);
+    return fail("sizes differ: " + a_path + " vs " + b_path);
+  }
+  size_t differing = 0;
+  for (size_t i = 0; i < static_cast<size_t>(aw) * static_cast<size_t>(ah); ++i) {
+    const int diff = std::abs(a[3 * i] - b[3 * i]) + std::abs(a[3 * i + 1] - b[3 * i + 1]) +
+                     std::abs(a[3 * i + 2] - b[3 * i + 2]);
+    if (diff > kDiffThreshold) ++differing;
+  }
+  stbi_image_free(a);
+  stbi_image_free(b);
+  std::printf("png_check: %s vs %s: %zu pixels differ\n", a_path.c_str(), b_path.c_str(), differing);
+  if (differing < min_pixels)
+    return fail("only " + std::to_string(differing) + " pixels differ, need " + std::to_string(min_pixels));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -38,8 +70,12 @@ int main(int argc, char** argv) {
     std::printf("png_check: skipped: %s\n", argv[2]);
     return kSkipCode;
   }
+  if ((argc == 4 || argc == 5) && std::string(argv[1]) == "--differ")
+    return differ(argv[2], argv[3], argc == 5 ? static_cast<size_t>(std::atol(argv[4])) : 50);
   if (argc < 4 || argc > 5) {
-    std::fprintf(stderr, "usage: png_check FILE WIDTH HEIGHT [MIN_FRACTION] | png_check --skip REASON\n");
+    std::fprintf(stderr,
+                 "usage: png_check FILE WIDTH HEIGHT [MIN_FRACTION] | png_check --differ A B [MIN_PIXELS] | "
+                 "png_check --skip REASON\n");
     return 2;
   }
   const std::string path = argv[1];

@@ -1,0 +1,362 @@
+#include "pseudo_code.h"
+
+#include <cmath>
+#include <utility>
+
+namespace viz {
+namespace {
+
+using accel::CullReason;
+using accel::TraceEvent;
+using accel::TraceEventKind;
+
+/// Builds a listing from (anchor, line) pairs.
+PseudoCode listing(std::string title, std::vector<std::pair<const char*, const char*>> rows) {
+  PseudoCode code;
+  code.title = std::move(title);
+  for (const auto& [anchor, line] : rows) {
+    code.anchors.emplace_back(anchor);
+    code.lines.emplace_back(line);
+  }
+  return code;
+}
+
+// The lecture's listings (acceleration-structures-lecture.txt), kept verbatim where the
+// lecture gives code; lines marked "(added)" state what the lecture says in prose.
+const PseudoCode& brute_code() {
+  static const PseudoCode code = listing("Brute force: test every triangle", {
+      {"visit", "closest_hit = inf"},
+      {"", "for each triangle in the scene:"},
+      {"test", "    if ray hits it closer than closest_hit:"},
+      {"closest", "        closest_hit = that hit"},
+      {"done", "return closest_hit"},
+  });
+  return code;
+}
+
+const PseudoCode& grid_code() {
+  static const PseudoCode code = listing("Uniform grid: 3D-DDA (Amanatides & Woo, lecture)", {
+      {"", "// for each cell intersected by the ray:   (added)"},
+      {"enter_first", "X,Y,Z = cell where the ray enters the grid"},
+      {"", "loop:"},
+      {"test", "    for each object in ObjectList[X][Y][Z]: is it hit?"},
+      {"closest", "        yes, and closer: closest hit = it"},
+      {"return_hit", "    if closest hit lies in this cell: return it"},
+      {"", "    list= NIL;"},
+      {"", "    do {"},
+      {"", "        if(tMaxX < tMaxY) {"},
+      {"", "            if(tMaxX < tMaxZ) {"},
+      {"step_x", "                X= X + stepX;"},
+      {"", "                if(X == justOutX)"},
+      {"outside", "                    return(NIL); /* outside grid */"},
+      {"", "                tMaxX= tMaxX + tDeltaX;"},
+      {"", "            } else {"},
+      {"step_z", "                Z= Z + stepZ;"},
+      {"", "                if(Z == justOutZ)"},
+      {"", "                    return(NIL);"},
+      {"", "                tMaxZ= tMaxZ + tDeltaZ;"},
+      {"", "            }"},
+      {"", "        } else {"},
+      {"", "            if(tMaxY < tMaxZ) {"},
+      {"step_y", "                Y= Y + stepY;"},
+      {"", "                if(Y == justOutY)"},
+      {"", "                    return(NIL);"},
+      {"", "                tMaxY= tMaxY + tDeltaY;"},
+      {"", "            } else {"},
+      {"", "                Z= Z + stepZ;"},
+      {"", "                if(Z == justOutZ)"},
+      {"", "                    return(NIL);"},
+      {"", "                tMaxZ= tMaxZ + tDeltaZ;"},
+      {"", "            }"},
+      {"", "        }"},
+      {"list", "        list= ObjectList[X][Y][Z];"},
+      {"", "    } while(list == NIL);"},
+  });
+  return code;
+}
+
+const PseudoCode& octree_code() {
+  // Indented by two (the lecture's four would not fit a side panel); one long line wrapped.
+  static const PseudoCode code = listing("Octree: OctreeNode::Trace (lecture)", {
+      {"", "void Octree::Trace(ray, collision) {"},
+      {"root", "  root_node.Trace(ray, collision)"},
+      {"", "}"},
+      {"enter", "void OctreeNode::Trace(ray, collision) {"},
+      {"miss_bounds", "  if ray does not intersect node bounds:"},
+      {"", "    return"},
+      {"beyond", "  if a collision has already been detected and it's"},
+      {"", "     closer than the ray entry point into this node:"},
+      {"", "    return"},
+      {"visit_leaf", "  if node is a leaf:"},
+      {"", "    for each polygon in node:"},
+      {"test", "      if ray intersects polygon:"},
+      {"", "        if intersection is closer to ray origin"},
+      {"", "           than collision:"},
+      {"closest", "          update collision with current intersection"},
+      {"visit_inner", "  else:"},
+      {"", "    for each child_node:"},
+      {"push", "      child_node.Trace(ray, collision)"},
+      {"", "}"},
+  });
+  return code;
+}
+
+const PseudoCode& kd_code() {
+  static const PseudoCode code = listing("kd-tree: traverse (lecture)", {
+      {"root", "// first: ray vs. root box -> t_min, t_max (added)"},
+      {"", "traverse( Ray r, Node n, float t_min, float t_max ):"},
+      {"visit_leaf", "if n is leaf:"},
+      {"test", "    intersect r with each primitive in object list,"},
+      {"", "    discard those farther away than t_max"},
+      {"closest", "    return object with closest intersection (if any)"},
+      {"visit_inner", "t_split = signed distance along r to n's split plane"},
+      {"", "near = child of n containing origin of r"},
+      {"", "far  = the \"other\" child of n"},
+      {"", "if t_split > t_max:"},
+      {"case_b", "    return traverse( r, near, t_min, t_max )   // (b)"},
+      {"", "else if t_split < t_min:"},
+      {"case_c", "    return traverse( r, far, t_min, t_max )    // (c)"},
+      {"", "else:                                         // (a)"},
+      {"case_a", "    t_hit = traverse( r, near, t_min, t_split )"},
+      {"", "    if t_hit < t_split:"},
+      {"early_exit", "        return t_hit                 // early exit"},
+      {"far", "    return traverse( r, far, t_split, t_max )"},
+      {"done", "// result: the closest hit, or none (added)"},
+  });
+  return code;
+}
+
+const PseudoCode& dfs_code() {
+  static const PseudoCode code = listing("BVH / sphere tree: depth-first (stack)", {
+      {"init", "stack <- { root };  closest_hit = inf"},
+      {"", "while stack not empty:"},
+      {"pop", "    node <- pop(stack)"},
+      {"cull", "    if ray misses node's volume before closest_hit:"},
+      {"", "        continue               // skip this subtree"},
+      {"visit_leaf", "    if node is leaf:"},
+      {"test", "        intersect ray with all polygons in node"},
+      {"closest", "        update closest_hit, if any polygon is closer"},
+      {"visit_inner", "    else:                  // inner node: tree order"},
+      {"push", "        push(right child); push(left child)"},
+      {"done", "return closest_hit"},
+  });
+  return code;
+}
+
+const PseudoCode& ordered_code() {
+  static const PseudoCode code = listing("BVH / sphere tree: ordered depth-first (stack)", {
+      {"cull_root", "if ray misses the root's volume: return no hit"},
+      {"init", "stack <- { root };  closest_hit = inf"},
+      {"", "while stack not empty:"},
+      {"pop", "    node <- pop(stack)"},
+      {"beyond", "    if dist(node) > closest_hit:"},
+      {"", "        continue               // skip this subtree"},
+      {"visit_leaf", "    if node is leaf:"},
+      {"test", "        intersect ray with all polygons in node"},
+      {"closest", "        update closest_hit, if any polygon is closer"},
+      {"visit_inner", "    else:                  // inner node"},
+      {"cull_child", "        skip each child whose volume the ray misses"},
+      {"push", "        push(farther child); push(nearer child)"},
+      {"done", "return closest_hit"},
+  });
+  return code;
+}
+
+const PseudoCode& pqueue_code() {
+  static const PseudoCode code = listing("BVH / sphere tree: priority queue (lecture)", {
+      {"init", "Pqueue q <- init with root"},
+      {"", "closest_hit = inf"},
+      {"", "while q not empty:"},
+      {"pop", "    node <- extract front from q   // = nearest BV"},
+      {"beyond", "    if dist(node) <= closest_hit:  // else: skip"},
+      {"visit_leaf", "        if node is leaf:"},
+      {"test", "            intersect ray with all polygons in node"},
+      {"closest", "            update closest_hit, if any is closer"},
+      {"visit_inner", "        else                       // inner node"},
+      {"", "            forall children of node:"},
+      {"cull_child", "                if ray intersects child:"},
+      {"push", "                    insert child in q with its distance"},
+      {"done", "return closest_hit   (added)"},
+  });
+  return code;
+}
+
+const PseudoCode& unknown_code() {
+  static const PseudoCode code = listing("(no pseudo code for this structure)", {});
+  return code;
+}
+
+/// Whether the node of a Visit is a leaf: from the structure when possible, else from the
+/// next event (a leaf's visit is followed by its triangle tests).
+bool visit_is_leaf(std::span<const TraceEvent> events, size_t step, const NodeLookup& lookup) {
+  if (lookup) {
+    const accel::NodeView v = lookup(events[step].node);
+    if (v.id != accel::kNoNode) return v.leaf;
+  }
+  return step + 1 < events.size() && events[step + 1].kind == TraceEventKind::TestPrim;
+}
+
+/// The previous event of `kind` before `step`, or nullptr.
+const TraceEvent* previous(std::span<const TraceEvent> events, size_t step, TraceEventKind kind) {
+  for (size_t i = step; i-- > 0;)
+    if (events[i].kind == kind) return &events[i];
+  return nullptr;
+}
+
+bool was_pushed(std::span<const TraceEvent> events, size_t step, accel::NodeId node) {
+  for (size_t i = step; i-- > 0;)
+    if (events[i].kind == TraceEventKind::Push && events[i].node == node) return true;
+  return false;
+}
+
+bool follows_pop_of(std::span<const TraceEvent> events, size_t step, accel::NodeId node) {
+  return step > 0 && events[step - 1].kind == TraceEventKind::Pop && events[step - 1].node == node;
+}
+
+/// The grid axis stepped from the previous cell into this one (-1 for the first cell or
+/// when it cannot be told).
+int stepped_axis(std::span<const TraceEvent> events, size_t step, const NodeLookup& lookup) {
+  const TraceEvent* prev = previous(events, step, TraceEventKind::EnterCell);
+  if (!prev || !lookup) return -1;
+  const accel::NodeView a = lookup(prev->node), b = lookup(events[step].node);
+  for (int axis = 0; axis < 3; ++axis)
+    if (a.box.min[axis] != b.box.min[axis]) return axis;
+  return -1;
+}
+
+std::string anchor_of(TraversalKind kind, std::span<const TraceEvent> events, size_t step, const NodeLookup& lookup) {
+  const TraceEvent& e = events[step];
+  // Shared by every listing.
+  if (e.kind == TraceEventKind::TestPrim) return "test";
+  if (e.kind == TraceEventKind::NewClosest) return "closest";
+  switch (kind) {
+    case TraversalKind::Brute:
+      if (e.kind == TraceEventKind::Visit) return "visit";
+      if (e.kind == TraceEventKind::Done) return "done";
+      return "";
+    case TraversalKind::Grid:
+      if (e.kind == TraceEventKind::EnterCell) {
+        switch (stepped_axis(events, step, lookup)) {
+          case 0: return "step_x";
+          case 1: return "step_y";
+          case 2: return "step_z";
+          default: return previous(events, step, TraceEventKind::EnterCell) ? "list" : "enter_first";
+        }
+      }
+      if (e.kind == TraceEventKind::Done) return e.hit ? "return_hit" : "outside";
+      return "";
+    case TraversalKind::Octree:
+      switch (e.kind) {
+        case TraceEventKind::Push: return e.depth == 0 ? "root" : "push";
+        case TraceEventKind::Pop: return "enter";
+        case TraceEventKind::Cull: return e.reason == CullReason::BeyondClosestHit ? "beyond" : "miss_bounds";
+        case TraceEventKind::Visit: return visit_is_leaf(events, step, lookup) ? "visit_leaf" : "visit_inner";
+        case TraceEventKind::Done: return "root";
+        default: return "";
+      }
+    case TraversalKind::KdTree:
+      switch (e.kind) {
+        case TraceEventKind::Visit: return visit_is_leaf(events, step, lookup) ? "visit_leaf" : "visit_inner";
+        case TraceEventKind::Push: return "case_a";
+        case TraceEventKind::Pop: return "far";
+        case TraceEventKind::Cull: {
+          if (e.reason == CullReason::BeyondClosestHit) return "early_exit";
+          const TraceEvent* visit = previous(events, step, TraceEventKind::Visit);
+          if (!visit) return "root";  // the ray misses the root box
+          // The traversal records t_split as the skipped child's t0: beyond the node's
+          // interval is case (b), before it case (c).
+          return e.t0 > visit->t1 ? "case_b" : "case_c";
+        }
+        case TraceEventKind::Done: return "done";
+        default: return "";
+      }
+    case TraversalKind::HierarchyDfs:
+      switch (e.kind) {
+        case TraceEventKind::Push: return step == 0 ? "init" : "push";
+        case TraceEventKind::Pop: return "pop";
+        case TraceEventKind::Cull: return "cull";
+        case TraceEventKind::Visit: return visit_is_leaf(events, step, lookup) ? "visit_leaf" : "visit_inner";
+        case TraceEventKind::Done: return "done";
+        default: return "";
+      }
+    case TraversalKind::HierarchyOrdered:
+    case TraversalKind::HierarchyPqueue: {
+      const bool pq = kind == TraversalKind::HierarchyPqueue;
+      switch (e.kind) {
+        case TraceEventKind::Push: return e.depth == 0 ? "init" : "push";
+        case TraceEventKind::Pop: return "pop";
+        case TraceEventKind::Cull:
+          if (step == 0 && e.depth == 0) return pq ? "init" : "cull_root";
+          if (follows_pop_of(events, step, e.node)) return "beyond";
+          // The priority queue's final sweep skips queued nodes without popping them.
+          if (pq && was_pushed(events, step, e.node)) return "beyond";
+          return "cull_child";
+        case TraceEventKind::Visit: return visit_is_leaf(events, step, lookup) ? "visit_leaf" : "visit_inner";
+        case TraceEventKind::Done: return "done";
+        default: return "";
+      }
+    }
+    case TraversalKind::Unknown: return "";
+  }
+  return "";
+}
+
+}  // namespace
+
+TraversalKind traversal_kind(const std::string& structure, const std::string& traversal) {
+  if (structure == "brute") return TraversalKind::Brute;
+  if (structure == "grid") return TraversalKind::Grid;
+  if (structure == "octree") return TraversalKind::Octree;
+  if (structure == "kdtree") return TraversalKind::KdTree;
+  if (structure == "bvh" || structure == "spheretree") {
+    if (traversal == "dfs") return TraversalKind::HierarchyDfs;
+    if (traversal == "pqueue") return TraversalKind::HierarchyPqueue;
+    return TraversalKind::HierarchyOrdered;
+  }
+  return TraversalKind::Unknown;
+}
+
+const char* traversal_label(TraversalKind kind) {
+  switch (kind) {
+    case TraversalKind::Brute: return "linear scan";
+    case TraversalKind::Grid: return "3D-DDA";
+    case TraversalKind::Octree: return "octree recursion";
+    case TraversalKind::KdTree: return "near/far recursion";
+    case TraversalKind::HierarchyDfs: return "depth-first";
+    case TraversalKind::HierarchyOrdered: return "ordered depth-first";
+    case TraversalKind::HierarchyPqueue: return "priority queue";
+    case TraversalKind::Unknown: return "?";
+  }
+  return "?";
+}
+
+const PseudoCode& pseudo_code(TraversalKind kind) {
+  switch (kind) {
+    case TraversalKind::Brute: return brute_code();
+    case TraversalKind::Grid: return grid_code();
+    case TraversalKind::Octree: return octree_code();
+    case TraversalKind::KdTree: return kd_code();
+    case TraversalKind::HierarchyDfs: return dfs_code();
+    case TraversalKind::HierarchyOrdered: return ordered_code();
+    case TraversalKind::HierarchyPqueue: return pqueue_code();
+    case TraversalKind::Unknown: return unknown_code();
+  }
+  return unknown_code();
+}
+
+std::string pseudo_code_anchor(TraversalKind kind, std::span<const TraceEvent> events, size_t step,
+                               const NodeLookup& lookup) {
+  if (step >= events.size()) return "";
+  return anchor_of(kind, events, step, lookup);
+}
+
+int pseudo_code_line(TraversalKind kind, std::span<const TraceEvent> events, size_t step, const NodeLookup& lookup) {
+  const std::string anchor = pseudo_code_anchor(kind, events, step, lookup);
+  if (anchor.empty()) return -1;
+  const PseudoCode& code = pseudo_code(kind);
+  for (size_t i = 0; i < code.anchors.size(); ++i)
+    if (code.anchors[i] == anchor) return int(i);
+  return -1;
+}
+
+}  // namespace viz

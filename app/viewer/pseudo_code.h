@@ -1,0 +1,53 @@
+#pragma once
+// The lecture's pseudo code of each traversal, and which of its lines a recorded trace
+// event corresponds to, so the viewer can highlight "where we are" in the code while the
+// animation plays. GL-free (unit-tested without a window).
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "structure.h"
+
+namespace viz {
+
+/// The traversals the viewer has pseudo code for.
+enum class TraversalKind {
+  Brute,             ///< a loop over all triangles
+  Grid,              ///< 3D-DDA (lecture: Amanatides & Woo loop)
+  Octree,            ///< lecture: OctreeNode::Trace
+  KdTree,            ///< lecture: traverse(r, n, t_min, t_max), cases (a)/(b)/(c)
+  HierarchyDfs,      ///< BVH / sphere tree: stack, tree order
+  HierarchyOrdered,  ///< BVH / sphere tree: stack, nearer child first
+  HierarchyPqueue,   ///< BVH / sphere tree: the lecture's priority-queue loop
+  Unknown,
+};
+
+/// The kind for a registry name and its `traversal` parameter ("" when it has none).
+TraversalKind traversal_kind(const std::string& structure, const std::string& traversal);
+/// Short label, e.g. "priority queue".
+const char* traversal_label(TraversalKind kind);
+
+/// One pseudo-code listing.
+struct PseudoCode {
+  std::string title;               ///< e.g. "kd-tree: traverse (lecture)"
+  std::vector<std::string> lines;  ///< the code, one entry per line
+  std::vector<std::string> anchors;  ///< per line: the name events map to ("" = none)
+};
+
+/// The listing of `kind`.
+const PseudoCode& pseudo_code(TraversalKind kind);
+
+/// How the mapping may look at nodes other than through the events: the view of a node or
+/// cell (NodeView::leaf, box). May be empty; then leaves are told by the next event.
+using NodeLookup = std::function<accel::NodeView(accel::NodeId)>;
+
+/// The line (index into pseudo_code(kind).lines) of events[step], or -1 when it has none.
+int pseudo_code_line(TraversalKind kind, std::span<const accel::TraceEvent> events, size_t step,
+                     const NodeLookup& lookup);
+
+/// The anchor name of events[step] (what pseudo_code_line looks up), for tests.
+std::string pseudo_code_anchor(TraversalKind kind, std::span<const accel::TraceEvent> events, size_t step,
+                               const NodeLookup& lookup);
+
+}  // namespace viz

@@ -1,0 +1,267 @@
+#include "script.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "geometry.h"
+#include "params.h"
+#include "rays_io.h"
+#include "registry.h"
+
+namespace viz {
+namespace {
+
+std::vector<std::string> tokens_of(const std::string& line) {
+  std::vector<std::string> tokens;
+  std::istringstream in(line);
+  std::string t;
+  while (in >> t) {
+    if (t[0] == '#') break;  // a comment runs to the end of the line
+    tokens.push_back(t);
+  }
+  return tokens;
+}
+
+bool parse_int(const std::string& s, int* out) {
+  const char* end = s.data() + s.size();
+  auto [ptr, ec] = std::from_chars(s.data(), end, *out);
+  return !s.empty() && ec == std::errc() && ptr == end;
+}
+
+bool parse_finite(const std::string& s, float* out) {
+  return accel::parse_ray_number(s, out) && std::isfinite(*out);
+}
+
+bool parse_on_off(const std::string& s, bool* out) {
+  if (s == "on") *out = true;
+  else if (s == "off") *out = false;
+  else return false;
+  return true;
+}
+
+/// Parses the arguments of one command; returns an error message or "" on success.
+std::string parse_command(const std::string& verb, const std::vector<std::string>& args, ScriptCommand& c) {
+  const size_t n = args.size();
+  auto count_error = [&](const char* usage) { return std::string("usage: ") + usage; };
+  auto floats = [&](size_t first, size_t count, const char* usage) -> std::string {
+    for (size_t i = 0; i < count; ++i) {
+      if (!parse_finite(args[first + i], &c.values[i]))
+        return "'" + args[first + i] + "' is not a finite number (" + usage + ")";
+    }
+    return "";
+  };
+
+  if (verb == "size") {
+    c.kind = CommandKind::Size;
+    if (n != 2) return count_error("size W H");
+    if (!parse_int(args[0], &c.ints[0]) || !parse_int(args[1], &c.ints[1]) || c.ints[0] < 64 || c.ints[1] < 64 ||
+        c.ints[0] > 8192 || c.ints[1] > 8192)
+      return "size: W and H must be integers in 64..8192, got '" + args[0] + " " + args[1] + "'";
+    return "";
+  }
+  if (verb == "scene") {
+    c.kind = CommandKind::Scene;
+    if (n != 1) return count_error("scene PATH | scene procedural:NAME");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "preset") {
+    c.kind = CommandKind::Preset;
+    if (n != 1) return count_error("preset NAME");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "structure") {
+    c.kind = CommandKind::Structure;
+    if (n < 1) return count_error("structure NAME [key=value ...]");
+    c.name = args[0];
+    c.params.assign(args.begin() + 1, args.end());
+    auto info = accel::find_structure(c.name);
+    if (!info) return info.error().message;
+    auto set = accel::ParamSet::parse(info.value()->params, c.params, c.name);
+    if (!set) return set.error().message;
+    return "";
+  }
+  if (verb == "kernel") {
+    c.kind = CommandKind::Kernel;
+    accel::Kernel k;
+    if (n != 1 || !accel::parse_kernel(args[0], &k)) return count_error("kernel watertight|moller|double");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "camera") {
+    c.kind = CommandKind::Camera;
+    if (n != 6 && n != 7) return count_error("camera EX EY EZ TX TY TZ [FOVY_DEG]");
+    if (auto e = floats(0, n, "camera EX EY EZ TX TY TZ [FOVY_DEG]"); !e.empty()) return e;
+    c.has_fov = n == 7;
+    if (c.has_fov && !(c.values[6] > 1.0f && c.values[6] < 170.0f))
+      return "camera: FOVY_DEG must be in (1, 170) degrees, got " + args[6];
+    if (c.values[0] == c.values[3] && c.values[1] == c.values[4] && c.values[2] == c.values[5])
+      return "camera: eye and target are the same point";
+    return "";
+  }
+  if (verb == "ray-at-pixel") {
+    c.kind = CommandKind::RayAtPixel;
+    if (n != 2) return count_error("ray-at-pixel X Y");
+    return floats(0, 2, "ray-at-pixel X Y");
+  }
+  if (verb == "ray") {
+    c.kind = CommandKind::Ray;
+    if (n != 6) return count_error("ray OX OY OZ DX DY DZ");
+    if (auto e = floats(0, 6, "ray OX OY OZ DX DY DZ"); !e.empty()) return e;
+    if (c.values[3] == 0.0f && c.values[4] == 0.0f && c.values[5] == 0.0f) return "ray: the direction is zero";
+    return "";
+  }
+  if (verb == "step") {
+    c.kind = CommandKind::Step;
+    const char* usage = "step N | step end | step back N | step hit | step start";
+    if (n == 1 && args[0] == "end") c.step = StepMode::End;
+    else if (n == 1 && args[0] == "hit") c.step = StepMode::Hit;
+    else if (n == 1 && args[0] == "start") c.step = StepMode::Start;
+    else if (n == 1) {
+      c.step = StepMode::Forward;
+      if (!parse_int(args[0], &c.ints[0]) || c.ints[0] < 0) return count_error(usage);
+    } else if (n == 2 && args[0] == "back") {
+      c.step = StepMode::Back;
+      if (!parse_int(args[1], &c.ints[0]) || c.ints[0] < 0) return count_error(usage);
+    } else {
+      return count_error(usage);
+    }
+    return "";
+  }
+  if (verb == "show") {
+    c.kind = CommandKind::Show;
+    const char* usage = "show depth=A..B | show depth=A | show leaves | show all";
+    if (n != 1) return count_error(usage);
+    if (args[0] == "all") c.show = ShowMode::All;
+    else if (args[0] == "leaves") c.show = ShowMode::Leaves;
+    else if (args[0].starts_with("depth=")) {
+      c.show = ShowMode::Depth;
+      const std::string range = args[0].substr(6);
+      const size_t dots = range.find("..");
+      const std::string a = range.substr(0, dots), b = dots == std::string::npos ? a : range.substr(dots + 2);
+      if (!parse_int(a, &c.ints[0]) || !parse_int(b, &c.ints[1]) || c.ints[0] < 0 || c.ints[1] < c.ints[0])
+        return "show: '" + args[0] + "' is not depth=A..B with 0 <= A <= B";
+    } else {
+      return count_error(usage);
+    }
+    return "";
+  }
+  if (verb == "heatmap") {
+    c.kind = CommandKind::Heatmap;
+    if (n != 1 || (args[0] != "off" && args[0] != "nodes" && args[0] != "prims"))
+      return count_error("heatmap off|nodes|prims");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "mesh") {
+    c.kind = CommandKind::Mesh;
+    if (n != 1 || (args[0] != "solid" && args[0] != "translucent" && args[0] != "wireframe" && args[0] != "off"))
+      return count_error("mesh solid|translucent|wireframe|off");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "opacity") {
+    c.kind = CommandKind::Opacity;
+    if (n != 1 || !parse_finite(args[0], &c.values[0]) || c.values[0] < 0.05f || c.values[0] > 1.0f)
+      return "usage: opacity A (a number in 0.05..1)";
+    return "";
+  }
+  if (verb == "empty-cells" || verb == "large" || verb == "nodes") {
+    c.kind = verb == "large" ? CommandKind::Large : verb == "nodes" ? CommandKind::Nodes : CommandKind::EmptyCells;
+    if (n != 1 || !parse_on_off(args[0], &c.on)) return count_error((verb + " on|off").c_str());
+    return "";
+  }
+  if (verb == "panel") {
+    c.kind = CommandKind::Panel;
+    const char* usage = "panel on|off | panel scene|ray|steps|code|compare|sweep|legend on|off";
+    if (n == 1 && parse_on_off(args[0], &c.on)) {
+      c.name = "all";
+      return "";
+    }
+    static const char* kPanels[] = {"all", "scene", "ray", "steps", "code", "compare", "sweep", "legend"};
+    if (n != 2 || !parse_on_off(args[1], &c.on)) return count_error(usage);
+    for (const char* p : kPanels) {
+      if (args[0] == p) {
+        c.name = args[0];
+        return "";
+      }
+    }
+    return count_error(usage);
+  }
+  if (verb == "compare") {
+    c.kind = CommandKind::Compare;
+    return n == 0 ? "" : count_error("compare");
+  }
+  if (verb == "sweep") {
+    c.kind = CommandKind::Sweep;
+    const char* usage = "sweep PARAM LO HI STEPS";
+    if (n != 4) return count_error(usage);
+    c.name = args[0];
+    float lo, hi;
+    if (!parse_finite(args[1], &lo) || !parse_finite(args[2], &hi) || !parse_int(args[3], &c.ints[0]) ||
+        c.ints[0] < 2 || c.ints[0] > 64 || !(lo < hi))
+      return "sweep: expected PARAM LO HI STEPS with LO < HI and 2 <= STEPS <= 64";
+    c.values[0] = lo;
+    c.values[1] = hi;
+    return "";
+  }
+  if (verb == "screenshot" || verb == "frames") {
+    c.kind = verb == "screenshot" ? CommandKind::Screenshot : CommandKind::Frames;
+    if (n != 1) return count_error(verb == "screenshot" ? "screenshot PATH" : "frames PREFIX");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "print-hit" || verb == "print-step" || verb == "print-ray" || verb == "print-stats") {
+    c.kind = verb == "print-hit"    ? CommandKind::PrintHit
+             : verb == "print-step" ? CommandKind::PrintStep
+             : verb == "print-ray"  ? CommandKind::PrintRay
+                                    : CommandKind::PrintStats;
+    return n == 0 ? "" : "'" + verb + "' takes no arguments";
+  }
+  if (verb == "print-frame-time") {
+    c.kind = CommandKind::PrintFrameTime;
+    if (n != 1 || !parse_int(args[0], &c.ints[0]) || c.ints[0] < 1 || c.ints[0] > 10000)
+      return count_error("print-frame-time N (1..10000 frames)");
+    return "";
+  }
+  return "unknown command '" + verb + "'";
+}
+
+}  // namespace
+
+std::string script_error(const std::string& script_name, int line, const std::string& message) {
+  return script_name + ":" + std::to_string(line) + ": " + message;
+}
+
+accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, const std::string& script_name) {
+  std::vector<ScriptCommand> commands;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::vector<std::string> tokens = tokens_of(line);
+    if (tokens.empty()) continue;
+    ScriptCommand c;
+    c.line = number;
+    const std::vector<std::string> args(tokens.begin() + 1, tokens.end());
+    const std::string error = parse_command(tokens[0], args, c);
+    if (!error.empty()) return accel::make_error(script_error(script_name, number, error));
+    commands.push_back(std::move(c));
+  }
+  return commands;
+}
+
+accel::Result<std::vector<ScriptCommand>> load_script(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return accel::make_error(path + ": cannot read the script");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse_script(text.str(), path);
+}
+
+}  // namespace viz

@@ -1,0 +1,76 @@
+#pragma once
+// The viewer's command scripts (`accelviz --script FILE`): one command per line, `#`
+// starts a comment. Parsed here into plain commands, GL-free, so the parser is unit-tested;
+// App executes them and main() renders for the screenshot commands.
+//
+//   size W H                          window size in pixels
+//   scene PATH | scene procedural:NAME
+//   preset NAME                       a preset: scene, camera, ray (see presets.h)
+//   structure NAME [key=value ...]    as accelviz-cli --structure NAME --param key=value
+//   kernel watertight|moller|double
+//   camera EX EY EZ TX TY TZ [FOVY_DEG]
+//   ray-at-pixel X Y                  shoot like a click; pixel from the top-left
+//   ray OX OY OZ DX DY DZ
+//   step N | step end | step back N | step hit | step start
+//   show depth=A..B | show depth=A | show leaves | show all
+//   heatmap off|nodes|prims
+//   mesh solid|translucent|wireframe|off
+//   empty-cells on|off                grid: draw empty cells too
+//   nodes on|off                      draw the structure's nodes (the ray's highlights stay)
+//   opacity A                         opacity of the structure's lines, 0.05..1
+//   panel on|off                      all panels; or `panel NAME on|off` for one of
+//                                     scene, ray, steps, code, compare, sweep, legend
+//   large on|off                      large-font / high-contrast lecture mode
+//   compare                           fill the "same ray, every structure" table
+//   sweep PARAM LO HI STEPS           parameter sweep of the current structure (synchronous)
+//   screenshot PATH                   write a PNG
+//   frames PREFIX                     PREFIX0000.png ... one PNG per remaining step
+//   print-hit                         "hit PRIM T" or "miss"
+//   print-step                        the current step as one line
+//   print-ray                         "ox oy oz dx dy dz" as C99 hex floats (a rays-file line)
+//   print-stats                       build statistics of the current structure, one line
+//   print-frame-time N                render N frames, print the mean frame time
+// Errors are "SCRIPT:LINE: message".
+#include <array>
+#include <string>
+#include <vector>
+
+#include "result.h"
+
+namespace viz {
+
+enum class CommandKind {
+  Size, Scene, Preset, Structure, Kernel, Camera, RayAtPixel, Ray, Step, Show, Heatmap, Mesh,
+  EmptyCells, Nodes, Opacity, Panel, Large, Compare, Sweep, Screenshot, Frames, PrintHit, PrintStep,
+  PrintRay, PrintStats, PrintFrameTime,
+};
+
+enum class StepMode { Forward, Back, End, Hit, Start };
+enum class ShowMode { All, Leaves, Depth };
+
+/// One parsed command; only the fields of its kind are meaningful.
+struct ScriptCommand {
+  CommandKind kind = CommandKind::Size;
+  int line = 0;                      ///< 1-based line in the script
+  std::string name;                  ///< scene spec, structure, kernel, preset, panel, path, prefix, param
+  std::vector<std::string> params;   ///< structure: key=value list
+  std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
+  bool has_fov = false;              ///< camera: FOVY given
+  int ints[2] = {0, 0};              ///< size W H; step count; sweep steps; frame count
+  StepMode step = StepMode::Forward;
+  ShowMode show = ShowMode::All;
+  bool on = true;                    ///< panel/large/empty-cells/nodes on|off
+};
+
+/// Parses `text` (the script named `script_name` in messages). Validates everything that
+/// needs no scene or window: command names, argument counts and numbers, structure names
+/// and parameters (against the registry, as accelviz-cli does). Error: "SCRIPT:LINE: message".
+accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, const std::string& script_name);
+
+/// Reads and parses a script file. Error names the file when it cannot be read.
+accel::Result<std::vector<ScriptCommand>> load_script(const std::string& path);
+
+/// "SCRIPT:LINE: message", the format of every script error.
+std::string script_error(const std::string& script_name, int line, const std::string& message);
+
+}  // namespace viz

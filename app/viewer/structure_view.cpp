@@ -1,0 +1,190 @@
+#include "structure_view.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace viz {
+namespace {
+
+std::array<glm::vec3, 8> corners(const accel::Aabb& box) {
+  // Corner i has x from bit 0, y from bit 1, z from bit 2; an edge joins corners that
+  // differ in exactly one bit.
+  std::array<glm::vec3, 8> c;
+  for (int i = 0; i < 8; ++i)
+    c[i] = {(i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y, (i & 4) ? box.max.z : box.min.z};
+  return c;
+}
+
+template <class Fn>
+void for_each_edge(const accel::Aabb& box, Fn&& fn) {
+  const auto c = corners(box);
+  for (int i = 0; i < 8; ++i)
+    for (int bit = 1; bit < 8; bit <<= 1)
+      if ((i & bit) == 0) fn(c[i], c[i | bit]);
+}
+
+NodeInstance instance_of(const accel::NodeView& v) {
+  NodeInstance n;
+  n.depth = float(v.depth);
+  n.leaf = v.leaf ? 1.0f : 0.0f;
+  n.prims = float(v.prim_count);
+  if (!v.sphere.empty()) {
+    n.lo = v.sphere.center;
+    n.hi = glm::vec3(v.sphere.radius);
+  } else {
+    n.lo = v.box.min;
+    n.hi = v.box.max;
+  }
+  return n;
+}
+
+}  // namespace
+
+bool split_plane_instance(const accel::NodeView& v, NodeInstance* out) {
+  if (v.split_axis < 0 || v.split_axis > 2 || v.box.empty()) return false;
+  NodeInstance n;
+  n.lo = v.box.min;
+  n.hi = v.box.max;
+  n.lo[v.split_axis] = n.hi[v.split_axis] = v.split_pos;
+  n.depth = float(v.depth);
+  n.leaf = 0.0f;
+  n.prims = float(v.prim_count);
+  n.axis = float(v.split_axis);
+  *out = n;
+  return true;
+}
+
+StructureGeometry structure_geometry(const accel::Structure& s, const GeometryOptions& options) {
+  StructureGeometry g;
+  auto add = [&g](const accel::NodeView& v) {
+    if (v.id == accel::kNoNode) return;
+    ++g.nodes;
+    g.max_depth = std::max(g.max_depth, v.depth);
+    if (v.depth != 0) g.uniform_depth = false;
+    if (v.leaf) g.max_prims = std::max(g.max_prims, v.prim_count);
+    if (!v.sphere.empty()) {
+      g.spheres.push_back(instance_of(v));
+    } else if (!v.box.empty()) {
+      g.boxes.push_back(instance_of(v));
+    }
+    NodeInstance plane;
+    if (split_plane_instance(v, &plane)) g.planes.push_back(plane);
+  };
+  const size_t total = s.build_stats().nodes;
+  if (options.empty_cells) {
+    // for_each_node lists non-empty grid cells only; node_view answers for every cell id.
+    size_t listed = 0;
+    s.for_each_node([&listed](const accel::NodeView&) { ++listed; });
+    if (total > listed) {
+      if (total <= options.max_empty_cells) {
+        for (accel::NodeId id = 0; id < total; ++id) add(s.node_view(id));
+        g.empty_cells_listed = true;
+        return g;
+      }
+      g.empty_cells_too_many = true;
+    }
+  }
+  s.for_each_node(add);
+  return g;
+}
+
+std::vector<NodeInstance> filter_nodes(const std::vector<NodeInstance>& nodes, const NodeFilter& filter) {
+  std::vector<NodeInstance> out;
+  out.reserve(nodes.size());
+  for (const NodeInstance& n : nodes)
+    if (filter.accepts(n)) out.push_back(n);
+  return out;
+}
+
+int depth_for_budget(const StructureGeometry& g, size_t budget) {
+  std::vector<size_t> per_depth(static_cast<size_t>(std::max(g.max_depth, 0)) + 1, 0);
+  for (const auto* list : {&g.boxes, &g.spheres})
+    for (const NodeInstance& n : *list) ++per_depth[std::min(per_depth.size() - 1, static_cast<size_t>(n.depth))];
+  size_t total = 0;
+  for (size_t d = 0; d < per_depth.size(); ++d) {
+    total += per_depth[d];
+    if (total > budget) return static_cast<int>(d) - 1;
+  }
+  return g.max_depth;
+}
+
+void append_box_segments(std::vector<Segment>& out, const accel::Aabb& box, const glm::vec4& color, float width) {
+  if (box.empty()) return;
+  for_each_edge(box, [&](const glm::vec3& a, const glm::vec3& b) { out.push_back({a, b, color, width}); });
+}
+
+void append_box_edges(std::vector<ColorVertex>& lines, const accel::Aabb& box, const glm::vec4& color) {
+  if (box.empty()) return;
+  for_each_edge(box, [&](const glm::vec3& a, const glm::vec3& b) {
+    lines.push_back({a, color});
+    lines.push_back({b, color});
+  });
+}
+
+void append_sphere_segments(std::vector<Segment>& out, const glm::vec3& center, float radius,
+                            const glm::vec4& color, float width, int segments) {
+  if (!(radius >= 0.0f)) return;
+  const auto circle = unit_sphere_circles(segments);
+  for (size_t i = 0; i + 1 < circle.size(); i += 2)
+    out.push_back({center + radius * circle[i], center + radius * circle[i + 1], color, width});
+}
+
+void append_node_segments(std::vector<Segment>& out, const accel::NodeView& v, const glm::vec4& color, float width) {
+  if (!v.sphere.empty()) {
+    append_sphere_segments(out, v.sphere.center, v.sphere.radius, color, width);
+  } else {
+    append_box_segments(out, v.box, color, width);
+  }
+}
+
+std::vector<glm::vec3> unit_cube_edges() {
+  std::vector<glm::vec3> v;
+  accel::Aabb unit;
+  unit.min = glm::vec3(0.0f);
+  unit.max = glm::vec3(1.0f);
+  for_each_edge(unit, [&](const glm::vec3& a, const glm::vec3& b) {
+    v.push_back(a);
+    v.push_back(b);
+  });
+  return v;
+}
+
+std::vector<glm::vec3> unit_sphere_circles(int segments) {
+  std::vector<glm::vec3> v;
+  const int n = std::max(segments, 8);
+  for (int plane = 0; plane < 3; ++plane) {
+    for (int i = 0; i < n; ++i) {
+      const float a0 = 2.0f * std::numbers::pi_v<float> * float(i) / float(n);
+      const float a1 = 2.0f * std::numbers::pi_v<float> * float(i + 1) / float(n);
+      for (float a : {a0, a1}) {
+        const float c = std::cos(a), s = std::sin(a);
+        glm::vec3 p(0.0f);
+        p[plane] = c;
+        p[(plane + 1) % 3] = s;
+        v.push_back(p);
+      }
+    }
+  }
+  return v;
+}
+
+std::vector<glm::vec3> unit_square_triangles() {
+  return {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+}
+
+glm::vec3 turbo(float t) {
+  // Polynomial approximation of the turbo map (degree 5 per channel).
+  const float x = std::clamp(t, 0.0f, 1.0f);
+  const float x2 = x * x, x3 = x2 * x, x4 = x2 * x2, x5 = x4 * x;
+  const float r = 0.13572138f + 4.61539260f * x - 42.66032258f * x2 + 132.13108234f * x3 - 152.94239396f * x4 +
+                  59.28637943f * x5;
+  const float g = 0.09140261f + 2.19418839f * x + 4.84296658f * x2 - 14.18503333f * x3 + 4.27729857f * x4 +
+                  2.82956604f * x5;
+  const float b = 0.10667330f + 12.64194608f * x - 60.58204836f * x2 + 110.36276771f * x3 - 89.90310912f * x4 +
+                  27.34824973f * x5;
+  return glm::clamp(glm::vec3(r, g, b), glm::vec3(0.0f), glm::vec3(1.0f));
+}
+
+}  // namespace viz

@@ -1,0 +1,119 @@
+#pragma once
+// What the viewer draws of a structure and of a trace step, as plain vertex and instance
+// lists (no GL): the renderer uploads them as they are. Built from the Structure interface
+// only (for_each_node / node_view / NodeView), never from a concrete structure, so a new
+// structure shows up without viewer changes. GL-free, hence unit-tested without a window.
+//
+//   structure_geometry()   all nodes -> instances: one instanced draw per shape
+//   append_box_segments()  12 thick edges of a box (highlights)
+//   append_sphere_segments three great circles (sphere-tree highlights)
+//   turbo()                the colour map of depths, counts and the heat map
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "structure.h"
+
+namespace viz {
+
+/// One end of a thin line, or one corner of a filled triangle.
+struct ColorVertex {
+  glm::vec3 position{0.0f};
+  glm::vec4 color{1.0f};
+};
+static_assert(sizeof(ColorVertex) == 28, "ColorVertex is uploaded as 7 tightly packed floats");
+
+/// A thick line segment, drawn as a screen-space quad `width` pixels wide.
+struct Segment {
+  glm::vec3 a{0.0f};
+  glm::vec3 b{0.0f};
+  glm::vec4 color{1.0f};
+  float width = 2.0f;
+};
+static_assert(sizeof(Segment) == 44, "Segment is uploaded as 11 tightly packed floats");
+
+/// One node drawn by instancing a unit shape. Box: the unit cube's edges scaled to
+/// [lo, hi]. Sphere: three unit great circles scaled by hi.x around lo. Split plane: the
+/// unit square spanning [lo, hi] across the two axes other than `axis` (lo[axis] = hi[axis]).
+struct NodeInstance {
+  glm::vec3 lo{0.0f};
+  glm::vec3 hi{0.0f};
+  float depth = 0.0f;
+  float leaf = 0.0f;    ///< 1 for a leaf / grid cell
+  float prims = 0.0f;   ///< NodeView::prim_count
+  float axis = 0.0f;    ///< split planes only
+};
+static_assert(sizeof(NodeInstance) == 40, "NodeInstance is uploaded as 10 tightly packed floats");
+
+/// Which nodes structure_geometry() lists.
+struct GeometryOptions {
+  /// Grid cells without triangles too (for_each_node skips them): every id below
+  /// BuildStats::nodes through node_view(), but only up to max_empty_cells ids.
+  bool empty_cells = false;
+  size_t max_empty_cells = size_t(1) << 21;
+};
+
+/// Every node of a structure as instances, plus what the colour scales need.
+struct StructureGeometry {
+  std::vector<NodeInstance> boxes;    ///< nodes / cells with a box (all but sphere-tree nodes)
+  std::vector<NodeInstance> spheres;  ///< sphere-tree nodes: lo = centre, hi.x = radius
+  std::vector<NodeInstance> planes;   ///< kd-tree inner nodes: the split plane inside the node box
+  int max_depth = 0;
+  uint32_t max_prims = 0;             ///< largest prim_count of a leaf / cell
+  size_t nodes = 0;                   ///< nodes listed
+  bool uniform_depth = true;          ///< every node at depth 0 (a grid): colour by count instead
+  bool empty_cells_listed = false;    ///< GeometryOptions::empty_cells took effect
+  bool empty_cells_too_many = false;  ///< asked for but more than max_empty_cells
+};
+
+/// Lists the nodes of `s` (GL-free; runs on the build thread).
+StructureGeometry structure_geometry(const accel::Structure& s, const GeometryOptions& options);
+
+/// Which nodes are drawn: the "show one depth, a depth range, or leaves only" filter.
+struct NodeFilter {
+  int depth_min = 0;
+  int depth_max = 1 << 20;  ///< inclusive
+  bool leaves_only = false;
+  bool hide_empty = false;  ///< leaves / cells without triangles
+  bool operator==(const NodeFilter&) const = default;
+  bool accepts(const NodeInstance& n) const {
+    const int d = static_cast<int>(n.depth);
+    const bool leaf = n.leaf > 0.5f;
+    return d >= depth_min && d <= depth_max && (!leaves_only || leaf) && !(hide_empty && leaf && n.prims < 0.5f);
+  }
+};
+
+/// The instances `filter` accepts. The viewer re-uploads these only when the filter
+/// changes, so a filtered view also costs the GPU less (never per frame).
+std::vector<NodeInstance> filter_nodes(const std::vector<NodeInstance>& nodes, const NodeFilter& filter);
+
+/// The deepest depth d such that the nodes of depth <= d number at most `budget` (boxes and
+/// spheres counted); -1 when even the root level is over budget. For a readable (and fast)
+/// first view of structures with millions of nodes.
+int depth_for_budget(const StructureGeometry& g, size_t budget);
+
+/// The split plane of a kd-tree inner node as an instance, or false when the view has none.
+bool split_plane_instance(const accel::NodeView& v, NodeInstance* out);
+
+/// Appends the 12 edges of `box` as thick segments; nothing for an empty box.
+void append_box_segments(std::vector<Segment>& out, const accel::Aabb& box, const glm::vec4& color, float width);
+/// Appends the 12 edges of `box` as thin line vertex pairs; nothing for an empty box.
+void append_box_edges(std::vector<ColorVertex>& lines, const accel::Aabb& box, const glm::vec4& color);
+/// Appends three great circles (XY, YZ, ZX) of a sphere as thick segments.
+void append_sphere_segments(std::vector<Segment>& out, const glm::vec3& center, float radius,
+                            const glm::vec4& color, float width, int segments = 48);
+/// Appends a node's outline: its sphere when it has one, else its box.
+void append_node_segments(std::vector<Segment>& out, const accel::NodeView& v, const glm::vec4& color, float width);
+
+/// Unit shapes instanced by the renderer: the cube's 12 edges (24 vertices in [0,1]^3),
+/// three unit circles (line list), and the unit square (two triangles, z = 0).
+std::vector<glm::vec3> unit_cube_edges();
+std::vector<glm::vec3> unit_sphere_circles(int segments = 48);
+std::vector<glm::vec3> unit_square_triangles();
+
+/// The "turbo" colour map (Mikhailov 2019, Google AI blog), polynomial fit; t in [0, 1].
+glm::vec3 turbo(float t);
+
+}  // namespace viz

@@ -1,0 +1,205 @@
+#pragma once
+// The viewer's work that needs no window: building a structure (on a background thread),
+// the debug ray and its recorded trace, the "same ray, every structure" comparison and the
+// parameter sweep. App drives these and draws their results; the tests call them directly.
+//
+// Threads: a build, a heat map, a comparison or a sweep runs in a Job (std::async). Jobs
+// hold the Scene and the Structure through shared_ptr, so a scene loaded or a structure
+// swapped meanwhile stays alive until every job using it has finished. Structures are
+// const once built: queries from any thread are safe.
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pseudo_code.h"
+#include "ray_gen.h"
+#include "structure.h"
+#include "structure_view.h"
+#include "trace_player.h"
+
+namespace viz {
+
+// ---------------------------------------------------------------------------------------
+// Background jobs
+
+/// One background computation returning T. start() while busy is not allowed (the caller
+/// queues instead); the destructor cancels and waits, so no job outlives its owner.
+template <class T>
+class Job {
+ public:
+  using Fn = std::function<T(const std::atomic<bool>& cancel)>;
+  Job() = default;
+  Job(const Job&) = delete;
+  Job& operator=(const Job&) = delete;
+  ~Job() { wait(); }
+
+  /// Runs `fn` on a new thread; `synchronous` runs it here (script mode).
+  void start(Fn fn, bool synchronous = false) {
+    wait();
+    cancel_ = std::make_shared<std::atomic<bool>>(false);
+    start_ = std::chrono::steady_clock::now();
+    auto flag = cancel_;
+    if (synchronous) {
+      std::promise<T> p;
+      p.set_value(fn(*flag));
+      future_ = p.get_future();
+    } else {
+      future_ = std::async(std::launch::async, [fn = std::move(fn), flag] { return fn(*flag); });
+    }
+  }
+  /// True while started and not yet taken.
+  bool busy() const { return future_.valid(); }
+  /// True when the result can be taken without blocking.
+  bool ready() const {
+    return future_.valid() && future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  }
+  /// The result (blocks until done). The job is idle afterwards.
+  T take() { return future_.get(); }
+  /// Asks the job to stop early (it decides what a cancelled result is).
+  void cancel() {
+    if (cancel_) cancel_->store(true);
+  }
+  /// Cancels and waits for the thread, dropping its result.
+  void wait() {
+    cancel();
+    if (future_.valid()) future_.wait();
+    future_ = {};
+  }
+  /// Seconds since start().
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::future<T> future_;
+  std::shared_ptr<std::atomic<bool>> cancel_;
+  std::chrono::steady_clock::time_point start_{};
+};
+
+// ---------------------------------------------------------------------------------------
+// Structures
+
+/// What to build: names and parameters exactly as accelviz-cli takes them.
+struct StructureRequest {
+  std::string name = "bvh";
+  std::vector<std::string> params;  ///< key=value
+  accel::Kernel kernel = accel::Kernel::Watertight;
+  GeometryOptions geometry;
+};
+
+/// A built structure with everything the viewer shows about it, made on the build thread.
+struct BuiltStructure {
+  std::shared_ptr<const accel::Scene> scene;  ///< kept alive as long as the structure
+  std::unique_ptr<accel::Structure> structure;
+  StructureRequest request;
+  std::string params_text;      ///< every parameter, "key=value ..."
+  accel::BuildStats stats;
+  StructureGeometry geometry;   ///< instances for drawing
+  std::string traversal;        ///< value of its "traversal" parameter ("" when it has none)
+  TraversalKind kind = TraversalKind::Unknown;
+};
+using BuiltPtr = std::shared_ptr<const BuiltStructure>;
+
+/// Validates, builds and lists the nodes of a structure over `scene` (any thread).
+/// Errors name the structure or parameter (from the registry).
+accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request);
+
+/// Replaces `key`'s value in a key=value list (appends it when absent).
+std::vector<std::string> with_param(std::vector<std::string> params, const std::string& key, const std::string& value);
+/// The value of `key` in a key=value list, or `fallback`.
+std::string param_value(const std::vector<std::string>& params, const std::string& key, const std::string& fallback = "");
+
+// ---------------------------------------------------------------------------------------
+// The debug ray
+
+/// The ray being debugged and its recorded traversal.
+struct DebugRay {
+  bool active = false;
+  accel::Ray ray;
+  std::string origin;          ///< how it was made: "click", "typed", "preset", "script"
+  accel::Hit hit;              ///< intersect_traced's answer
+  accel::QueryStats stats;     ///< counters of the whole trace
+  accel::TracePlayer player;
+
+  /// Records the ray's traversal of `s` (its real intersect_traced). keep_step: the same ray
+  /// replayed after a rebuild keeps its step, clamped.
+  void record(const accel::Structure& s, bool keep_step);
+};
+
+/// The ray's end point for drawing: the hit, or where it leaves `bounds` (grown a little),
+/// or a fallback length when it misses the scene box entirely.
+float ray_draw_length(const accel::Ray& ray, const accel::Hit& hit, const accel::Aabb& bounds);
+
+// ---------------------------------------------------------------------------------------
+// Same ray, every structure and traversal
+
+struct CompareRow {
+  std::string label;                 ///< "bvh (pqueue)"
+  std::string structure;
+  std::vector<std::string> params;   ///< as built
+  bool current = false;              ///< the structure and traversal shown now
+  bool ok = false;
+  std::string error;
+  accel::QueryStats stats;           ///< intersect(ray, &stats)
+  size_t steps = 0;                  ///< events recorded by intersect_traced
+  accel::Hit hit;
+  double build_ms = 0.0;
+};
+
+/// One row per structure of the registry, and per value of its "traversal" parameter when
+/// it has one. The current structure keeps its parameters (the traversal varied); others
+/// use their defaults. Each row is a real build + intersect(ray, &stats) + a traced query.
+/// Stops early when cancelled; `progress` counts finished rows.
+std::vector<CompareRow> compare_structures(std::shared_ptr<const accel::Scene> scene, const accel::Ray& ray,
+                                           const StructureRequest& current, const std::atomic<bool>& cancel,
+                                           std::atomic<int>* progress = nullptr);
+
+// ---------------------------------------------------------------------------------------
+// Parameter sweep ("tune at the end")
+
+struct SweepRequest {
+  StructureRequest base;          ///< structure and its other parameters
+  std::string param;              ///< an Int or Float parameter of base.name
+  double lo = 0.0, hi = 1.0;
+  int steps = 10;
+  bool log_scale = false;         ///< geometric spacing (for wide ranges)
+  accel::PinholeCamera camera;    ///< the fixed ray set: primary rays of this camera
+  int width = 128, height = 96;
+};
+
+struct SweepPoint {
+  double value = 0.0;
+  std::string text;               ///< the value as passed to the structure
+  bool ok = false;
+  std::string error;
+  double build_ms = 0.0;
+  double trace_ms = 0.0;          ///< the whole ray set, all threads, best of 3
+  double nodes_per_ray = 0.0;
+  double prims_per_ray = 0.0;
+  size_t nodes = 0;
+  double sah_cost = 0.0;
+};
+
+/// Points filled in by run_sweep() as it goes, read by the UI meanwhile.
+struct SweepProgress {
+  std::mutex mutex;
+  std::vector<SweepPoint> points;
+  int total = 0;
+};
+
+/// The values a sweep tries: `steps` values from lo to hi (geometric when log_scale and
+/// lo > 0), Int parameters rounded with duplicates dropped, all clamped to the spec's range.
+std::vector<double> sweep_values(const accel::ParamSpec& spec, double lo, double hi, int steps, bool log_scale);
+
+/// Builds and traces once per value; appends each point to `progress` as it finishes.
+/// Error when the parameter does not exist or is not numeric.
+accel::Result<bool> run_sweep(std::shared_ptr<const accel::Scene> scene, const SweepRequest& request,
+                              SweepProgress& progress, const std::atomic<bool>& cancel);
+
+}  // namespace viz

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Regenerates the viewer figures of the README (bench/figures/viewer_*.png) from the viewer
+# scripts in scripts/figures/viewer_*.txt (accelviz --script), under a virtual X display.
+#   scripts/make_figures.sh             all figures
+#   scripts/make_figures.sh bvh grid    only scripts/figures/viewer_bvh.txt, viewer_grid.txt
+# The viewer is taken from $ACCEL_BUILD_DIR/bin (default build/, as scripts/build.sh makes it).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${ACCEL_BUILD_DIR:-$root/build}"
+viewer="$build_dir/bin/accelviz"
+if [[ ! -x "$viewer" ]]; then
+  echo "make_figures.sh: $viewer not found: build first (scripts/build.sh) or set ACCEL_BUILD_DIR" >&2
+  exit 1
+fi
+if ! command -v xvfb-run >/dev/null; then
+  echo "make_figures.sh: xvfb-run not found (Debian package xvfb)" >&2
+  exit 1
+fi
+cd "$root"  # the scripts write to bench/figures/, relative to the repository root
+mkdir -p bench/figures
+if [[ $# -gt 0 ]]; then
+  scripts=()
+  for name in "$@"; do scripts+=("scripts/figures/viewer_$name.txt"); done
+else
+  scripts=(scripts/figures/viewer_*.txt)
+fi
+for script in "${scripts[@]}"; do
+  echo "== $script"
+  # 24-bit screen: the default depth may offer no RGB visual for an OpenGL context.
+  xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --script "$script"
+done
+echo "figures written to bench/figures/"

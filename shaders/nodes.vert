@@ -1,0 +1,75 @@
+#version 330 core
+// Structure nodes, instanced: one unit shape (cube edges, three circles, or a square) per
+// node, placed by per-instance attributes. The depth / leaf filter runs here, so changing it
+// uploads nothing: a filtered-out instance collapses to a point outside the clip volume,
+// which the rasteriser discards.
+layout(location = 0) in vec3 a_unit;   // unit shape vertex
+layout(location = 2) in vec3 a_lo;     // box min, sphere centre, or plane rectangle min
+layout(location = 3) in vec3 a_hi;     // box max, (radius, radius, radius), or plane max
+layout(location = 4) in vec4 a_info;   // depth, leaf (0/1), triangle count, split axis
+
+uniform mat4 u_view;
+uniform mat4 u_projection;
+uniform int u_shape;        // 0 box, 1 sphere, 2 split plane
+uniform int u_color_mode;   // 0 by depth, 1 by triangle count, 2 flat
+uniform float u_depth_min;
+uniform float u_depth_max;
+uniform int u_leaves_only;
+uniform int u_hide_empty;
+uniform float u_max_depth;
+uniform float u_max_prims;
+uniform vec4 u_flat_color;
+uniform float u_alpha;
+uniform float u_depth_bias;
+
+out vec4 v_color;
+
+// "Turbo" colour map (Mikhailov 2019), degree-5 polynomial fit; the same as viz::turbo().
+vec3 turbo(float x) {
+  x = clamp(x, 0.0, 1.0);
+  float x2 = x * x, x3 = x2 * x, x4 = x2 * x2, x5 = x4 * x;
+  return clamp(vec3(
+      0.13572138 + 4.61539260 * x - 42.66032258 * x2 + 132.13108234 * x3 - 152.94239396 * x4 + 59.28637943 * x5,
+      0.09140261 + 2.19418839 * x + 4.84296658 * x2 - 14.18503333 * x3 + 4.27729857 * x4 + 2.82956604 * x5,
+      0.10667330 + 12.64194608 * x - 60.58204836 * x2 + 110.36276771 * x3 - 89.90310912 * x4 + 27.34824973 * x5),
+      0.0, 1.0);
+}
+
+void main() {
+  float depth = a_info.x;
+  bool leaf = a_info.y > 0.5;
+  float prims = a_info.z;
+  bool hidden = depth < u_depth_min - 0.5 || depth > u_depth_max + 0.5 || (u_leaves_only == 1 && !leaf) ||
+                (u_hide_empty == 1 && leaf && prims < 0.5);
+  if (hidden) {
+    v_color = vec4(0.0);
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  vec3 p;
+  if (u_shape == 1) {
+    p = a_lo + a_hi.x * a_unit;
+  } else if (u_shape == 2) {
+    int axis = int(a_info.w + 0.5);
+    int u = (axis + 1) % 3;
+    int v = (axis + 2) % 3;
+    p = a_lo;
+    p[u] = mix(a_lo[u], a_hi[u], a_unit.x);
+    p[v] = mix(a_lo[v], a_hi[v], a_unit.y);
+  } else {
+    p = mix(a_lo, a_hi, a_unit);
+  }
+
+  vec3 rgb;
+  if (u_color_mode == 0) {
+    // Skip turbo's darkest blues: they vanish on the dark background.
+    rgb = turbo(0.12 + 0.86 * depth / u_max_depth);
+  } else if (u_color_mode == 1) {
+    rgb = prims < 0.5 ? vec3(0.42, 0.45, 0.52) : turbo(0.15 + 0.85 * log(1.0 + prims) / log(1.0 + u_max_prims));
+  } else {
+    rgb = u_flat_color.rgb;
+  }
+  v_color = vec4(rgb, u_alpha * (u_color_mode == 2 ? u_flat_color.a : 1.0));
+  gl_Position = u_projection * u_view * vec4(p, 1.0);
+  gl_Position.z -= u_depth_bias * gl_Position.w;
+}
