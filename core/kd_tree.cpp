@@ -552,7 +552,20 @@ Result<KdTreeData> KdBuilder::run() {
 }  // namespace
 
 Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options) {
-  return KdBuilder(scene, options).run();
+  if (options.max_depth > 0) return KdBuilder(scene, options).run();
+  // Automatic depth: keep the tree within a size proportional to the scene (at most 64
+  // references per triangle, or 4M). Scenes that every plane cuts -- thousands of overlapping
+  // coplanar triangles -- would otherwise grow to the absolute budget before failing; there
+  // the depth limit is lowered until the tree fits, as the lecture's stop criterion intends.
+  KdBuildOptions o = options;
+  const size_t n = scene.valid_prims().size();
+  o.reference_limit = std::min(options.reference_limit, std::max<size_t>(size_t(1) << 22, 64 * n));
+  o.node_limit = std::min(options.node_limit, 2 * o.reference_limit);
+  for (int depth = kd_auto_max_depth(n);; depth = std::max(1, depth - 4)) {
+    o.max_depth = depth;
+    Result<KdTreeData> tree = KdBuilder(scene, o).run();
+    if (tree || depth == 1) return tree;
+  }
 }
 
 //-----------------------------------------------------------------------------
