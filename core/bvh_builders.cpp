@@ -94,7 +94,7 @@ struct Split {
 float sah_split_cost(const BvhBuildOptions& o, float parent_area, float left_area, size_t n_left, float right_area,
                      size_t n_right) {
   const float inv = parent_area > 0.0f ? 1.0f / parent_area : 1.0f;
-  return o.ct + o.ci * (left_area * float(n_left) + right_area * float(n_right)) * inv;
+  return o.ct + (left_area * o.leaf_cost(n_left) + right_area * o.leaf_cost(n_right)) * inv;
 }
 
 Aabb bounds_of(const std::vector<PrimRef>& refs, size_t begin, size_t end) {
@@ -136,7 +136,7 @@ class TopDownBuilder {
     Split split;
     if (count > 1) split = choose_split(begin, end, depth, box);
     const bool sah = o_.builder != BvhBuilderKind::Median;
-    const float leaf_cost = o_.ci * float(count);
+    const float leaf_cost = o_.leaf_cost(count);
     const bool small = count <= size_t(o_.leaf_size);
     if (count <= 1 || (small && (!sah || !split.valid || split.cost >= leaf_cost)) || depth >= kMaxBvhDepth - 1) {
       ACCEL_CHECK(count <= size_t(o_.leaf_size) || depth >= kMaxBvhDepth - 1);
@@ -453,7 +453,7 @@ BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& node
     const BinaryNode& nd = nodes[i];
     if (nd.prim >= 0) {
       count[i] = 1;
-      cost[i] = o.ci * nd.box.area();
+      cost[i] = o.leaf_cost(1) * nd.box.area();
       collapse[i] = 1;
     } else if (!expanded) {
       stack.push_back({i, true});
@@ -462,7 +462,7 @@ BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& node
     } else {
       count[i] = count[nd.left] + count[nd.right];
       const float split_cost = o.ct * nd.box.area() + cost[nd.left] + cost[nd.right];
-      const float leaf_cost = o.ci * float(count[i]) * nd.box.area();
+      const float leaf_cost = o.leaf_cost(count[i]) * nd.box.area();
       collapse[i] = count[i] <= uint32_t(o.leaf_size) && leaf_cost <= split_cost;
       cost[i] = collapse[i] ? leaf_cost : split_cost;
     }

@@ -108,19 +108,31 @@ class Hierarchy : public StructureWithTraversal<Derived> {
 
  protected:
   Result<bool> build_impl(const Scene& scene, const ParamSet& params) override {
+    store_binary(build_tree(scene, params));
+    return true;
+  }
+
+  /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`
+  /// triangles per leaf test); the binary layout is left empty.
+  BuildTree build_tree(const Scene& scene, const ParamSet& params, int prims_per_test = 1) {
     scene_ = &scene;
     options_ = bvh_build_options(params);
+    options_.prims_per_test = prims_per_test;
     order_ = traversal_order(params);
-    const BuildTree tree = build_bvh_tree(scene, options_);
     nodes_.clear();
     boxes_.clear();
     depth_.clear();
+    prims_.clear();
+    return build_bvh_tree(scene, options_);
+  }
+
+  /// Flattens the builder's tree into the binary node layout and fits the volumes.
+  void store_binary(const BuildTree& tree) {
     prims_ = tree.prims;
     if (!tree.empty()) {
       nodes_.reserve(tree.nodes.size());
       flatten(tree, tree.root, 0);
     }
-    return true;
   }
 
   BuildStats compute_stats() const override {
@@ -137,17 +149,22 @@ class Hierarchy : public StructureWithTraversal<Derived> {
       const double rel = root_area > 0.0 ? double(Derived::volume_area(nodes_[i].volume)) / root_area : 1.0;
       if (nodes_[i].leaf()) {
         s.add_leaf(nodes_[i].count);
-        cost += double(options_.ci) * nodes_[i].count * rel;
+        cost += double(options_.leaf_cost(nodes_[i].count)) * rel;
       } else {
         cost += double(options_.ct) * rel;
       }
       s.max_depth = std::max(s.max_depth, int(depth_[i]));
     }
     if (!nodes_.empty()) s.sah_cost = cost;
-    s.extra.push_back({"builder", builder_name(options_.builder)});
-    static constexpr const char* kOrder[] = {"dfs", "ordered", "pqueue"};
-    s.extra.push_back({"traversal", kOrder[int(order_)]});
+    add_option_lines(&s);
     return s;
+  }
+
+  /// The builder and traversal order, as lines of the statistics.
+  void add_option_lines(BuildStats* s) const {
+    s->extra.push_back({"builder", builder_name(options_.builder)});
+    static constexpr const char* kOrder[] = {"dfs", "ordered", "pqueue"};
+    s->extra.push_back({"traversal", kOrder[int(order_)]});
   }
 
   const Scene* scene_ = nullptr;

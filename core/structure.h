@@ -113,14 +113,12 @@ class StructureWithTraversal : public Structure {
   const Derived& self() const { return static_cast<const Derived&>(*this); }
 };
 
-/// Tests one triangle and updates `closest` (whose t is the current tmax). The first hit
-/// in [tmin, tmax] counts even at t == tmax (inclusive); later ones only when strictly
-/// closer, so ties keep the first triangle found.
+/// Takes the outcome of testing triangle `prim` into `closest` (whose t is the current
+/// tmax). The first hit in [tmin, tmax] counts even at t == tmax (inclusive); later ones
+/// only when strictly closer, so ties keep the first triangle found.
 template <class Sink>
-inline bool test_triangle(const Scene& scene, const TriangleTester& tester, uint32_t prim, Hit& closest,
-                          Sink& sink) {
-  TriangleHit th{kInf, 0.0f, 0.0f};
-  const bool hit = tester.intersect(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), closest.t, &th);
+ACCEL_FORCE_INLINE bool take_triangle_result(uint32_t prim, bool hit, const TriangleHit& th, Hit& closest,
+                                             Sink& sink) {
   sink.test_prim(prim, hit, th.t);
   if (hit && (closest.prim < 0 || th.t < closest.t)) {
     closest = Hit{int32_t(prim), th.t, th.u, th.v};
@@ -128,6 +126,23 @@ inline bool test_triangle(const Scene& scene, const TriangleTester& tester, uint
     return true;
   }
   return false;
+}
+
+/// Tests triangle `prim` with vertices (p0, p1, p2) and takes the result into `closest`.
+template <class Sink>
+ACCEL_FORCE_INLINE bool test_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, uint32_t prim,
+                                      const TriangleTester& tester, Hit& closest, Sink& sink) {
+  TriangleHit th{kInf, 0.0f, 0.0f};
+  const bool hit = tester.intersect(p0, p1, p2, closest.t, &th);
+  return take_triangle_result(prim, hit, th, closest, sink);
+}
+
+/// The same, reading the triangle's vertices from the scene.
+template <class Sink>
+inline bool test_triangle(const Scene& scene, const TriangleTester& tester, uint32_t prim, Hit& closest,
+                          Sink& sink) {
+  return test_triangle(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), prim, tester, closest,
+                       sink);
 }
 
 /// Initial "closest hit" of a query: no triangle, t = ray.tmax.

@@ -11,6 +11,7 @@ packages=(
   libtinyobjloader-dev                       # OBJ loading
   libgtest-dev libcli11-dev libstb-dev       # tests, CLI parsing, PNG writing
   libtbb-dev                                 # parallel tracing
+  nlohmann-json3-dev                         # the viewer reads the bench's JSON
   libembree-dev                              # industry baseline in the benchmark
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
 )

@@ -25,6 +25,7 @@ CONFIGS = [
     ("kdtree", ["split=middle", "axis=longest"]),
 ] + [("bvh", [f"builder={b}", f"traversal={t}"]) for b in
      ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion") for t in ("dfs", "ordered", "pqueue")] + [
+    ("bvh", ["width=2", f"traversal={t}"]) for t in ("dfs", "ordered", "pqueue")] + [
     ("spheretree", [f"builder={b}", f"traversal={t}"]) for b in
     ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion") for t in ("ordered", "pqueue")]
 

@@ -1,10 +1,12 @@
 // AABB tree (bvh): every builder x traversal x leaf size against the reference, hand-checked
 // traversal orders, tree validity, and SAH quality of the sweep vs binned builders.
+#include <algorithm>
 #include <set>
 
 #include <gtest/gtest.h>
 
 #include "bvh.h"
+#include "random.h"
 #include "registry.h"
 #include "structure_suite.h"
 #include "test_support.h"
@@ -21,6 +23,11 @@ std::vector<SuiteCase> bvh_cases(const std::string& structure) {
       cases.push_back({structure, {std::string("builder=") + builder, std::string("traversal=") + traversal}});
     for (const char* leaf : {"leaf_size=1", "leaf_size=16"})
       cases.push_back({structure, {std::string("builder=") + builder, leaf}});
+  }
+  if (structure == "bvh") {  // the lecture's binary layout beside the default 4-wide one
+    for (const char* traversal : {"dfs", "ordered", "pqueue"})
+      cases.push_back({structure, {"width=2", std::string("traversal=") + traversal}});
+    cases.push_back({structure, {"width=2", "builder=bottom_up", "leaf_size=16"}});
   }
   cases.push_back({structure, {"builder=median", "axis=x"}});
   cases.push_back({structure, {"builder=median", "axis=round_robin"}});
@@ -76,7 +83,11 @@ Steps record(const Structure& s, const Ray& r, Hit* hit) {
   return steps;
 }
 
+/// Builds `structure`; the hand-checked binary-tree tests below use bvh's lecture layout
+/// (width=2) unless `params` choose a width.
 std::unique_ptr<Structure> build(const std::string& structure, const Scene& scene, std::vector<std::string> params) {
+  const bool has_width = std::any_of(params.begin(), params.end(), [](const std::string& p) { return p.rfind("width=", 0) == 0; });
+  if (structure == "bvh" && !has_width) params.push_back("width=2");
   auto built = build_structure(structure, scene, params);
   EXPECT_TRUE(built) << (built ? "" : built.error().message);
   return built ? std::move(built.value()) : nullptr;
@@ -187,6 +198,142 @@ TEST_P(HierarchyOrder, PriorityQueueKeepsSearchingWhenNearestVolumeHoldsNoNeares
 
 INSTANTIATE_TEST_SUITE_P(Both, HierarchyOrder, ::testing::Values("bvh", "spheretree"));
 
+// The 4-wide layout (bvh width=4, the default). With leaf_size=1 the median tree of the four
+// walls collapses to one root (node 0) whose four children are the leaves of prims 0..3
+// (nodes 1..4, tree order = increasing x). The ray from +x enters them at t = 10, 9, 8, 7.
+
+TEST(WideBvh, FourWallsCollapseToOneRootWithFourLeaves) {
+  const Scene scene = four_walls();
+  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4"});
+  ASSERT_TRUE(s);
+  const BuildStats stats = s->build_stats();
+  EXPECT_EQ(stats.nodes, 5u);
+  EXPECT_EQ(stats.leaves, 4u);
+  EXPECT_EQ(stats.max_depth, 1);
+  for (uint32_t prim = 0; prim < 4; ++prim) {
+    EXPECT_EQ(s->node_prims(prim + 1), std::vector<uint32_t>{prim});
+    EXPECT_EQ(s->node_view(prim + 1).depth, 1);
+  }
+  EXPECT_FALSE(s->node_view(0).leaf);
+}
+
+TEST(WideBvh, DfsDescendsInTreeOrder) {
+  const Scene scene = four_walls();
+  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=dfs"});
+  Ray r;
+  r.org = Vec3(10, 0, 0);
+  r.dir = Vec3(-1, 0, 0);
+  Hit hit;
+  const Steps steps = record(*s, r, &hit);
+  // All four boxes are tested at the root; the first child is entered at once, the other
+  // three wait on the stack (pushed last-first) and each improves the closest hit.
+  EXPECT_EQ(steps.visits, (std::vector<NodeId>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(steps.pops, (std::vector<NodeId>{2, 3, 4}));
+  EXPECT_TRUE(steps.culls.empty());
+  EXPECT_EQ(hit.prim, 3);
+  EXPECT_FLOAT_EQ(hit.t, 7.0f);
+}
+
+TEST(WideBvh, OrderedEntersNearestChildAndSkipsTheRest) {
+  const Scene scene = four_walls();
+  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=ordered"});
+  Ray r;
+  r.org = Vec3(10, 0, 0);
+  r.dir = Vec3(-1, 0, 0);
+  Hit hit;
+  const Steps steps = record(*s, r, &hit);
+  EXPECT_EQ(steps.visits, (std::vector<NodeId>{0, 4}));
+  EXPECT_EQ(steps.pops, (std::vector<NodeId>{3, 2, 1}));
+  EXPECT_EQ(steps.pop_keys, (std::vector<float>{8, 9, 10}));
+  EXPECT_EQ(steps.culls, (std::vector<NodeId>{3, 2, 1}));
+  for (CullReason why : steps.reasons) EXPECT_EQ(why, CullReason::BeyondClosestHit);
+  EXPECT_EQ(hit.prim, 3);
+}
+
+TEST(WideBvh, PriorityQueueStopsAtTheFirstKeyBeyondTheClosestHit) {
+  const Scene scene = four_walls();
+  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=pqueue"});
+  Ray r;
+  r.org = Vec3(10, 0, 0);
+  r.dir = Vec3(-1, 0, 0);
+  Hit hit;
+  const Steps steps = record(*s, r, &hit);
+  EXPECT_EQ(steps.visits, (std::vector<NodeId>{0, 4}));
+  EXPECT_EQ(steps.pops, (std::vector<NodeId>{0, 4, 3}));
+  EXPECT_EQ(steps.culls, (std::vector<NodeId>{3, 2, 1}));
+  EXPECT_EQ(hit.prim, 3);
+}
+
+TEST(WideBvh, MissedChildrenAreCulledAsMissedAtTheirParent) {
+  const Scene scene = four_walls();
+  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4"});
+  // A ray along z through x = 1.5 enters the root box but none of the four flat leaf boxes.
+  Ray r;
+  r.org = Vec3(1.5f, 0, -5);
+  r.dir = Vec3(0, 0, 1);
+  Hit hit;
+  const Steps miss = record(*s, r, &hit);
+  EXPECT_FALSE(hit.valid());
+  EXPECT_EQ(miss.visits, (std::vector<NodeId>{0}));
+  EXPECT_EQ(miss.culls, (std::vector<NodeId>{1, 2, 3, 4}));
+  for (CullReason why : miss.reasons) EXPECT_EQ(why, CullReason::MissedBounds);
+}
+
+TEST(WideBvh, RecordedStepsCountLikeTheFastPathAndAnswerAlike) {
+  // The recorder, the counters and the fast path run one traversal: same hit, same counts.
+  const Scene scene = make_procedural_scene("soup").value();
+  for (const char* order : {"dfs", "ordered", "pqueue"}) {
+    auto s = build("bvh", scene, {"width=4", std::string("traversal=") + order});
+    Rng rng(5);
+    for (int i = 0; i < 2000; ++i) {
+      Ray r;
+      r.org = Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+      r.dir = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      TraceRecorder rec;
+      QueryStats counted;
+      const Hit traced = s->intersect_traced(r, rec);
+      const Hit counted_hit = s->intersect(r, &counted);
+      const Hit fast = s->intersect(r);
+      ASSERT_EQ(traced.prim, fast.prim) << order << " ray " << i;
+      ASSERT_EQ(counted_hit.prim, fast.prim);
+      ASSERT_EQ(traced.t, fast.t);
+      const QueryStats replayed = rec.stats();
+      EXPECT_EQ(replayed.nodes_visited, counted.nodes_visited);
+      // The priority queue shows the recorder every node still queued when it stops; the
+      // counters skip that loop.
+      if (std::string(order) == "pqueue")
+        EXPECT_GE(replayed.nodes_culled, counted.nodes_culled);
+      else
+        EXPECT_EQ(replayed.nodes_culled, counted.nodes_culled) << order;
+      EXPECT_EQ(replayed.prims_tested, counted.prims_tested);
+    }
+  }
+}
+
+TEST(WideBvh, BothWidthsFindTheSameHits) {
+  const Scene scene = make_procedural_scene("stadium").value();
+  auto binary = build("bvh", scene, {"width=2"});
+  auto wide = build("bvh", scene, {"width=4"});
+  Rng rng(9);
+  const Aabb box = scene.bounds();
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Ray r;
+    r.org = box.center() + box.extent() * Vec3(rng.uniform(-0.7f, 0.7f), rng.uniform(-0.7f, 0.7f), rng.uniform(-0.7f, 0.7f));
+    r.dir = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const Hit a = binary->intersect(r), b = wide->intersect(r);
+    ASSERT_EQ(a.valid(), b.valid()) << "ray " << i;
+    if (!a.valid()) continue;
+    ++hits;
+    // Same triangle, or a tie at the same distance (the leaves may list them in another order).
+    if (a.prim != b.prim) {
+      EXPECT_EQ(a.t, b.t) << "ray " << i;
+    }
+    EXPECT_NEAR(a.t, b.t, 1e-6f * std::max(1.0f, a.t)) << "ray " << i;
+  }
+  EXPECT_GT(hits, 1000);
+}
+
 /// Every triangle in exactly one leaf, leaves within leaf_size, children inside parents.
 void expect_valid_tree(const Bvh& bvh, const Scene& scene, int leaf_size) {
   const auto& nodes = bvh.nodes();
@@ -210,6 +357,37 @@ void expect_valid_tree(const Bvh& bvh, const Scene& scene, int leaf_size) {
   for (uint32_t prim : scene.valid_prims()) EXPECT_EQ(seen.count(prim), 1u) << "prim " << prim;
 }
 
+/// The same for the 4-wide layout: every triangle in exactly one leaf, within the leaf's
+/// box; every child slot's box inside its node's box, and at most four children.
+void expect_valid_wide_tree(const Bvh& bvh, const Scene& scene, int leaf_size) {
+  const WideBvh& wide = bvh.wide();
+  std::multiset<uint32_t> seen;
+  for (NodeId i = 0; i < wide.size(); ++i) {
+    const NodeView v = bvh.node_view(i);
+    if (v.leaf) {
+      EXPECT_LE(int(v.prim_count), leaf_size);
+      for (uint32_t prim : bvh.node_prims(i)) {
+        seen.insert(prim);
+        EXPECT_TRUE(v.box.contains(scene.triangle_bounds(prim))) << "leaf " << i;
+      }
+      continue;
+    }
+    const WideNode& n = wide.wide_node(i);
+    int children = 0;
+    for (int slot = 0; slot < 4; ++slot) {
+      if (n.bounds[0][slot] > n.bounds[3][slot]) continue;  // unused slot (empty box)
+      ++children;
+      Aabb child;
+      child.min = Vec3(n.bounds[0][slot], n.bounds[1][slot], n.bounds[2][slot]);
+      child.max = Vec3(n.bounds[3][slot], n.bounds[4][slot], n.bounds[5][slot]);
+      EXPECT_TRUE(v.box.contains(child)) << "node " << i << " slot " << slot;
+    }
+    EXPECT_GE(children, 2) << "node " << i;
+  }
+  EXPECT_EQ(seen.size(), scene.valid_prims().size());
+  for (uint32_t prim : scene.valid_prims()) EXPECT_EQ(seen.count(prim), 1u) << "prim " << prim;
+}
+
 TEST(BvhBuilders, EveryBuilderMakesAValidTree) {
   std::vector<Scene> scenes;
   for (const char* name : {"soup", "stadium", "cornell"}) scenes.push_back(make_procedural_scene(name).value());
@@ -217,14 +395,20 @@ TEST(BvhBuilders, EveryBuilderMakesAValidTree) {
   for (const Scene& scene : scenes) {
     for (const char* builder : {"median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion"}) {
       for (int leaf : {1, 4}) {
-        SCOPED_TRACE(scene.name() + " " + builder + " leaf " + std::to_string(leaf));
-        Bvh bvh;
-        auto params = ParamSet::parse(Bvh::param_specs(), {std::string("builder=") + builder,
-                                                           "leaf_size=" + std::to_string(leaf)});
-        ASSERT_TRUE(params);
-        ASSERT_TRUE(bvh.build(scene, params.value()));
-        expect_valid_tree(bvh, scene, leaf);
-        EXPECT_LT(bvh.build_stats().max_depth, kMaxBvhDepth);
+        for (const char* width : {"2", "4"}) {
+          SCOPED_TRACE(scene.name() + " " + builder + " leaf " + std::to_string(leaf) + " width " + width);
+          Bvh bvh;
+          auto params = ParamSet::parse(Bvh::param_specs(), {std::string("builder=") + builder,
+                                                             "leaf_size=" + std::to_string(leaf),
+                                                             std::string("width=") + width});
+          ASSERT_TRUE(params);
+          ASSERT_TRUE(bvh.build(scene, params.value()));
+          if (bvh.width() == 2)
+            expect_valid_tree(bvh, scene, leaf);
+          else
+            expect_valid_wide_tree(bvh, scene, leaf);
+          EXPECT_LT(bvh.build_stats().max_depth, kMaxBvhDepth);
+        }
       }
     }
   }

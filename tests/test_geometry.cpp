@@ -124,6 +124,57 @@ TEST(Triangle, WatertightHasNoCracksBetweenNeighbours) {
   }
 }
 
+/// Fills lane `lane` of `block` with triangle (a, b, c).
+void set_lane(TriangleBlock* block, int lane, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 p[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k)
+    for (int axis = 0; axis < 3; ++axis) block->v[3 * k + axis][lane] = p[k][axis];
+  block->prim[lane] = uint32_t(lane);
+}
+
+TEST(Triangle, FourWideTestEqualsScalarTestLaneByLane) {
+  // The 4-wide kernels promise the scalar answers bit for bit (same operations, same order),
+  // including the double fallback near edges, shared vertices and tmin/tmax, and unused lanes
+  // never hit. Half the triangles share an edge or vertex with the ray's target point.
+  Rng rng(11);
+  int hits = 0;
+  for (Kernel kernel : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) {
+    for (int i = 0; i < 20000; ++i) {
+      Ray r;
+      r.org = Vec3(rng.uniform(-1, 2), rng.uniform(-1, 2), rng.uniform(-1, 2));
+      const Vec3 target(rng.uniform(), rng.uniform(), rng.uniform());
+      r.dir = target - r.org;
+      if (i % 3 == 0) r.dir[i % 2] = 0.0f;  // axis-parallel components
+      r.tmin = i % 5 == 0 ? 1.0f : 0.0f;     // origin-side hits exactly at tmin
+      const float tmax = i % 7 == 0 ? 1.0f : kInf;
+      TriangleBlock block{};
+      Vec3 tri[4][3];
+      for (int lane = 0; lane < 4; ++lane) {
+        for (Vec3& p : tri[lane]) p = Vec3(rng.uniform(), rng.uniform(), rng.uniform());
+        if (lane % 2 == 0) tri[lane][lane % 3] = target;  // the ray passes through a vertex
+        if (lane == 1) tri[lane][0] = 2.0f * target - tri[lane][1];  // ... or through an edge
+        set_lane(&block, lane, tri[lane][0], tri[lane][1], tri[lane][2]);
+      }
+      const int lanes = i % 4 == 0 ? 0x7 : 0xf;
+      const TriangleTester tester(r, kernel);
+      alignas(16) float t[4], u[4], v[4];
+      const int mask = tester.intersect4(block, lanes, tmax, t, u, v);
+      for (int lane = 0; lane < 4; ++lane) {
+        TriangleHit h;
+        const bool scalar = ((lanes >> lane) & 1) &&
+                            tester.intersect(tri[lane][0], tri[lane][1], tri[lane][2], tmax, &h);
+        ASSERT_EQ(bool((mask >> lane) & 1), scalar) << kernel_name(kernel) << " ray " << i << " lane " << lane;
+        if (!scalar) continue;
+        ++hits;
+        EXPECT_EQ(t[lane], h.t) << kernel_name(kernel) << " ray " << i << " lane " << lane;
+        EXPECT_EQ(u[lane], h.u);
+        EXPECT_EQ(v[lane], h.v);
+      }
+    }
+  }
+  EXPECT_GT(hits, 10000);  // the comparison saw many hits, not only misses
+}
+
 TEST(Box, SlabTestHandlesZeroDirectionComponents) {
   Aabb box;
   box.extend(Vec3(0, 0, 0));

@@ -263,6 +263,7 @@ std::vector<HardConfig> hard_configs() {
           {"bvh", {}},
           {"bvh", {"builder=binned_sah", "traversal=pqueue"}},
           {"bvh", {"builder=bottom_up", "traversal=dfs"}},
+          {"bvh", {"width=2"}},
           {"spheretree", {}}};
 }
 

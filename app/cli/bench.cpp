@@ -1,6 +1,6 @@
 // accelviz-cli bench: speed against error on the same rays. For every scene x structure x
 // kernel: build time, memory, Mrays/s with one and with all threads (tracing only, repeated
-// to >= 0.5 s, median of 3), and the errors against the double-precision reference. Embree 3
+// to >= --min-time (0.5 s), median of 3), and the errors against the double-precision reference. Embree 3
 // (rtcIntersect1, build quality medium and high) runs the same rays as the baseline.
 #include <algorithm>
 #include <chrono>
@@ -39,7 +39,7 @@ struct Row {
   int threads = 0;
   size_t false_miss = 0, false_hit = 0, wrong_prim = 0, wrong_t = 0;
   double max_rel_t_err = 0.0, mean_rel_t_err = 0.0;
-  std::optional<double> embree_ratio_mt;
+  std::optional<double> embree_ratio_mt, embree_ratio_1t;
   bool is_embree = false;
 };
 
@@ -70,13 +70,13 @@ std::vector<std::string> split_list(const std::string& s) {
 }
 
 /// Rays per second of `trace_pass` (one pass over n rays): passes are repeated until a
-/// sample lasts >= 0.5 s; the median of three samples is returned, in Mrays/s.
+/// sample lasts >= min_time seconds; the median of three samples is returned, in Mrays/s.
 template <class Pass>
-double measure_mrays(size_t n, Pass&& trace_pass) {
+double measure_mrays(size_t n, double min_time, Pass&& trace_pass) {
   const auto t0 = Clock::now();
   trace_pass();
   const double first = std::chrono::duration<double>(Clock::now() - t0).count();
-  const int reps = std::max(1, int(std::ceil(0.5 / std::max(first, 1e-9))));
+  const int reps = std::max(1, int(std::ceil(min_time / std::max(first, 1e-9))));
   std::vector<double> rates;
   for (int sample = 0; sample < 3; ++sample) {
     const auto s0 = Clock::now();
@@ -106,7 +106,7 @@ std::vector<accel::Hit> run_parallel(size_t n, int threads, Query&& query) {
 /// recomputed exactly in double for the triangle it returns.
 std::vector<accel::ReferenceHit> reference_hits(const accel::Scene& scene, const std::vector<accel::Ray>& rays,
                                                 int threads) {
-  auto bvh = accel::build_structure("bvh", scene, {"builder=sah"}, accel::Kernel::Double);
+  auto bvh = accel::build_structure("bvh", scene, {"builder=sah", "width=2"}, accel::Kernel::Double);
   std::vector<accel::ReferenceHit> ref(rays.size());
   const auto hits = run_parallel(rays.size(), threads, [&](size_t i) { return bvh.value()->intersect(rays[i]); });
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -168,12 +168,13 @@ std::string fmt(double v, const char* f = "%.3g") {
 
 std::string markdown(const std::vector<Row>& rows) {
   std::string md =
-      "| scene | structure | params | kernel | build ms | MB | Mrays/s 1t | Mrays/s mt | vs Embree (mt) | false miss | "
-      "false hit | wrong tri | max rel t err |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "| scene | structure | params | kernel | build ms | MB | Mrays/s 1t | Mrays/s mt | vs Embree (1t) | vs Embree (mt) | "
+      "false miss | false hit | wrong tri | max rel t err |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) {
     md += "| " + r.scene + " | " + r.structure + " | " + (r.params.empty() ? "default" : r.params) + " | " + r.kernel +
           " | " + fmt(r.build_ms, "%.0f") + " | " + fmt(double(r.memory_bytes) / 1048576.0, "%.1f") + " | " +
           fmt(r.mrays_1t, "%.2f") + " | " + fmt(r.mrays_mt, "%.2f") + " | " +
+          (r.embree_ratio_1t ? fmt(*r.embree_ratio_1t, "%.2f") : std::string(r.is_embree ? "1 (baseline)" : "")) + " | " +
           (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.2f") : std::string(r.is_embree ? "1 (baseline)" : "")) +
           " | " + std::to_string(r.false_miss) + " | " + std::to_string(r.false_hit) + " | " +
           std::to_string(r.wrong_prim + r.wrong_t) + " | " + fmt(r.max_rel_t_err, "%.2g") + " |\n";
@@ -184,7 +185,7 @@ std::string markdown(const std::vector<Row>& rows) {
 std::string csv(const std::vector<Row>& rows) {
   std::string out =
       "scene,structure,params,kernel,rays,n_rays,build_ms,memory_bytes,mrays_1t,mrays_mt,threads,false_miss,false_hit,"
-      "wrong_prim,wrong_t,max_rel_t_err,mean_rel_t_err,embree_ratio_mt\n";
+      "wrong_prim,wrong_t,max_rel_t_err,mean_rel_t_err,embree_ratio_mt,embree_ratio_1t\n";
   auto q = [](const std::string& s) { return "\"" + s + "\""; };
   for (const Row& r : rows)
     out += q(r.scene) + "," + r.structure + "," + q(r.params) + "," + r.kernel + "," + q(r.rays) + "," +
@@ -192,7 +193,8 @@ std::string csv(const std::vector<Row>& rows) {
            fmt(r.mrays_1t, "%.4f") + "," + fmt(r.mrays_mt, "%.4f") + "," + std::to_string(r.threads) + "," +
            std::to_string(r.false_miss) + "," + std::to_string(r.false_hit) + "," + std::to_string(r.wrong_prim) + "," +
            std::to_string(r.wrong_t) + "," + fmt(r.max_rel_t_err, "%.6g") + "," + fmt(r.mean_rel_t_err, "%.6g") + "," +
-           (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : "") + "\n";
+           (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : "") + "," +
+           (r.embree_ratio_1t ? fmt(*r.embree_ratio_1t, "%.4f") : "") + "\n";
   return out;
 }
 
@@ -210,7 +212,8 @@ std::string json(const std::vector<Row>& rows) {
            ", \"wrong_t\": " + std::to_string(r.wrong_t) + ", \"max_rel_t_err\": " + fmt(r.max_rel_t_err, "%.6g") +
            ", \"mean_rel_t_err\": " + fmt(r.mean_rel_t_err, "%.6g");
     if (!r.is_embree)
-      out += ", \"embree_ratio_mt\": " + (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : std::string("null"));
+      out += ", \"embree_ratio_mt\": " + (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : std::string("null")) +
+             ", \"embree_ratio_1t\": " + (r.embree_ratio_1t ? fmt(*r.embree_ratio_1t, "%.4f") : std::string("null"));
     out += std::string("}") + (i + 1 < rows.size() ? "," : "") + "\n";
   }
   return out + "]\n";
@@ -279,7 +282,7 @@ int run_bench(const BenchOptions& o) {
     const auto ref = reference_hits(s, rays, threads);
     ++step;
 
-    std::optional<double> embree_mt;
+    std::optional<double> embree_mt, embree_1t;
     std::vector<Row> scene_rows;
     if (with_embree) {
       for (const char* quality : {"medium", "high"}) {
@@ -290,40 +293,44 @@ int run_bench(const BenchOptions& o) {
         row.build_ms = embree.build_ms();
         row.memory_bytes = embree.memory_bytes();
         row.threads = threads;
-        row.mrays_1t = measure_mrays(rays.size(), [&] {
+        row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
           for (const auto& r : rays) (void)embree.intersect(r);
         });
         std::vector<accel::Hit> hits;
-        row.mrays_mt = measure_mrays(rays.size(), [&] {
+        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
           hits = run_parallel(rays.size(), threads, [&](size_t i) { return embree.intersect(rays[i]); });
         });
         score(row, s, rays, hits, ref);
         embree_mt = std::max(embree_mt.value_or(0.0), row.mrays_mt);
+        embree_1t = std::max(embree_1t.value_or(0.0), row.mrays_1t);
         scene_rows.push_back(row);
         ++step;
       }
     }
     for (size_t k = 0; k < structures.size(); ++k) {
+      // One build per structure: the kernel only changes the queries.
+      const std::string name = structures[k]->name;
+      progress(step, total_steps, scene_spec + ": " + name + " build");
+      auto structure = structures[k]->create();
+      auto built = structure->build(s, param_sets[k]);
+      if (!built) return fail(built.error().message);
+      const accel::BuildStats stats = structure->build_stats();
       for (accel::Kernel kernel : kernels) {
-        const std::string name = structures[k]->name;
         progress(step, total_steps, scene_spec + ": " + name + " " + std::string(accel::kernel_name(kernel)));
-        auto structure = structures[k]->create();
         structure->set_kernel(kernel);
-        auto built = structure->build(s, param_sets[k]);
-        if (!built) return fail(built.error().message);
-        const accel::BuildStats stats = structure->build_stats();
         Row row = make_row(scene_spec, name, param_sets[k].to_string(), std::string(accel::kernel_name(kernel)), o.rays,
                            rays.size());
         row.build_ms = stats.build_ms;
         row.memory_bytes = stats.memory_bytes;
         row.threads = threads;
-        row.mrays_1t = measure_mrays(rays.size(), [&] {
+        row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
           for (const auto& r : rays) (void)structure->intersect(r);
         });
         std::vector<accel::Hit> hits;
-        row.mrays_mt = measure_mrays(rays.size(), [&] { hits = accel::trace_all(*structure, rays, threads); });
+        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] { hits = accel::trace_all(*structure, rays, threads); });
         score(row, s, rays, hits, ref);
         if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
+        if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
         scene_rows.push_back(row);
         ++step;
       }

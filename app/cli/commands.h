@@ -37,6 +37,7 @@ struct BenchOptions {
   std::string kernels = "watertight";
   std::string out_md, out_csv, out_json;
   bool embree = true;
+  double min_time = 0.5;  ///< seconds each timing sample lasts at least
 };
 
 int run_trace(const TraceOptions& options);

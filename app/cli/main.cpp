@@ -74,6 +74,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--threads", bench.threads, "threads of the multi-threaded run (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   bench_cmd->add_option("--kernel", bench.kernels, "comma list of watertight, moller, double")->capture_default_str();
+  bench_cmd->add_option("--min-time", bench.min_time, "seconds each of the 3 timing samples lasts at least")
+      ->check(CLI::Range(0.001, 60.0))
+      ->capture_default_str();
   bench_cmd->add_option("--out-md", bench.out_md, "write the table as Markdown");
   bench_cmd->add_option("--out-csv", bench.out_csv, "write the rows as CSV");
   bench_cmd->add_option("--out-json", bench.out_json, "write the rows as a JSON array");

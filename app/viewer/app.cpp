@@ -14,6 +14,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "bench_chart_panel.h"
 #include "registry.h"
 
 namespace viz {
@@ -39,6 +40,7 @@ App::App() : scene_(std::make_shared<accel::Scene>()) {
 #endif
   StructureRequest initial;
   initial.name = "bvh";
+  initial.params = {"width=2"};  // the lecture's binary tree first; width=4 is one click away
   set_editor(initial);
   requested_ = initial;
 }
@@ -321,6 +323,7 @@ void App::update(float dt) {
     if (panels_.compare) compare_panel();
     if (panels_.sweep) sweep_panel();
     if (panels_.legend && heatmap_on_) legend_panel();
+    bench_chart_window(chart_, layout_.chart.pos, layout_.chart.size, layout_.apply);
   }
   status_overlay();
   update_view_rect();

@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bench_chart.h"
 #include "camera.h"
 #include "heatmap.h"
 #include "panels.h"
@@ -106,6 +107,11 @@ class App {
 
   /// The scene currently shown.
   const accel::Scene& scene() const { return *scene_; }
+
+  /// Loads a bench JSON file (accelviz-cli bench --out-json) into the "Speed vs error"
+  /// chart and opens it. On failure the previous chart stays and the one-line error
+  /// ("PATH: ...") is returned and shown in the chart's file row. Needs no GL.
+  std::optional<accel::Error> load_bench(const std::string& path) { return load_bench_into(chart_, path); }
 
  private:
   // ---- app.cpp: structure and scene
@@ -272,7 +278,7 @@ class App {
     glm::vec2 pos{0.0f}, size{0.0f};
   };
   struct Layout {
-    WindowRect main, ray, code, steps, bottom, legend, status;
+    WindowRect main, ray, code, steps, bottom, legend, status, chart;
     bool apply = false;  // this frame: move the windows to these rectangles
   } layout_;
   int layout_frames_ = 2;      // frames left that (re)apply the layout
@@ -280,6 +286,7 @@ class App {
   struct Panels {
     bool main = true, ray = true, steps = true, code = true, compare = false, sweep = false, legend = true;
   } panels_;
+  BenchChartState chart_;      // the "Speed vs error" window (bench_chart_panel.cpp)
   bool ui_visible_ = true;
   bool lecture_mode_ = false;  // large fonts, high contrast
   bool lecture_mode_applied_ = false;

@@ -246,6 +246,26 @@ std::optional<accel::Error> App::execute(const ScriptCommand& c, ScriptHost& hos
       std::fflush(stdout);
       return std::nullopt;
     }
+    case CommandKind::LoadBench:
+      return load_bench(c.name);
+    case CommandKind::ShowChart: {
+      if (!c.on) {
+        chart_.open = false;
+        return std::nullopt;
+      }
+      if (!chart_.data)
+        return accel::make_error("show-chart: no bench JSON loaded (load-bench FILE or --bench-json FILE first)");
+      ChartOptions options = chart_.options;
+      for (const std::string& setting : c.params) set_chart_option(options, setting);  // checked by the parser
+      if (options.group >= chart_.data->groups.size())
+        return accel::make_error("show-chart: group=" + std::to_string(options.group + 1) + ", but " +
+                                 chart_.data->path + " has " + std::to_string(chart_.data->groups.size()) +
+                                 " group(s) of scene and rays");
+      chart_.options = options;
+      chart_.open = true;
+      ui_visible_ = true;
+      return std::nullopt;
+    }
     case CommandKind::PrintFrameTime: {
       const double ms = host.measure_frames(c.ints[0]);
       const glm::ivec2 fb = host.framebuffer_size();

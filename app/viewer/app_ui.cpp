@@ -13,6 +13,7 @@
 #include <imgui_stdlib.h>
 
 #include "app.h"
+#include "bench_chart_panel.h"
 #include "registry.h"
 
 namespace viz {
@@ -121,6 +122,10 @@ void App::layout_windows() {
   const float bottom_h = std::min(0.34f * h, 16.0f * em);
   layout_.bottom = {{pad, h - bottom_h - pad}, {std::max(rx - 2.0f * pad, 10.0f * em), bottom_h}};
   layout_.legend = {{cx, pad}, {0.0f, 0.0f}};
+  // The bench chart needs room more than the debug ray does: everything right of the
+  // controls (the whole width when they are hidden or collapsed).
+  const float chart_x = panels_.main && !lecture_mode_ ? cx : pad;
+  layout_.chart = {{chart_x, pad}, {w - chart_x - pad, h - 2.0f * pad}};
   layout_.status = {{cx, pad}, {0.0f, 0.0f}};
 }
 
@@ -146,6 +151,7 @@ void App::main_panel() {
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) display_section();
   if (ImGui::CollapsingHeader("Cost heat map")) heatmap_section();
   if (ImGui::CollapsingHeader("Parameter sweep")) sweep_section();
+  if (ImGui::CollapsingHeader("Speed vs error chart")) bench_chart_section(chart_);
   if (ImGui::CollapsingHeader("Keys and mouse")) {
     ImGui::TextDisabled("left drag: orbit   right drag: pan   wheel: zoom");
     ImGui::TextDisabled("click: shoot a ray through that pixel");

@@ -3,8 +3,8 @@
 // context and backends, a main loop that sleeps while iconified, cleanup in reverse.
 //
 // Exit codes: 0 success, 1 no display / no OpenGL 3.3 / missing shaders / screenshot not
-// written, 2 bad command line (unknown option, invalid --size, scene that fails to load) or
-// a failing --script command ("accelviz: SCRIPT:LINE: message").
+// written, 2 bad command line (unknown option, invalid --size, scene or --bench-json file
+// that fails to load) or a failing --script command ("accelviz: SCRIPT:LINE: message").
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -33,6 +33,7 @@ struct Options {
   std::string scene;            ///< OBJ path or procedural:NAME
   std::string screenshot;       ///< PNG path; empty = interactive
   std::string script;           ///< command script; empty = none
+  std::string bench_json;       ///< bench JSON for the "Speed vs error" chart; empty = none
   int frames = 3;               ///< frames rendered before the screenshot
   int width = 1280, height = 720;
   bool no_ui = false;           ///< start with the panels hidden
@@ -100,6 +101,8 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   cli.add_option("--script", options.script,
                  "run the viewer commands of this file (size, scene, structure, camera, ray-at-pixel, step, "
                  "screenshot, print-hit, ...; see app/viewer/script.h), then exit");
+  cli.add_option("--bench-json", options.bench_json,
+                 "open the speed-against-error chart of this accelviz-cli bench --out-json file");
   cli.add_flag("--no-ui", options.no_ui, "hide the panels (H shows them): clean screenshots for slides");
   cli.add_option("--msaa", options.msaa, "anti-aliasing samples per pixel, 0 (off) .. 16; 0 is much faster on "
                                          "software renderers (Mesa llvmpipe)")
@@ -287,6 +290,13 @@ int main(int argc, char** argv) {
   if (const auto error = app.load_scene(options.scene)) {
     std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
     return 2;
+  }
+  // Likewise a bad bench file: "accelviz: FILE: ..." before any window.
+  if (!options.bench_json.empty()) {
+    if (const auto error = app.load_bench(options.bench_json)) {
+      std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
+      return 2;
+    }
   }
   const auto shader_dir = viz::find_shader_dir(viz::Renderer::shader_files());
   if (!shader_dir) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "bench_chart.h"
 #include "geometry.h"
 #include "params.h"
 #include "rays_io.h"
@@ -225,6 +226,23 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     c.kind = CommandKind::PrintFrameTime;
     if (n != 1 || !parse_int(args[0], &c.ints[0]) || c.ints[0] < 1 || c.ints[0] > 10000)
       return count_error("print-frame-time N (1..10000 frames)");
+    return "";
+  }
+  if (verb == "load-bench") {
+    c.kind = CommandKind::LoadBench;
+    if (n != 1) return count_error("load-bench FILE");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "show-chart") {
+    c.kind = CommandKind::ShowChart;
+    const char* usage = "show-chart on|off [x=errors|t-error] [speed=mt|1t] [y=linear|log] [labels=on|off] [group=N]";
+    if (n < 1 || !parse_on_off(args[0], &c.on)) return count_error(usage);
+    // The settings are checked here (group against the file only when it runs).
+    ChartOptions check;
+    for (size_t i = 1; i < n; ++i)
+      if (std::string e = set_chart_option(check, args[i]); !e.empty()) return "show-chart: " + e;
+    c.params.assign(args.begin() + 1, args.end());
     return "";
   }
   return "unknown command '" + verb + "'";

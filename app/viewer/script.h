@@ -30,6 +30,10 @@
 //   print-ray                         "ox oy oz dx dy dz" as C99 hex floats (a rays-file line)
 //   print-stats                       build statistics of the current structure, one line
 //   print-frame-time N                render N frames, print the mean frame time
+//   load-bench FILE                   load a bench JSON (accelviz-cli bench --out-json) and
+//                                     open the "Speed vs error" chart
+//   show-chart on|off [SETTING ...]   show or hide the chart; settings x=errors|t-error,
+//                                     speed=mt|1t, y=linear|log, labels=on|off, group=N
 // Errors are "SCRIPT:LINE: message".
 #include <array>
 #include <string>
@@ -42,7 +46,7 @@ namespace viz {
 enum class CommandKind {
   Size, Scene, Preset, Structure, Kernel, Camera, RayAtPixel, Ray, Step, Show, Heatmap, Mesh,
   EmptyCells, Nodes, Opacity, Panel, Large, Compare, Sweep, Screenshot, Frames, PrintHit, PrintStep,
-  PrintRay, PrintStats, PrintFrameTime,
+  PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };
@@ -53,13 +57,13 @@ struct ScriptCommand {
   CommandKind kind = CommandKind::Size;
   int line = 0;                      ///< 1-based line in the script
   std::string name;                  ///< scene spec, structure, kernel, preset, panel, path, prefix, param
-  std::vector<std::string> params;   ///< structure: key=value list
+  std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
   std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
   bool has_fov = false;              ///< camera: FOVY given
   int ints[2] = {0, 0};              ///< size W H; step count; sweep steps; frame count
   StepMode step = StepMode::Forward;
   ShowMode show = ShowMode::All;
-  bool on = true;                    ///< panel/large/empty-cells/nodes on|off
+  bool on = true;                    ///< panel/large/empty-cells/nodes/show-chart on|off
 };
 
 /// Parses `text` (the script named `script_name` in messages). Validates everything that

@@ -149,6 +149,61 @@ def test_bad_input(cli, source, shared, work):
                 os.remove(out)
 
 
+BENCH_KEYS = {"scene": str, "structure": str, "params": str, "kernel": str, "rays": str, "n_rays": int,
+              "build_ms": (int, float), "memory_bytes": int, "mrays_1t": (int, float), "mrays_mt": (int, float),
+              "threads": int, "false_miss": int, "false_hit": int, "wrong_prim": int, "max_rel_t_err": (int, float)}
+
+
+def test_bench(cli, work):
+    """bench writes one row per scene x structure x kernel (plus Embree rows when built with
+    it) with the keys of issue #6, the same rows as JSON, CSV and Markdown, and the watertight
+    kernel makes no error; bad options fail before any output file is written."""
+    import json
+    out = {ext: os.path.join(work, f"bench.{ext}") for ext in ("json", "csv", "md")}
+    args = ["bench", "--scene", "procedural:cornell", "--scene", "procedural:soup", "--structures", "all",
+            "--kernel", "watertight,moller", "--rays", "random:2000:1", "--threads", "2", "--min-time", "0.001",
+            "--out-json", out["json"], "--out-csv", out["csv"], "--out-md", out["md"]]
+    code, stdout, err = run(cli, *args)
+    check(code == 0, f"bench: exit {code}, stderr {err!r}")
+    if code != 0:
+        return
+    with open(out["json"]) as f:
+        rows = json.load(f)
+    ours = [r for r in rows if not r["structure"].startswith("embree-")]
+    embree = [r for r in rows if r["structure"].startswith("embree-")]
+    check(len(ours) == 2 * 5 * 2, f"bench: {len(ours)} project rows, expected 2 scenes x 5 structures x 2 kernels")
+    check(len(embree) in (0, 4), f"bench: {len(embree)} Embree rows, expected none or medium+high per scene")
+    for r in rows:
+        for key, kind in BENCH_KEYS.items():
+            check(key in r and isinstance(r[key], kind), f"bench row {r.get('structure')}: key {key!r} missing or mistyped")
+        check(r["n_rays"] == 2000 and r["rays"] == "random:2000:1", f"bench row {r['structure']}: rays {r['rays']}")
+        check(r["mrays_1t"] > 0 and r["mrays_mt"] > 0, f"bench row {r['structure']}: no throughput")
+    for r in ours:
+        check("embree_ratio_mt" in r, f"bench row {r['structure']}: no embree_ratio_mt key")
+        check((r["embree_ratio_mt"] is None) == (not embree), f"bench row {r['structure']}: ratio {r['embree_ratio_mt']}")
+        if r["kernel"] == "watertight":
+            errors = r["false_miss"] + r["false_hit"] + r["wrong_prim"]
+            check(errors == 0, f"bench: {r['scene']} {r['structure']} watertight has {errors} errors")
+    with open(out["csv"]) as f:
+        csv_lines = f.read().splitlines()
+    check(len(csv_lines) == len(rows) + 1 and csv_lines[0].startswith("scene,structure,params,kernel,rays,n_rays"),
+          f"bench CSV: {len(csv_lines)} lines")
+    with open(out["md"]) as f:
+        md = f.read()
+    check(md == stdout and md.count("\n") == len(rows) + 2, "bench Markdown: not the printed table")
+    bad_out = os.path.join(work, "bench_bad.json")
+    bench = ["bench", "--scene", "procedural:cornell", "--rays", "random:10:1", "--out-json", bad_out]
+    expect_bad(cli, bench + ["--structures", "grid,quadtree"], "unknown structure 'quadtree'", bad_out)
+    expect_bad(cli, bench + ["--kernel", "fast"], "--kernel 'fast' is invalid", bad_out)
+    expect_bad(cli, bench + ["--param", "colour=red"], "--param 'colour=red' matches no parameter", bad_out)
+    expect_bad(cli, bench + ["--structures", "bvh", "--param", "leaf_size=0"], "'leaf_size' = '0' is invalid", bad_out)
+    expect_bad(cli, ["bench", "--scene", "procedural:cornell", "--rays", "random:0:1", "--out-json", bad_out], "random",
+               bad_out)
+    expect_bad(cli, bench + ["--min-time", "0"], "--min-time", bad_out)
+    expect_bad(cli, ["bench", "--scene", "/nonexistent/x.obj", "--out-json", bad_out], "/nonexistent/x.obj: cannot open",
+               bad_out)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cli", required=True)
@@ -160,6 +215,7 @@ def main():
     os.makedirs(a.work)
     test_trace(a.cli, a.source, a.work)
     test_bad_input(a.cli, a.source, a.shared, a.work)
+    test_bench(a.cli, a.work)
     print(f"{'FAILED' if FAILURES else 'OK'}: {len(FAILURES)} failures")
     return 1 if FAILURES else 0
 

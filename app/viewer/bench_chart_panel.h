@@ -1,0 +1,21 @@
+#pragma once
+// The ImGui side of the speed-against-error chart (bench_chart.h computes it): the
+// "Speed vs error" window and the main panel's section that loads a file and opens it.
+#include <glm/vec2.hpp>
+
+#include "bench_chart.h"
+
+namespace viz {
+
+/// Draws the "Speed vs error" window when state.open (its close button clears it): the
+/// file row, the group / x-metric / speed controls, a caption, and the chart with its
+/// legend and hover tooltips. `pos` and `size` (window coordinates) are applied when
+/// `apply_layout` is set and the first time the window appears; otherwise the user may
+/// move it. Call between ImGui::NewFrame() and ImGui::Render().
+void bench_chart_window(BenchChartState& state, glm::vec2 pos, glm::vec2 size, bool apply_layout);
+
+/// The main panel's section: a path field with Load (opens the window on success, shows
+/// the error otherwise) and a button that shows or hides the window.
+void bench_chart_section(BenchChartState& state);
+
+}  // namespace viz

@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Summary tables of `accelviz-cli bench` JSON files (as scripts/bench_shared.sh writes them):
+throughput per mesh and structure against Embree, and errors per structure and kernel.
+
+    scripts/bench_report.py A.json [B.json ...] [--out-json ALL.json] > report.md
+
+Rows of all files are merged; an Embree row is kept once per (scene, rays, quality): later
+files timed Embree again only to give their own rows a ratio from the same run. The merged
+rows go to --out-json (the viewer's chart reads them)."""
+import argparse
+import datetime
+import json
+import math
+import os
+import platform
+import subprocess
+
+
+def cpu_name():
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout
+        fields = dict(line.split(":", 1) for line in out.splitlines() if ":" in line)
+        return f"{fields['Model name'].strip()}, {fields['CPU(s)'].strip()} logical CPUs"
+    except (OSError, subprocess.CalledProcessError, KeyError):
+        return platform.processor() or "unknown CPU"
+
+
+def geomean(values):
+    values = [v for v in values if v and v > 0]
+    return math.exp(sum(math.log(v) for v in values) / len(values)) if values else float("nan")
+
+
+def merge(paths):
+    rows, seen_embree = [], set()
+    for path in paths:
+        with open(path) as f:
+            for r in json.load(f):
+                if r["structure"].startswith("embree-"):
+                    key = (r["scene"], r["rays"], r["structure"])
+                    if key in seen_embree:
+                        continue
+                    seen_embree.add(key)
+                rows.append(r)
+    return rows
+
+
+def mesh(scene):
+    return os.path.basename(scene)
+
+
+def speed_table(rows, rays):
+    structures = ["bvh", "kdtree", "octree", "grid", "spheretree"]
+    sel = [r for r in rows if r["rays"] == rays]
+    scenes = list(dict.fromkeys(r["scene"] for r in sel))
+    out = [f"\nRays `{rays}`, watertight kernel, Mrays/s with 1 thread / all threads "
+           f"({sel[0]['threads']}); ratio = bvh / the faster Embree row:\n",
+           "| mesh | Embree 1t / mt | " + " | ".join(structures) + " | bvh / Embree 1t | bvh / Embree mt |",
+           "|---|---:|" + "---:|" * len(structures) + "---:|---:|"]
+    ratios_1t, ratios_mt = [], []
+    for scene in scenes:
+        here = [r for r in sel if r["scene"] == scene]
+        embree = [r for r in here if r["structure"].startswith("embree-")]
+        e1 = max((r["mrays_1t"] for r in embree), default=None)
+        emt = max((r["mrays_mt"] for r in embree), default=None)
+        cells = []
+        bvh = None
+        for s in structures:
+            r = next((r for r in here if r["structure"] == s and r["kernel"] == "watertight"), None)
+            cells.append(f"{r['mrays_1t']:.2f} / {r['mrays_mt']:.2f}" if r else "")
+            if s == "bvh":
+                bvh = r
+        r1 = bvh["mrays_1t"] / e1 if bvh and e1 else None
+        rmt = bvh["mrays_mt"] / emt if bvh and emt else None
+        ratios_1t.append(r1)
+        ratios_mt.append(rmt)
+        fmt = lambda x: f"{x:.2f}" if x else ""
+        embree_cell = f"{e1:.2f} / {emt:.2f}" if e1 else ""
+        out.append(f"| {mesh(scene)} | {embree_cell} | " + " | ".join(cells) + f" | {fmt(r1)} | {fmt(rmt)} |")
+    valid_1t = [r for r in ratios_1t if r]
+    valid_mt = [r for r in ratios_mt if r]
+    if valid_mt:
+        out.append(f"\nbvh / Embree over the {len(valid_mt)} meshes: geometric mean {geomean(valid_1t):.2f} "
+                   f"(1 thread), {geomean(valid_mt):.2f} (all threads); all threads min {min(valid_mt):.2f}, "
+                   f"max {max(valid_mt):.2f}.")
+    return out
+
+
+def error_table(rows):
+    keys = list(dict.fromkeys((r["structure"], r["kernel"]) for r in rows))
+    out = ["\nErrors against the double-precision reference, summed over every mesh and both ray sets "
+           "(a ray counts once: a false miss, a false hit, or a wrong triangle with a t that is not a tie):\n",
+           "| structure | kernel | rays | false miss | false hit | wrong tri | max rel t err | Mrays/s mt vs Embree (geo. mean) |",
+           "|---|---|---:|---:|---:|---:|---:|---:|"]
+    for structure, kernel in keys:
+        sel = [r for r in rows if r["structure"] == structure and r["kernel"] == kernel]
+        ratio = geomean([r.get("embree_ratio_mt") for r in sel])
+        ratio_cell = "baseline" if structure.startswith("embree-") else ("" if math.isnan(ratio) else f"{ratio:.2f}")
+        out.append(f"| {structure} | {kernel} | {sum(r['n_rays'] for r in sel):,} | {sum(r['false_miss'] for r in sel)} | "
+                   f"{sum(r['false_hit'] for r in sel)} | {sum(r['wrong_prim'] for r in sel)} | "
+                   f"{max(r['max_rel_t_err'] for r in sel):.2g} | {ratio_cell} |")
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("files", nargs="+")
+    ap.add_argument("--out-json")
+    a = ap.parse_args()
+    rows = merge(a.files)
+    if a.out_json:
+        tmp = a.out_json + ".tmp"
+        with open(tmp, "w") as f:
+            json.dump(rows, f, indent=1)
+        os.replace(tmp, a.out_json)  # never a half-written file
+    lines = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} (`scripts/bench_shared.sh`)."]
+    for rays in dict.fromkeys(r["rays"] for r in rows):
+        lines += speed_table(rows, rays)
+    lines += error_table(rows)
+    print("\n".join(lines))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
