@@ -21,9 +21,7 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
     Hit closest = no_hit(ray);
     sink.visit(0, 0, ray.tmin, ray.tmax);
     for (uint32_t prim : scene_->valid_prims()) test_triangle(*scene_, tester, prim, closest, sink);
-    const Hit result = finish_hit(closest);
-    sink.done(result);
-    return result;
+    return finish_query(closest, sink);
   }
 
  protected:

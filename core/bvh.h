@@ -23,9 +23,7 @@ class Bvh final : public Hierarchy<Bvh, Aabb, BoxTester> {
     if (width_ == 2) return Hierarchy::traverse(ray, sink);
     Hit closest = no_hit(ray);
     wide_.traverse(ray, TriangleTester(ray, kernel_), order_, closest, sink);
-    const Hit result = finish_hit(closest);
-    sink.done(result);
-    return result;
+    return finish_query(closest, sink);
   }
 
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;

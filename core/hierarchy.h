@@ -101,9 +101,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
         case TraversalOrder::PriorityQueue: traverse_pqueue(ray, vray, tester, closest, sink); break;
       }
     }
-    const Hit result = finish_hit(closest);
-    sink.done(result);
-    return result;
+    return finish_query(closest, sink);
   }
 
  protected:

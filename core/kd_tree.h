@@ -272,9 +272,7 @@ Hit KdTree::traverse(const Ray& ray, Sink& sink) const {
       if (!more) break;
     }
   }
-  const Hit result = finish_hit(closest);
-  sink.done(result);
-  return result;
+  return finish_query(closest, sink);
 }
 
 }  // namespace accel

@@ -275,9 +275,7 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
       }
     }
   }
-  const Hit result = finish_hit(closest);
-  sink.done(result);
-  return result;
+  return finish_query(closest, sink);
 }
 
 }  // namespace accel

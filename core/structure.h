@@ -156,5 +156,12 @@ inline Hit finish_hit(Hit h) {
   if (!h.valid()) h = Hit{};
   return h;
 }
+/// Ends a query: the answer of finish_hit(), reported to the sink.
+template <class Sink>
+inline Hit finish_query(const Hit& closest, Sink& sink) {
+  const Hit result = finish_hit(closest);
+  sink.done(result);
+  return result;
+}
 
 }  // namespace accel

@@ -122,9 +122,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
       else
         walk<false>(ray, tester, closest, sink);
     }
-    const Hit result = finish_hit(closest);
-    sink.done(result);
-    return result;
+    return finish_query(closest, sink);
   }
 
  protected:

@@ -1,7 +1,8 @@
 // accelviz-cli bench: speed against error on the same rays. For every scene x structure x
 // kernel: build time, memory, Mrays/s with one and with all threads (tracing only, repeated
-// to >= --min-time (0.5 s), median of 3), and the errors against the double-precision reference. Embree 3
-// (rtcIntersect1, build quality medium and high) runs the same rays as the baseline.
+// to >= --min-time seconds, median of 3), and the errors against the double-precision
+// reference. Embree 3 (rtcIntersect1, build quality medium and high) runs the same rays as
+// the baseline.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
