@@ -69,6 +69,10 @@ class TriangleTester {
                                      float* v) const;
   ACCEL_FORCE_INLINE int moller4(const TriangleBlock& block, int lanes, float tmax, float* t, float* u,
                                  float* v) const;
+  /// Runs a scalar `test(p0, p1, p2, tmax, &hit)` on each lane set in `lanes`.
+  template <class Test>
+  static int test_lanes(const TriangleBlock& block, int lanes, float tmax, float* t, float* u, float* v,
+                        const Test& test);
   // Inline: they run in every structure's innermost loop.
   ACCEL_FORCE_INLINE bool watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   inline bool moller(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
@@ -176,10 +180,18 @@ int TriangleTester::intersect4(const TriangleBlock& block, int lanes, float tmax
                                float* v) const {
   if (kernel_ == Kernel::Watertight) return watertight4(block, lanes, tmax, t, u, v);
   if (kernel_ == Kernel::Moller) return moller4(block, lanes, tmax, t, u, v);
+  // Double: the reference has no SIMD form; lane by lane.
+  return test_lanes(block, lanes, tmax, t, u, v, [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max,
+                                                       TriangleHit* h) { return reference(p0, p1, p2, t_max, h); });
+}
+
+template <class Test>
+int TriangleTester::test_lanes(const TriangleBlock& block, int lanes, float tmax, float* t, float* u, float* v,
+                               const Test& test) {
   int mask = 0;
   for (int lane = 0; lane < 4; ++lane) {
     TriangleHit h;
-    if ((lanes >> lane) & 1 && intersect(block.vertex(lane, 0), block.vertex(lane, 1), block.vertex(lane, 2), tmax, &h)) {
+    if ((lanes >> lane) & 1 && test(block.vertex(lane, 0), block.vertex(lane, 1), block.vertex(lane, 2), tmax, &h)) {
       mask |= 1 << lane;
       t[lane] = h.t;
       u[lane] = h.u;
@@ -255,16 +267,13 @@ int TriangleTester::watertight4(const TriangleBlock& block, int lanes, float tma
       _mm_storeu_ps(v_out, _mm_mul_ps(w_, inv_det));
     }
   }
-  // Lanes too close to an edge or to tmin/tmax: the double-precision test decides.
-  for (int lane = 0; fallback; ++lane, fallback >>= 1) {
-    TriangleHit h;
-    if ((fallback & 1) && reference(block.vertex(lane, 0), block.vertex(lane, 1), block.vertex(lane, 2), tmax, &h)) {
-      hits |= 1 << lane;
-      t_out[lane] = h.t;
-      u_out[lane] = h.u;
-      v_out[lane] = h.v;
-    }
-  }
+  // Lanes too close to an edge or to tmin/tmax: the double-precision test decides (after the
+  // stores above, so their answers overwrite those lanes).
+  if (fallback)
+    hits |= test_lanes(block, fallback, tmax, t_out, u_out, v_out,
+                       [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max, TriangleHit* h) {
+                         return reference(p0, p1, p2, t_max, h);
+                       });
   return hits;
 }
 

@@ -217,14 +217,19 @@ TEST(WideBvh, FourWallsCollapseToOneRootWithFourLeaves) {
   EXPECT_FALSE(s->node_view(0).leaf);
 }
 
-TEST(WideBvh, DfsDescendsInTreeOrder) {
+/// The four walls as a 4-wide tree walked by `traversal`, with the ray from +x.
+Steps walls_from_plus_x(const std::string& traversal, Hit* hit) {
   const Scene scene = four_walls();
-  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=dfs"});
+  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=" + traversal});
   Ray r;
   r.org = Vec3(10, 0, 0);
   r.dir = Vec3(-1, 0, 0);
+  return record(*s, r, hit);
+}
+
+TEST(WideBvh, DfsDescendsInTreeOrder) {
   Hit hit;
-  const Steps steps = record(*s, r, &hit);
+  const Steps steps = walls_from_plus_x("dfs", &hit);
   // All four boxes are tested at the root; the first child is entered at once, the other
   // three wait on the stack (pushed last-first) and each improves the closest hit.
   EXPECT_EQ(steps.visits, (std::vector<NodeId>{0, 1, 2, 3, 4}));
@@ -235,13 +240,8 @@ TEST(WideBvh, DfsDescendsInTreeOrder) {
 }
 
 TEST(WideBvh, OrderedEntersNearestChildAndSkipsTheRest) {
-  const Scene scene = four_walls();
-  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=ordered"});
-  Ray r;
-  r.org = Vec3(10, 0, 0);
-  r.dir = Vec3(-1, 0, 0);
   Hit hit;
-  const Steps steps = record(*s, r, &hit);
+  const Steps steps = walls_from_plus_x("ordered", &hit);
   EXPECT_EQ(steps.visits, (std::vector<NodeId>{0, 4}));
   EXPECT_EQ(steps.pops, (std::vector<NodeId>{3, 2, 1}));
   EXPECT_EQ(steps.pop_keys, (std::vector<float>{8, 9, 10}));
@@ -251,13 +251,8 @@ TEST(WideBvh, OrderedEntersNearestChildAndSkipsTheRest) {
 }
 
 TEST(WideBvh, PriorityQueueStopsAtTheFirstKeyBeyondTheClosestHit) {
-  const Scene scene = four_walls();
-  auto s = build("bvh", scene, {"builder=median", "axis=x", "leaf_size=1", "width=4", "traversal=pqueue"});
-  Ray r;
-  r.org = Vec3(10, 0, 0);
-  r.dir = Vec3(-1, 0, 0);
   Hit hit;
-  const Steps steps = record(*s, r, &hit);
+  const Steps steps = walls_from_plus_x("pqueue", &hit);
   EXPECT_EQ(steps.visits, (std::vector<NodeId>{0, 4}));
   EXPECT_EQ(steps.pops, (std::vector<NodeId>{0, 4, 3}));
   EXPECT_EQ(steps.culls, (std::vector<NodeId>{3, 2, 1}));
