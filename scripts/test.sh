@@ -17,7 +17,11 @@ if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACCEL_SANITIZE=ON \
         -DACCEL_BUILD_APP=OFF >/dev/null
   cmake --build "$root/build-asan" -j"$jobs"
+  # Two hard-suite configurations are left to the Release pass: their builds over 3000
+  # overlapping coplanar triangles take over a minute each under ASan, and the same code
+  # (kd-tree, grid) runs here in the default configurations.
   (cd "$root/build-asan" && ACCEL_TEST_RAY_SCALE=0.1 \
      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-     ctest --output-on-failure -j"$jobs")
+     ctest --output-on-failure -j"$jobs" \
+       -E "HardCases.WatertightKernelPassesEveryCase/(kdtree_split_middle|grid_resolution_avgsize)")
 fi
