@@ -108,10 +108,8 @@ class WideBvh {
   void clear();
 
   size_t size() const { return entries_.size(); }
-  const Entry& entry(NodeId id) const { return entries_[id]; }
+  /// The WideNode of inner node `id` (for tests of the tree's shape).
   const WideNode& wide_node(NodeId id) const { return nodes_[entries_[id].index]; }
-  const Aabb& box(NodeId id) const { return boxes_[id]; }
-  int depth(NodeId id) const { return depth_[id]; }
   NodeView node_view(NodeId id) const;
   std::vector<uint32_t> node_prims(NodeId id) const;
   /// Nodes, entries, triangle references and the leaf-ordered triangle copies.

@@ -39,7 +39,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 namespace {
 
+using testing::make_ray;
 using testing::ReferenceHit;
+using testing::visited;
 
 std::unique_ptr<Structure> build(const Scene& scene, const std::vector<std::string>& params) {
   auto built = build_structure("kdtree", scene, params);
@@ -66,22 +68,6 @@ std::string steps(const TraceRecorder& rec) {
     }
   }
   return out.str();
-}
-
-std::vector<NodeId> visited(const TraceRecorder& rec) {
-  std::vector<NodeId> ids;
-  for (const TraceEvent& e : rec.events())
-    if (e.kind == TraceEventKind::Visit) ids.push_back(e.node);
-  return ids;
-}
-
-Ray make_ray(Vec3 org, Vec3 dir, float tmin = 0.0f, float tmax = kInf) {
-  Ray r;
-  r.org = org;
-  r.dir = dir;
-  r.tmin = tmin;
-  r.tmax = tmax;
-  return r;
 }
 
 // Two triangles facing the x axis: T0 in the plane x = 0.2 (the lower-left half y + z <= 1

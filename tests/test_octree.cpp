@@ -33,6 +33,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 namespace {
 
+using testing::make_ray;
+using testing::visited;
+
 // [SECTION] Helpers
 
 Scene make_scene(std::vector<std::array<Vec3, 3>> tris) {
@@ -72,20 +75,6 @@ std::vector<std::string> tokens(const TraceRecorder& rec) {
     }
   }
   return out;
-}
-
-std::vector<NodeId> visited(const TraceRecorder& rec) {
-  std::vector<NodeId> out;
-  for (const TraceEvent& e : rec.events())
-    if (e.kind == TraceEventKind::Visit) out.push_back(e.node);
-  return out;
-}
-
-Ray make_ray(Vec3 org, Vec3 dir) {
-  Ray r;
-  r.org = org;
-  r.dir = dir;
-  return r;
 }
 
 // [SECTION] Hand-checked traces
@@ -141,13 +130,18 @@ TEST(OctreeTrace, OctantsSceneHasTheExpectedLayout) {
 // every triangle (z = 0.25 < 0.3), so nothing is hit and every child it passes is visited.
 // It passes octant 1 (t in [0, 0.4]), then octant 3 (y > 0.5 from t = 0.4), then octant 2
 // (x < 0.5 from t = 0.5); it misses octant 0 (x < 0.5 only once y > 0.5) and octant 7 (z).
-TEST(OctreeTrace, FixedOrderVisitsOctantsZeroToSeven) {
+/// Ray R1 through the octants scene's octree (max_prims=1) with child `order`: no hit.
+TraceRecorder trace_r1(const std::string& order) {
   const Scene scene = octants_scene();
-  auto s = build(scene, {"max_prims=1", "order=fixed"});
-  ASSERT_TRUE(s);
+  auto s = build(scene, {"max_prims=1", "order=" + order});
   TraceRecorder rec;
-  const Hit h = s->intersect_traced(make_ray({1.0f, 0.1f, 0.25f}, {-1, 1, 0}), rec);
-  EXPECT_FALSE(h.valid());
+  if (!s) return rec;  // build() has reported the failure
+  EXPECT_FALSE(s->intersect_traced(make_ray({1.0f, 0.1f, 0.25f}, {-1, 1, 0}), rec).valid());
+  return rec;
+}
+
+TEST(OctreeTrace, FixedOrderVisitsOctantsZeroToSeven) {
+  const TraceRecorder rec = trace_r1("fixed");
   // The lecture's order: children tested 0..7 (ids 1..8), the hit ones pushed in reverse
   // so id 2 (octant 1) pops first, then id 3 (octant 2), then id 4 (octant 3): octant 2 is
   // visited before octant 3 although the ray reaches it later.
@@ -163,12 +157,7 @@ TEST(OctreeTrace, FixedOrderVisitsOctantsZeroToSeven) {
 }
 
 TEST(OctreeTrace, SortedOrderVisitsOctantsFrontToBack) {
-  const Scene scene = octants_scene();
-  auto s = build(scene, {"max_prims=1", "order=sorted"});
-  ASSERT_TRUE(s);
-  TraceRecorder rec;
-  const Hit h = s->intersect_traced(make_ray({1.0f, 0.1f, 0.25f}, {-1, 1, 0}), rec);
-  EXPECT_FALSE(h.valid());
+  const TraceRecorder rec = trace_r1("sorted");
   // The ray travels down x only: mask = 1, octants tested in the order i ^ 1 =
   // 1, 0, 3, 2, 5, 4, 7, 6 (ids 2, 1, 4, 3, 6, 5, 8, 7): the passed ones in the ray's order
   // 1, 3, 2 = ids 2, 4, 3, whose entry distances 0, 0.4, 0.5 increase.

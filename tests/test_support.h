@@ -47,6 +47,24 @@ inline size_t scaled(size_t n) { return std::max<size_t>(1, size_t(double(n) * r
 /// An image side scaled so the pixel count scales like the ray count.
 inline int scaled_side(int side) { return std::max(1, int(double(side) * std::sqrt(ray_scale()))); }
 
+/// A ray o + t*d over [tmin, tmax], for hand-checked tests.
+inline Ray make_ray(Vec3 org, Vec3 dir, float tmin = 0.0f, float tmax = kInf) {
+  Ray r;
+  r.org = org;
+  r.dir = dir;
+  r.tmin = tmin;
+  r.tmax = tmax;
+  return r;
+}
+
+/// The nodes a recorded traversal visited, in order.
+inline std::vector<NodeId> visited(const TraceRecorder& rec) {
+  std::vector<NodeId> ids;
+  for (const TraceEvent& e : rec.events())
+    if (e.kind == TraceEventKind::Visit) ids.push_back(e.node);
+  return ids;
+}
+
 /// FNV-1a over raw bytes: identifies a scene + ray set for the reference cache.
 inline uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ull) {
   const auto* p = static_cast<const unsigned char*>(data);

@@ -9,11 +9,13 @@
 #include "ray_gen.h"
 #include "registry.h"
 #include "structure_suite.h"
+#include "test_support.h"
 #include "uniform_grid.h"
 
 namespace accel {
 namespace {
 
+using testing::make_ray;
 using testing::StructureVsReference;
 using testing::SuiteCase;
 
@@ -56,13 +58,6 @@ std::unique_ptr<Structure> build(const Scene& scene, const std::vector<std::stri
   auto s = build_structure("grid", scene, params);
   EXPECT_TRUE(s) << s.error().message;
   return s ? std::move(s.value()) : nullptr;
-}
-
-Ray make_ray(Vec3 org, Vec3 dir) {
-  Ray r;
-  r.org = org;
-  r.dir = dir;
-  return r;
 }
 
 std::vector<TraceEvent> events_of(const std::vector<TraceEvent>& all, TraceEventKind kind) {

@@ -218,6 +218,15 @@ void App::set_editor(const StructureRequest& request) {
   editor_kernel_ = request.kernel;
 }
 
+void App::switch_structure(const std::string& name, const std::vector<std::string>& params) {
+  StructureRequest r;
+  r.name = name;
+  r.params = params;
+  r.kernel = editor_kernel_;
+  set_editor(r);
+  request_structure(request_from_editor());
+}
+
 void App::request_structure(const StructureRequest& request) {
   requested_ = request;
   if (build_job_.busy() && !synchronous_) {

@@ -121,6 +121,9 @@ class App {
   void install_structure(BuiltPtr built);
   StructureRequest request_from_editor() const;
   void set_editor(const StructureRequest& request);
+  /// Shows structure `name` with `params` (others at their defaults, the editor's kernel
+  /// kept): fills the editor and requests the build.
+  void switch_structure(const std::string& name, const std::vector<std::string>& params);
   bool structure_matches_scene() const { return built_ && built_->scene == scene_; }
   void frame_scene() { frame_requested_ = true; }
   void update_camera_input();

@@ -46,15 +46,9 @@ std::optional<accel::Error> App::execute(const ScriptCommand& c, ScriptHost& hos
       if (!panel_.load_error.empty()) return accel::make_error(panel_.load_error);
       return need_structure();
     }
-    case CommandKind::Structure: {
-      StructureRequest r;
-      r.name = c.name;
-      r.params = c.params;
-      r.kernel = editor_kernel_;
-      set_editor(r);
-      request_structure(request_from_editor());
+    case CommandKind::Structure:
+      switch_structure(c.name, c.params);
       return need_structure();
-    }
     case CommandKind::Kernel: {
       accel::Kernel k;
       accel::parse_kernel(c.name, &k);

@@ -220,13 +220,8 @@ void App::structure_section() {
   if (ImGui::BeginCombo("structure", registry[static_cast<size_t>(editor_structure_)].name.c_str())) {
     for (int i = 0; i < static_cast<int>(registry.size()); ++i) {
       if (ImGui::Selectable(registry[static_cast<size_t>(i)].name.c_str(), i == editor_structure_) &&
-          i != editor_structure_) {
-        StructureRequest r;
-        r.name = registry[static_cast<size_t>(i)].name;
-        r.kernel = editor_kernel_;
-        set_editor(r);
-        request_structure(request_from_editor());
-      }
+          i != editor_structure_)
+        switch_structure(registry[static_cast<size_t>(i)].name, {});
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", registry[static_cast<size_t>(i)].description.c_str());
     }
     ImGui::EndCombo();
@@ -791,14 +786,7 @@ void App::compare_panel() {
       ImGui::Text("%.1f", r.build_ms);
       ImGui::TableSetColumnIndex(7);
       ImGui::PushID(static_cast<int>(i));
-      if (!current && ImGui::SmallButton("show")) {
-        StructureRequest req;
-        req.name = r.structure;
-        req.params = r.params;
-        req.kernel = editor_kernel_;
-        set_editor(req);
-        request_structure(request_from_editor());
-      }
+      if (!current && ImGui::SmallButton("show")) switch_structure(r.structure, r.params);
       ImGui::PopID();
     }
     ImGui::EndTable();
