@@ -15,10 +15,16 @@ std::string_view kernel_name(Kernel k) {
 }
 
 bool parse_kernel(std::string_view name, Kernel* out) {
-  for (Kernel k : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) {
+  for (Kernel k : kAllKernels) {
     if (name == kernel_name(k)) { *out = k; return true; }
   }
   return false;
+}
+
+std::string kernel_names_text(std::string_view separator) {
+  std::string s;
+  for (Kernel k : kAllKernels) s += (s.empty() ? "" : std::string(separator)) + std::string(kernel_name(k));
+  return s;
 }
 
 TriangleTester::TriangleTester(const Ray& ray, Kernel kernel) : ray_(ray), kernel_(kernel) {

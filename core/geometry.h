@@ -4,6 +4,7 @@
 // inclusive, never a zero-area triangle, never a triangle whose plane contains the ray.
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -29,9 +30,14 @@ enum class Kernel : uint8_t {
   Moller,      ///< Moller & Trumbore 1997 in float: fast, not watertight at shared edges
   Double,      ///< the watertight algorithm in double precision: the reference
 };
+/// Every kernel, the default (watertight) first.
+inline constexpr Kernel kAllKernels[] = {Kernel::Watertight, Kernel::Moller, Kernel::Double};
+/// "watertight", "moller" or "double": what --kernel and the script command take.
 std::string_view kernel_name(Kernel k);
 /// Parses "watertight" / "moller" / "double"; false for anything else.
 bool parse_kernel(std::string_view name, Kernel* out);
+/// "watertight, moller, double": the valid names, for error messages.
+std::string kernel_names_text(std::string_view separator = ", ");
 
 /// Result of one triangle test.
 struct TriangleHit {

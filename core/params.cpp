@@ -55,19 +55,19 @@ std::string ParamSpec::range_text() const {
   return {};
 }
 
-Result<bool> validate_param(const ParamSpec& spec, const std::string& value, const std::string& structure_name) {
+Status validate_param(const ParamSpec& spec, const std::string& value, const std::string& structure_name) {
   const std::string who = (structure_name.empty() ? "" : structure_name + " ") + "parameter '" + spec.name + "'";
   auto bad = [&] { return make_error(who + " = '" + value + "' is invalid: expected " + spec.range_text()); };
   switch (spec.type) {
     case ParamSpec::Type::Int: {
       long v;
       if (!parse_long_strict(value, &v) || v < spec.min || v > spec.max) return bad();
-      return true;
+      return {};
     }
     case ParamSpec::Type::Float: {
       double v;
       if (!parse_double_strict(value, &v) || v < spec.min || v > spec.max) return bad();
-      return true;
+      return {};
     }
     case ParamSpec::Type::Int3: {
       const auto parts = split(value, ',');
@@ -76,11 +76,11 @@ Result<bool> validate_param(const ParamSpec& spec, const std::string& value, con
         long v;
         if (!parse_long_strict(p, &v) || v < spec.min || v > spec.max) return bad();
       }
-      return true;
+      return {};
     }
     case ParamSpec::Type::Choice:
       for (const auto& c : spec.choices)
-        if (c == value) return true;
+        if (c == value) return {};
       return bad();
   }
   return bad();
@@ -102,7 +102,7 @@ Result<ParamSet> ParamSet::parse(const std::vector<ParamSpec>& specs, const std:
   return set;
 }
 
-Result<bool> ParamSet::set(const std::string& key, const std::string& value) {
+Status ParamSet::set(const std::string& key, const std::string& value) {
   const ParamSpec* spec = find(key);
   if (!spec) {
     std::string valid;
@@ -115,7 +115,7 @@ Result<bool> ParamSet::set(const std::string& key, const std::string& value) {
   if (!ok) return ok.error();
   values_[key] = value;
   explicit_[key] = true;
-  return true;
+  return {};
 }
 
 const ParamSpec* ParamSet::find(const std::string& key) const {

@@ -33,7 +33,7 @@ class ParamSet {
   static Result<ParamSet> parse(const std::vector<ParamSpec>& specs, const std::vector<std::string>& key_values,
                                 const std::string& structure_name = {});
   /// Sets one value (validated). Used by the viewer's widgets.
-  Result<bool> set(const std::string& key, const std::string& value);
+  Status set(const std::string& key, const std::string& value);
 
   int get_int(const std::string& key) const;
   double get_float(const std::string& key) const;
@@ -57,6 +57,6 @@ class ParamSet {
 };
 
 /// Validates `value` against `spec`; error message names the parameter and its range.
-Result<bool> validate_param(const ParamSpec& spec, const std::string& value, const std::string& structure_name = {});
+Status validate_param(const ParamSpec& spec, const std::string& value, const std::string& structure_name = {});
 
 }  // namespace accel

@@ -95,7 +95,7 @@ std::string format_hit_row(size_t ray_index, const Hit& hit) {
   return buf;
 }
 
-Result<bool> write_file_atomic(const std::string& path, const std::string& content) {
+Status write_file_atomic(const std::string& path, const std::string& content) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -111,10 +111,10 @@ Result<bool> write_file_atomic(const std::string& path, const std::string& conte
     std::remove(tmp.c_str());
     return make_error(path + ": cannot replace the output file");
   }
-  return true;
+  return {};
 }
 
-Result<bool> write_hits_csv(const std::string& path, const std::vector<Hit>& hits) {
+Status write_hits_csv(const std::string& path, const std::vector<Hit>& hits) {
   std::string content = "ray,prim,t,u,v\n";
   content.reserve(content.size() + hits.size() * 40);
   for (size_t i = 0; i < hits.size(); ++i) content += format_hit_row(i, hits[i]);

@@ -23,9 +23,9 @@ std::string format_hit_row(size_t ray_index, const Hit& hit);
 
 /// Writes the hits CSV atomically: to a temporary file beside `path`, renamed on success,
 /// so a failure never leaves a half-written file. Error names the path.
-Result<bool> write_hits_csv(const std::string& path, const std::vector<Hit>& hits);
+Status write_hits_csv(const std::string& path, const std::vector<Hit>& hits);
 
 /// Writes `content` to `path` atomically (temporary file + rename).
-Result<bool> write_file_atomic(const std::string& path, const std::string& content);
+Status write_file_atomic(const std::string& path, const std::string& content);
 
 }  // namespace accel

@@ -1,28 +1,31 @@
 #include "registry.h"
 
-#include "brute_force.h"
-#include "bvh.h"
-#include "kd_tree.h"
-#include "octree.h"
-#include "sphere_tree.h"
-#include "uniform_grid.h"
+#include "structures/brute_force.h"
+#include "structures/bvh.h"
+#include "structures/kd_tree.h"
+#include "structures/octree.h"
+#include "structures/sphere_tree.h"
+#include "structures/uniform_grid.h"
 
 namespace accel {
 
 const std::vector<StructureInfo>& structure_registry() {
+  using TF = TraversalFamily;
   static const std::vector<StructureInfo> registry = {
-      {"brute", "brute force: test every triangle (the reference)", BruteForce::param_specs(),
-       [] { return std::make_unique<BruteForce>(); }},
-      {"grid", "uniform grid: cells of equal size, 3D-DDA traversal (Amanatides & Woo 1987)",
-       UniformGrid::param_specs(), [] { return std::make_unique<UniformGrid>(); }},
-      {"octree", "octree: cells split into 8 equal children", Octree::param_specs(),
-       [] { return std::make_unique<Octree>(); }},
-      {"kdtree", "kd-tree: axis-aligned split planes, near/far traversal", KdTree::param_specs(),
-       [] { return std::make_unique<KdTree>(); }},
-      {"bvh", "bounding volume hierarchy with axis-aligned boxes (AABB tree)", Bvh::param_specs(),
-       [] { return std::make_unique<Bvh>(); }},
-      {"spheretree", "bounding volume hierarchy with bounding spheres (sphere tree)", SphereTree::param_specs(),
-       [] { return std::make_unique<SphereTree>(); }},
+      {"brute", "brute force", "brute force: test every triangle (the reference)", "nodes", TF::Linear, false, true,
+       BruteForce::param_specs(), [](const ParamSet&) { return std::make_unique<BruteForce>(); }},
+      {"grid", "uniform grid", "uniform grid: cells of equal size, 3D-DDA traversal (Amanatides & Woo 1987)",
+       "cells", TF::Dda, true, false, UniformGrid::param_specs(),
+       [](const ParamSet&) { return std::make_unique<UniformGrid>(); }},
+      {"octree", "octree", "octree: cells split into 8 equal children", "nodes", TF::Octree, false, false,
+       Octree::param_specs(), [](const ParamSet&) { return std::make_unique<Octree>(); }},
+      {"kdtree", "kd-tree", "kd-tree: axis-aligned split planes, near/far traversal", "nodes", TF::KdTree, false,
+       false, KdTree::param_specs(), [](const ParamSet&) { return std::make_unique<KdTree>(); }},
+      {"bvh", "BVH", "bounding volume hierarchy with axis-aligned boxes (AABB tree)", "nodes", TF::Hierarchy, false,
+       false, Bvh::param_specs(), [](const ParamSet&) { return std::make_unique<Bvh>(); }},
+      {"spheretree", "sphere tree", "bounding volume hierarchy with bounding spheres (sphere tree)", "nodes",
+       TF::Hierarchy, false, false, SphereTree::param_specs(),
+       [](const ParamSet&) { return std::make_unique<SphereTree>(); }},
   };
   return registry;
 }
@@ -42,17 +45,22 @@ Result<const StructureInfo*> find_structure(const std::string& name) {
   return make_error("unknown structure '" + name + "' (valid: " + valid + ")");
 }
 
+Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
+                                                   const ParamSet& params, Kernel kernel) {
+  std::unique_ptr<Structure> s = info.create(params);
+  s->set_kernel(kernel);
+  auto built = s->build(scene, params);
+  if (!built) return built.error();
+  return s;
+}
+
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,
                                                    const std::vector<std::string>& params, Kernel kernel) {
   auto info = find_structure(name);
   if (!info) return info.error();
   auto set = ParamSet::parse(info.value()->params, params, name);
   if (!set) return set.error();
-  std::unique_ptr<Structure> s = info.value()->create();
-  s->set_kernel(kernel);
-  auto built = s->build(scene, set.value());
-  if (!built) return built.error();
-  return s;
+  return build_structure(*info.value(), scene, set.value(), kernel);
 }
 
 }  // namespace accel

@@ -1,6 +1,8 @@
 #pragma once
-// The list of structures: names as the CLI and viewer take them, their parameters, and a
-// factory. Adding a structure means adding one entry in registry.cpp.
+// The one place that knows the structures: names as the CLI and viewer take them, what the
+// front ends show of them (label, what a node is called, which pseudo code applies), their
+// parameters, and a factory. Adding a structure means its files plus one entry in
+// registry.cpp; no front end compares a structure's name to a literal.
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,12 +11,29 @@
 
 namespace accel {
 
+/// Which of the lecture's traversal algorithms a structure runs: the front ends pick the
+/// pseudo code by it (a hierarchy's listing further depends on its `traversal` parameter).
+enum class TraversalFamily {
+  Linear,     ///< test every triangle (brute force)
+  Dda,        ///< 3D-DDA through grid cells (Amanatides & Woo 1987)
+  Octree,     ///< recursion into the children hit, front to back
+  KdTree,     ///< near/far recursion with t_split, cases (a)/(b)/(c)
+  Hierarchy,  ///< bounding volume hierarchy: stack (dfs, ordered) or priority queue
+};
+
 /// One registered structure.
 struct StructureInfo {
-  std::string name;                 ///< "brute", "grid", ...
+  std::string name;                 ///< "brute", "grid", ...: what --structure takes
+  std::string label;                ///< for people: "uniform grid", "kd-tree", "sphere tree"
   std::string description;          ///< one line, in the lecture's terms
+  std::string node_noun;            ///< what its nodes are called, plural: "cells", "nodes"
+  TraversalFamily traversal = TraversalFamily::Linear;
+  bool cells = false;               ///< nodes are the cells of one regular grid (empty ones can be drawn)
+  bool reference = false;           ///< the brute-force oracle (the bench compares the others to it)
   std::vector<ParamSpec> params;    ///< what --param accepts
-  std::function<std::unique_ptr<Structure>()> create;
+  /// A new, unbuilt structure for these (validated) parameters: a parameter may choose the
+  /// class, e.g. the BVH's `width` picks the binary or the wide layout.
+  std::function<std::unique_ptr<Structure>(const ParamSet&)> create;
 };
 
 /// All structures, in lecture order.
@@ -24,8 +43,13 @@ std::vector<std::string> structure_names();
 /// The entry for `name`, or an Error listing the valid names.
 Result<const StructureInfo*> find_structure(const std::string& name);
 
-/// Convenience for CLI, tests and viewer: validate `key=value` params, create, set the
-/// kernel, build. Errors name the structure or parameter.
+/// The one way the CLI, the bench, the tests and the viewer build a structure: create
+/// the class the parameters ask for, set the kernel, build. Errors name the parameter
+/// or the internal limit.
+Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
+                                                   const ParamSet& params, Kernel kernel = Kernel::Watertight);
+/// The same from `key=value` strings, validated first (errors name the structure or the
+/// parameter and its valid range).
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,
                                                    const std::vector<std::string>& params,
                                                    Kernel kernel = Kernel::Watertight);

@@ -1,6 +1,7 @@
 #pragma once
-// Result<T>: a value or a one-line error message. Bad input (files, rays, parameters)
-// is reported through it; the core never exits and never throws at its callers.
+// Result<T>: a value or a one-line error message; Status (= Result<void>): "it worked, or
+// here is why not". Bad input (files, rays, parameters) is reported through them; the core
+// never exits and never throws at its callers.
 #include <string>
 #include <utility>
 #include <variant>
@@ -29,6 +30,22 @@ class Result {
  private:
   std::variant<T, Error> data_;
 };
+
+/// Success, or an Error: what an operation without a value returns.
+template <>
+class Result<void> {
+ public:
+  Result() = default;                                 ///< success
+  Result(Error error) : error_(std::move(error)), ok_(false) {}  // NOLINT: implicit on purpose
+  bool ok() const { return ok_; }
+  explicit operator bool() const { return ok_; }
+  const Error& error() const { ACCEL_CHECK(!ok_); return error_; }
+
+ private:
+  Error error_;
+  bool ok_ = true;
+};
+using Status = Result<void>;
 
 /// Builds an Error from a message.
 inline Error make_error(std::string message) { return Error{std::move(message)}; }

@@ -13,7 +13,7 @@ void BuildStats::add_leaf(size_t n) {
   ++leaf_size_histogram[std::min(n, kBuckets - 1)];
 }
 
-Result<bool> Structure::build(const Scene& scene, const ParamSet& params) {
+Status Structure::build(const Scene& scene, const ParamSet& params) {
   const auto start = std::chrono::steady_clock::now();
   auto result = build_impl(scene, params);
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

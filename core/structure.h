@@ -60,7 +60,7 @@ class Structure {
   virtual std::string name() const = 0;
   /// Builds over `scene` (kept by reference: it must outlive the structure) with validated
   /// parameters, and times it. The only error is an internal limit, reported as an Error.
-  Result<bool> build(const Scene& scene, const ParamSet& params);
+  Status build(const Scene& scene, const ParamSet& params);
   /// Closest hit of `ray` (formats.md rule). Fills per-query counters when `stats` is given.
   virtual Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const = 0;
   /// Same answer as intersect(), recording every traversal step.
@@ -80,7 +80,7 @@ class Structure {
 
  protected:
   /// The structure's own build, timed by build().
-  virtual Result<bool> build_impl(const Scene& scene, const ParamSet& params) = 0;
+  virtual Status build_impl(const Scene& scene, const ParamSet& params) = 0;
   /// Everything of BuildStats except build_ms.
   virtual BuildStats compute_stats() const = 0;
 

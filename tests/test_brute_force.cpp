@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "batch.h"
-#include "brute_force.h"
+#include "structures/brute_force.h"
 #include "registry.h"
 #include "test_support.h"
 

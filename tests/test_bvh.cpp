@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bvh.h"
+#include "structures/bvh.h"
 #include "random.h"
 #include "registry.h"
 #include "structure_suite.h"

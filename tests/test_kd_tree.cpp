@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "batch.h"
-#include "kd_tree.h"
+#include "structures/kd_tree.h"
 #include "oracle.h"
 #include "random.h"
 #include "registry.h"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "batch.h"
-#include "octree.h"
+#include "structures/octree.h"
 #include "random.h"
 #include "registry.h"
 #include "structure_suite.h"

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "registry.h"
-#include "sphere_tree.h"
+#include "structures/sphere_tree.h"
 #include "structure_suite.h"
 #include "test_support.h"
 

@@ -10,7 +10,7 @@
 #include "registry.h"
 #include "structure_suite.h"
 #include "test_support.h"
-#include "uniform_grid.h"
+#include "structures/uniform_grid.h"
 
 namespace accel {
 namespace {

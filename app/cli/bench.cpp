@@ -237,7 +237,7 @@ int run_bench(const BenchOptions& o) {
   std::vector<const accel::StructureInfo*> structures;
   if (o.structures == "all") {
     for (const auto& info : accel::structure_registry())
-      if (info.name != "brute") structures.push_back(&info);
+      if (!info.reference) structures.push_back(&info);
   } else {
     for (const std::string& name : split_list(o.structures)) {
       auto info = accel::find_structure(name);
@@ -249,7 +249,7 @@ int run_bench(const BenchOptions& o) {
   std::vector<accel::Kernel> kernels;
   for (const std::string& k : split_list(o.kernels)) {
     accel::Kernel kernel;
-    if (!accel::parse_kernel(k, &kernel)) return fail("--kernel '" + k + "' is invalid (valid: watertight, moller, double)");
+    if (!accel::parse_kernel(k, &kernel)) return fail("--kernel '" + k + "' is invalid (valid: " + accel::kernel_names_text() + ")");
     kernels.push_back(kernel);
   }
   if (kernels.empty()) return fail("--kernel: empty list");
@@ -312,9 +312,9 @@ int run_bench(const BenchOptions& o) {
       // One build per structure: the kernel only changes the queries.
       const std::string name = structures[k]->name;
       progress(step, total_steps, scene_spec + ": " + name + " build");
-      auto structure = structures[k]->create();
-      auto built = structure->build(s, param_sets[k]);
+      auto built = accel::build_structure(*structures[k], s, param_sets[k]);
       if (!built) return fail(built.error().message);
+      std::unique_ptr<accel::Structure> structure = std::move(built.value());
       const accel::BuildStats stats = structure->build_stats();
       for (accel::Kernel kernel : kernels) {
         progress(step, total_steps, scene_spec + ": " + name + " " + std::string(accel::kernel_name(kernel)));

@@ -29,7 +29,7 @@ struct Built {
 accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) {
   accel::Kernel kernel;
   if (!accel::parse_kernel(o.kernel, &kernel))
-    return accel::make_error("--kernel '" + o.kernel + "' is invalid (valid: watertight, moller, double)");
+    return accel::make_error("--kernel '" + o.kernel + "' is invalid (valid: " + accel::kernel_names_text() + ")");
   // Validate the structure name and parameters before the (possibly slow) scene load.
   auto info = accel::find_structure(o.structure);
   if (!info) return info.error();
@@ -40,10 +40,9 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   auto built = std::make_unique<Built>();
   built->scene = std::move(scene.value());
   built->params = params.value().to_string();
-  built->structure = info.value()->create();
-  built->structure->set_kernel(kernel);
-  auto ok = built->structure->build(built->scene, params.value());
-  if (!ok) return ok.error();
+  auto structure = accel::build_structure(*info.value(), built->scene, params.value(), kernel);
+  if (!structure) return structure.error();
+  built->structure = std::move(structure.value());
   return built;
 }
 

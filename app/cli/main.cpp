@@ -24,7 +24,7 @@ void add_structure_options(CLI::App* cmd, cli::StructureOptions* o) {
   cmd->add_option("--structure", o->structure, "acceleration structure: " + join(accel::structure_names()))
       ->capture_default_str();
   cmd->add_option("--param", o->params, "structure parameter key=value (repeatable); see 'accelviz-cli params'");
-  cmd->add_option("--kernel", o->kernel, "ray/triangle test: watertight|moller|double")->capture_default_str();
+  cmd->add_option("--kernel", o->kernel, "ray/triangle test: " + accel::kernel_names_text("|"))->capture_default_str();
 }
 
 int print_params() {
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--rays", bench.rays, "primary:W:H, random:N:SEED or a rays file")->capture_default_str();
   bench_cmd->add_option("--threads", bench.threads, "threads of the multi-threaded run (0 = all cores)")
       ->check(CLI::Range(0, 1024));
-  bench_cmd->add_option("--kernel", bench.kernels, "comma list of watertight, moller, double")->capture_default_str();
+  bench_cmd->add_option("--kernel", bench.kernels, "comma list of " + accel::kernel_names_text())->capture_default_str();
   bench_cmd->add_option("--min-time", bench.min_time, "seconds each of the 3 timing samples lasts at least")
       ->check(CLI::Range(0.001, 60.0))
       ->capture_default_str();

@@ -232,7 +232,7 @@ class App {
   std::vector<CompareRow> compare_rows_;
   accel::Ray compare_ray_;
   bool compare_stale_ = false;
-  Job<accel::Result<bool>> sweep_job_;
+  Job<accel::Status> sweep_job_;
   std::shared_ptr<SweepProgress> sweep_progress_;
   SweepRequest sweep_request_;
   std::string sweep_error_;

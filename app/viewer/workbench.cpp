@@ -55,10 +55,9 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->scene = std::move(scene);
   built->request = request;
   built->params_text = params.value().to_string_all();
-  built->structure = info.value()->create();
-  built->structure->set_kernel(request.kernel);
-  auto ok = built->structure->build(*built->scene, params.value());
-  if (!ok) return ok.error();
+  auto structure = accel::build_structure(*info.value(), *built->scene, params.value(), request.kernel);
+  if (!structure) return structure.error();
+  built->structure = std::move(structure.value());
   built->stats = built->structure->build_stats();
   built->geometry = structure_geometry(*built->structure, request.geometry);
   for (const accel::ParamSpec& spec : params.value().specs())
@@ -159,7 +158,7 @@ std::vector<double> sweep_values(const accel::ParamSpec& spec, double lo, double
   return values;
 }
 
-accel::Result<bool> run_sweep(std::shared_ptr<const accel::Scene> scene, const SweepRequest& request,
+accel::Status run_sweep(std::shared_ptr<const accel::Scene> scene, const SweepRequest& request,
                               SweepProgress& progress, const std::atomic<bool>& cancel) {
   auto info = accel::find_structure(request.base.name);
   if (!info) return info.error();
@@ -211,7 +210,7 @@ accel::Result<bool> run_sweep(std::shared_ptr<const accel::Scene> scene, const S
     std::lock_guard lock(progress.mutex);
     progress.points.push_back(std::move(point));
   }
-  return true;
+  return {};
 }
 
 }  // namespace viz

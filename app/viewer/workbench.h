@@ -199,7 +199,7 @@ std::vector<double> sweep_values(const accel::ParamSpec& spec, double lo, double
 
 /// Builds and traces once per value; appends each point to `progress` as it finishes.
 /// Error when the parameter does not exist or is not numeric.
-accel::Result<bool> run_sweep(std::shared_ptr<const accel::Scene> scene, const SweepRequest& request,
+accel::Status run_sweep(std::shared_ptr<const accel::Scene> scene, const SweepRequest& request,
                               SweepProgress& progress, const std::atomic<bool>& cancel);
 
 }  // namespace viz

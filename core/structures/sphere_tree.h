@@ -4,7 +4,7 @@
 // triangles below it with Ritter's algorithm (Ritter 1990, "An efficient bounding sphere",
 // Graphics Gems), its radius then tightened to the farthest vertex, and replaced by the
 // box's circumsphere when that is smaller.
-#include "hierarchy.h"
+#include "structures/hierarchy.h"
 
 namespace accel {
 

@@ -1,4 +1,4 @@
-#include "sphere_tree.h"
+#include "structures/sphere_tree.h"
 
 #include <cstdio>
 

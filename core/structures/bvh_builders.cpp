@@ -7,7 +7,7 @@
 //   [SECTION] Bottom-up: locally-ordered clustering
 //   [SECTION] Insertion (Goldsmith-Salmon)
 //   [SECTION] Collapse, depth limit and final layout for the bottom-up builders
-#include "bvh_builders.h"
+#include "structures/bvh_builders.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,15 +1,15 @@
-#include "brute_force.h"
+#include "structures/brute_force.h"
 
 namespace accel {
 
-Result<bool> BruteForce::build_impl(const Scene& scene, const ParamSet&) {
+Status BruteForce::build_impl(const Scene& scene, const ParamSet&) {
   scene_ = &scene;
   stats_ = BuildStats{};
   stats_.nodes = 1;
   stats_.prims = scene.valid_prims().size();
   stats_.prim_references = stats_.prims;
   stats_.add_leaf(stats_.prims);
-  return true;
+  return {};
 }
 
 void BruteForce::for_each_node(const std::function<void(const NodeView&)>& fn) const { fn(node_view(0)); }

@@ -12,7 +12,7 @@
 #include <functional>
 #include <vector>
 
-#include "bvh_builders.h"
+#include "structures/bvh_builders.h"
 #include "check.h"
 #include "structure.h"
 
@@ -105,9 +105,9 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   }
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override {
+  Status build_impl(const Scene& scene, const ParamSet& params) override {
     store_binary(build_tree(scene, params));
-    return true;
+    return {};
   }
 
   /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`

@@ -25,7 +25,7 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
   }
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

@@ -1,4 +1,4 @@
-#include "wide_bvh.h"
+#include "structures/wide_bvh.h"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-#include "bvh.h"
+#include "structures/bvh.h"
 
 namespace accel {
 
@@ -23,7 +23,7 @@ std::vector<ParamSpec> Bvh::param_specs() {
   return specs;
 }
 
-Result<bool> Bvh::build_impl(const Scene& scene, const ParamSet& params) {
+Status Bvh::build_impl(const Scene& scene, const ParamSet& params) {
   width_ = params.get_choice("width") == "2" ? 2 : 4;
   // The 4-wide layout tests a leaf's triangles four at a time: the SAH builders know it.
   const BuildTree tree = build_tree(scene, params, width_ == 2 ? 1 : 4);
@@ -32,7 +32,7 @@ Result<bool> Bvh::build_impl(const Scene& scene, const ParamSet& params) {
     store_binary(tree);
   else
     wide_.build(scene, tree);
-  return true;
+  return {};
 }
 
 BuildStats Bvh::compute_stats() const {

@@ -126,7 +126,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
   }
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

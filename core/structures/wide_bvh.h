@@ -19,8 +19,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "bvh_builders.h"
-#include "hierarchy.h"
+#include "structures/bvh_builders.h"
+#include "structures/hierarchy.h"
 
 namespace accel {
 

@@ -1,4 +1,4 @@
-#include "octree.h"
+#include "structures/octree.h"
 
 #include <array>
 #include <cmath>
@@ -226,7 +226,7 @@ std::vector<ParamSpec> Octree::param_specs() {
   };
 }
 
-Result<bool> Octree::build_impl(const Scene& scene, const ParamSet& params) {
+Status Octree::build_impl(const Scene& scene, const ParamSet& params) {
   scene_ = &scene;
   OctreeBuildOptions options;
   options.max_prims = params.get_int("max_prims");
@@ -280,7 +280,7 @@ Result<bool> Octree::build_impl(const Scene& scene, const ParamSet& params) {
       {"order", params.get_choice("order")},
   };
   stats_ = std::move(s);
-  return true;
+  return {};
 }
 
 void Octree::for_each_node(const std::function<void(const NodeView&)>& fn) const {

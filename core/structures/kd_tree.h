@@ -196,7 +196,7 @@ class KdTree final : public StructureWithTraversal<KdTree> {
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params) override;
   BuildStats compute_stats() const override;
 
  private:

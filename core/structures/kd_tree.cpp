@@ -7,7 +7,7 @@
 //   [SECTION] Builder: split choice (middle, median, sah)
 //   [SECTION] Builder: distribution and recursion
 //   [SECTION] KdTree
-#include "kd_tree.h"
+#include "structures/kd_tree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -572,7 +572,7 @@ Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& optio
 // [SECTION] KdTree
 //-----------------------------------------------------------------------------
 
-Result<bool> KdTree::build_impl(const Scene& scene, const ParamSet& params) {
+Status KdTree::build_impl(const Scene& scene, const ParamSet& params) {
   scene_ = nullptr;
   data_ = KdTreeData{};
   KdBuildOptions o;
@@ -590,7 +590,7 @@ Result<bool> KdTree::build_impl(const Scene& scene, const ParamSet& params) {
   data_ = std::move(built.value());
   options_ = o;
   scene_ = &scene;
-  return true;
+  return {};
 }
 
 namespace {

@@ -153,7 +153,7 @@ class Octree final : public StructureWithTraversal<Octree> {
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

@@ -3,8 +3,8 @@
 // traversal orders: hierarchy.h. Two layouts of the same built tree: the lecture's binary
 // tree (width=2, hierarchy.h) and 4-wide nodes tested with SSE (width=4, wide_bvh.h, the
 // default because it is the fastest).
-#include "hierarchy.h"
-#include "wide_bvh.h"
+#include "structures/hierarchy.h"
+#include "structures/wide_bvh.h"
 
 namespace accel {
 
@@ -39,7 +39,7 @@ class Bvh final : public Hierarchy<Bvh, Aabb, BoxTester> {
   static void describe(const Aabb&, NodeView*) {}
 
  protected:
-  Result<bool> build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params) override;
   BuildStats compute_stats() const override;
 
  private:

@@ -1,4 +1,4 @@
-#include "uniform_grid.h"
+#include "structures/uniform_grid.h"
 
 #include <cstdio>
 #include <string>
@@ -294,7 +294,7 @@ std::vector<ParamSpec> UniformGrid::param_specs() {
   };
 }
 
-Result<bool> UniformGrid::build_impl(const Scene& scene, const ParamSet& params) {
+Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params) {
   scene_ = &scene;
   GridConfig config;
   config.rule = params.get_choice("resolution") == "avgsize" ? GridResolutionRule::AvgSize : GridResolutionRule::Cbrt;
@@ -333,7 +333,7 @@ Result<bool> UniformGrid::build_impl(const Scene& scene, const ParamSet& params)
                                                      (grid_.clamped_to_budget ? ", shrunk to the memory budget" : "")},
                   {"insert", config.insertion == GridInsertion::Exact ? "exact" : "bbox"},
                   {"mailbox", mailbox_ ? "on" : "off"}};
-  return true;
+  return {};
 }
 
 Aabb UniformGrid::cell_box(NodeId id) const {
