@@ -26,6 +26,10 @@ std::string number_text(double v) {
   return buf;
 }
 
+std::string quoted_who(const ParamSpec& spec, const std::string& structure_name) {
+  return (structure_name.empty() ? "" : structure_name + " ") + "parameter '" + spec.name + "'";
+}
+
 std::vector<std::string_view> split(std::string_view s, char sep) {
   std::vector<std::string_view> parts;
   size_t start = 0;
@@ -39,6 +43,16 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
 }
 
 }  // namespace
+
+std::string format_param_number(double v) {
+  char buf[40];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    double back = 0.0;
+    if (parse_double_strict(buf, &back) && back == v) break;
+  }
+  return buf;
+}
 
 std::string ParamSpec::range_text() const {
   switch (type) {
@@ -55,43 +69,101 @@ std::string ParamSpec::range_text() const {
   return {};
 }
 
-Status validate_param(const ParamSpec& spec, const std::string& value, const std::string& structure_name) {
-  const std::string who = (structure_name.empty() ? "" : structure_name + " ") + "parameter '" + spec.name + "'";
-  auto bad = [&] { return make_error(who + " = '" + value + "' is invalid: expected " + spec.range_text()); };
+std::string ParamSpec::text(const ParamValue& value) const {
+  switch (type) {
+    case Type::Int: return std::to_string(std::get<int>(value));
+    case Type::Float: return format_param_number(std::get<double>(value));
+    case Type::Int3: {
+      const auto& v = std::get<std::array<int, 3>>(value);
+      return std::to_string(v[0]) + "," + std::to_string(v[1]) + "," + std::to_string(v[2]);
+    }
+    case Type::Choice: {
+      const int i = std::get<int>(value);
+      ACCEL_CHECK(i >= 0 && size_t(i) < choices.size());
+      return choices[size_t(i)];
+    }
+  }
+  return {};
+}
+
+Result<ParamValue> parse_param(const ParamSpec& spec, const std::string& text, const std::string& structure_name) {
+  auto bad = [&] {
+    return make_error(quoted_who(spec, structure_name) + " = '" + text + "' is invalid: expected " + spec.range_text());
+  };
   switch (spec.type) {
     case ParamSpec::Type::Int: {
       long v;
-      if (!parse_long_strict(value, &v) || v < spec.min || v > spec.max) return bad();
-      return {};
+      if (!parse_long_strict(text, &v) || v < spec.min || v > spec.max) return bad();
+      return ParamValue(int(v));
     }
     case ParamSpec::Type::Float: {
       double v;
-      if (!parse_double_strict(value, &v) || v < spec.min || v > spec.max) return bad();
-      return {};
+      if (!parse_double_strict(text, &v) || v < spec.min || v > spec.max) return bad();
+      return ParamValue(v);
     }
     case ParamSpec::Type::Int3: {
-      const auto parts = split(value, ',');
+      const auto parts = split(text, ',');
       if (parts.size() != 3) return bad();
-      for (auto p : parts) {
+      std::array<int, 3> out{};
+      for (size_t i = 0; i < 3; ++i) {
         long v;
-        if (!parse_long_strict(p, &v) || v < spec.min || v > spec.max) return bad();
+        if (!parse_long_strict(parts[i], &v) || v < spec.min || v > spec.max) return bad();
+        out[i] = int(v);
       }
-      return {};
+      return ParamValue(out);
     }
     case ParamSpec::Type::Choice:
-      for (const auto& c : spec.choices)
-        if (c == value) return {};
+      for (size_t i = 0; i < spec.choices.size(); ++i)
+        if (spec.choices[i] == text) return ParamValue(int(i));
       return bad();
   }
   return bad();
 }
 
+Status validate_param(const ParamSpec& spec, const ParamValue& value, const std::string& structure_name) {
+  const std::string who = quoted_who(spec, structure_name);
+  auto bad = [&](const std::string& shown) {
+    return make_error(who + " = '" + shown + "' is invalid: expected " + spec.range_text());
+  };
+  switch (spec.type) {
+    case ParamSpec::Type::Int: {
+      const int* v = std::get_if<int>(&value);
+      if (!v) return make_error(who + " takes " + spec.range_text());
+      if (*v < spec.min || *v > spec.max) return bad(std::to_string(*v));
+      return {};
+    }
+    case ParamSpec::Type::Float: {
+      const double* v = std::get_if<double>(&value);
+      if (!v) return make_error(who + " takes " + spec.range_text());
+      if (!std::isfinite(*v) || *v < spec.min || *v > spec.max) return bad(format_param_number(*v));
+      return {};
+    }
+    case ParamSpec::Type::Int3: {
+      const auto* v = std::get_if<std::array<int, 3>>(&value);
+      if (!v) return make_error(who + " takes " + spec.range_text());
+      for (int c : *v)
+        if (c < spec.min || c > spec.max) return bad(spec.text(*v));
+      return {};
+    }
+    case ParamSpec::Type::Choice: {
+      const int* v = std::get_if<int>(&value);
+      if (!v) return make_error(who + " takes " + spec.range_text());
+      if (*v < 0 || size_t(*v) >= spec.choices.size()) return bad("#" + std::to_string(*v));
+      return {};
+    }
+  }
+  return make_error(who + ": unknown type");
+}
+
+ParamSet::ParamSet(std::vector<ParamSpec> specs, std::string structure_name)
+    : specs_(std::move(specs)), structure_(std::move(structure_name)) {
+  for (const auto& s : specs_) values_.push_back(s.default_typed);
+  explicit_.assign(specs_.size(), false);
+}
+
 Result<ParamSet> ParamSet::parse(const std::vector<ParamSpec>& specs, const std::vector<std::string>& key_values,
                                  const std::string& structure_name) {
-  ParamSet set;
-  set.specs_ = specs;
-  set.structure_ = structure_name;
-  for (const auto& s : specs) set.values_[s.name] = s.default_value;
+  ParamSet set(specs, structure_name);
   for (const auto& kv : key_values) {
     const size_t eq = kv.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -102,72 +174,105 @@ Result<ParamSet> ParamSet::parse(const std::vector<ParamSpec>& specs, const std:
   return set;
 }
 
-Status ParamSet::set(const std::string& key, const std::string& value) {
-  const ParamSpec* spec = find(key);
-  if (!spec) {
+int ParamSet::index_of(const std::string& key) const {
+  for (size_t i = 0; i < specs_.size(); ++i)
+    if (specs_[i].name == key) return int(i);
+  return -1;
+}
+
+int ParamSet::checked_index(const std::string& key) const {
+  const int i = index_of(key);
+  ACCEL_CHECK(i >= 0);  // asking for a parameter the structure does not declare is a bug
+  return i;
+}
+
+Status ParamSet::set(const std::string& key, const std::string& text) {
+  const int i = index_of(key);
+  if (i < 0) {
     std::string valid;
     for (const auto& s : specs_) valid += (valid.empty() ? "" : ", ") + s.name;
     const std::string who = structure_.empty() ? "this structure" : "structure '" + structure_ + "'";
     return make_error("unknown parameter '" + key + "' for " + who + " (valid: " +
                       (valid.empty() ? "none" : valid) + ")");
   }
-  auto ok = validate_param(*spec, value, structure_);
-  if (!ok) return ok.error();
-  values_[key] = value;
-  explicit_[key] = true;
+  auto parsed = parse_param(specs_[size_t(i)], text, structure_);
+  if (!parsed) return parsed.error();
+  values_[size_t(i)] = parsed.value();
+  explicit_[size_t(i)] = true;
   return {};
 }
 
-const ParamSpec* ParamSet::find(const std::string& key) const {
-  for (const auto& s : specs_)
-    if (s.name == key) return &s;
-  return nullptr;
+Status ParamSet::set_value(const std::string& key, const ParamValue& value) {
+  const int i = index_of(key);
+  if (i < 0) return make_error("unknown parameter '" + key + "'");
+  auto ok = validate_param(specs_[size_t(i)], value, structure_);
+  if (!ok) return ok;
+  values_[size_t(i)] = value;
+  explicit_[size_t(i)] = true;
+  return {};
 }
 
-const std::string& ParamSet::get_string(const std::string& key) const {
-  auto it = values_.find(key);
-  ACCEL_CHECK(it != values_.end());
-  return it->second;
+void ParamSet::reset(const std::string& key) {
+  const int i = checked_index(key);
+  values_[size_t(i)] = specs_[size_t(i)].default_typed;
+  explicit_[size_t(i)] = false;
 }
+
+const ParamValue& ParamSet::value(const std::string& key) const { return values_[size_t(checked_index(key))]; }
 
 int ParamSet::get_int(const std::string& key) const {
-  long v = 0;
-  ACCEL_CHECK(parse_long_strict(get_string(key), &v));
-  return int(v);
+  const int i = checked_index(key);
+  ACCEL_CHECK(specs_[size_t(i)].type == ParamSpec::Type::Int);
+  return std::get<int>(values_[size_t(i)]);
 }
 
 double ParamSet::get_float(const std::string& key) const {
-  double v = 0;
-  ACCEL_CHECK(parse_double_strict(get_string(key), &v));
-  return v;
+  const int i = checked_index(key);
+  ACCEL_CHECK(specs_[size_t(i)].type == ParamSpec::Type::Float);
+  return std::get<double>(values_[size_t(i)]);
 }
 
-const std::string& ParamSet::get_choice(const std::string& key) const { return get_string(key); }
+int ParamSet::get_choice_index(const std::string& key) const {
+  const int i = checked_index(key);
+  ACCEL_CHECK(specs_[size_t(i)].type == ParamSpec::Type::Choice);
+  return std::get<int>(values_[size_t(i)]);
+}
+
+const std::string& ParamSet::get_choice(const std::string& key) const {
+  const int i = checked_index(key);
+  return specs_[size_t(i)].choices[size_t(get_choice_index(key))];
+}
 
 std::array<int, 3> ParamSet::get_int3(const std::string& key) const {
-  const auto parts = split(get_string(key), ',');
-  ACCEL_CHECK(parts.size() == 3);
-  std::array<int, 3> out{};
-  for (int i = 0; i < 3; ++i) {
-    long v = 0;
-    ACCEL_CHECK(parse_long_strict(parts[i], &v));
-    out[i] = int(v);
-  }
+  const int i = checked_index(key);
+  ACCEL_CHECK(specs_[size_t(i)].type == ParamSpec::Type::Int3);
+  return std::get<std::array<int, 3>>(values_[size_t(i)]);
+}
+
+std::string ParamSet::text(const std::string& key) const {
+  const int i = checked_index(key);
+  return specs_[size_t(i)].text(values_[size_t(i)]);
+}
+
+bool ParamSet::is_set(const std::string& key) const { return explicit_[size_t(checked_index(key))]; }
+
+std::vector<std::string> ParamSet::explicit_key_values() const {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < specs_.size(); ++i)
+    if (explicit_[i]) out.push_back(specs_[i].name + "=" + specs_[i].text(values_[i]));
   return out;
 }
 
-bool ParamSet::is_set(const std::string& key) const { return explicit_.count(key) != 0; }
-
 std::string ParamSet::to_string() const {
   std::string s;
-  for (const auto& spec : specs_)
-    if (is_set(spec.name)) s += (s.empty() ? "" : ",") + spec.name + "=" + get_string(spec.name);
+  for (const std::string& kv : explicit_key_values()) s += (s.empty() ? "" : ",") + kv;
   return s;
 }
 
 std::string ParamSet::to_string_all() const {
   std::string s;
-  for (const auto& spec : specs_) s += (s.empty() ? "" : " ") + spec.name + "=" + get_string(spec.name);
+  for (size_t i = 0; i < specs_.size(); ++i)
+    s += (s.empty() ? "" : " ") + specs_[i].name + "=" + specs_[i].text(values_[i]);
   return s;
 }
 

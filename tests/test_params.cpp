@@ -1,29 +1,109 @@
-// Parameter validation: the CLI's error messages name the parameter and its range.
+// Parameters: one declaration (ParamTable) gives the specs, the defaults (from the options
+// struct), typed values and the options struct; the CLI's error messages name the
+// parameter and its range.
 #include <gtest/gtest.h>
 
 #include "params.h"
 #include "registry.h"
+#include "structures/hierarchy_params.h"
+#include "structures/kd_tree.h"
+#include "structures/uniform_grid.h"
 
 namespace accel {
 namespace {
 
-std::vector<ParamSpec> specs() {
-  return {{"leaf_size", ParamSpec::Type::Int, "4", 1, 64, {}, "max triangles per leaf"},
-          {"lambda", ParamSpec::Type::Float, "1", 0.01, 100, {}, "cells per cbrt(N)"},
-          {"split", ParamSpec::Type::Choice, "sah", 0, 0, {"middle", "median", "sah"}, "split rule"},
-          {"res", ParamSpec::Type::Int3, "8,8,8", 1, 1024, {}, "grid resolution"}};
+enum class Rule { Middle, Median, Sah };
+
+/// A made-up options struct with one field of every parameter type, nested like a real one.
+struct TestOptions {
+  struct Build {
+    int leaf_size = 4;
+    float lambda = 1.0f;
+    Rule split = Rule::Sah;
+  } build;
+  std::array<int, 3> res{8, 8, 8};
+  bool flag = true;
+};
+
+const ParamTable<TestOptions>& table() {
+  using O = TestOptions;
+  static const auto t =
+      ParamTable<O>()
+          .integer("leaf_size", [](O& o) -> auto& { return o.build.leaf_size; }, 1, 64, "max triangles per leaf")
+          .number("lambda", [](O& o) -> auto& { return o.build.lambda; }, 0.01, 100, "cells per cbrt(N)")
+          .choice("split", [](O& o) -> auto& { return o.build.split; },
+                  std::vector<std::pair<std::string, Rule>>{
+                      {"middle", Rule::Middle}, {"median", Rule::Median}, {"sah", Rule::Sah}},
+                  "split rule")
+          .int3("res", &O::res, 1, 1024, "grid resolution")
+          .choice("flag", &O::flag, std::vector<std::pair<std::string, bool>>{{"off", false}, {"on", true}}, "a switch");
+  return t;
+}
+
+std::vector<ParamSpec> specs() { return table().specs(); }
+
+TEST(Params, DefaultsComeFromTheOptionsStruct) {
+  const auto s = specs();
+  ASSERT_EQ(s.size(), 5u);
+  EXPECT_EQ(s[0].default_value, "4");
+  EXPECT_EQ(s[1].default_value, "1");
+  EXPECT_EQ(s[2].default_value, "sah");
+  EXPECT_EQ(s[2].choices, (std::vector<std::string>{"middle", "median", "sah"}));
+  EXPECT_EQ(s[3].default_value, "8,8,8");
+  EXPECT_EQ(s[4].default_value, "on");
+  EXPECT_EQ(std::get<int>(s[2].default_typed), 2);  // index of "sah"
+  const TestOptions o = table().apply(ParamSet(s));
+  EXPECT_EQ(o.build.leaf_size, 4);
+  EXPECT_EQ(o.build.split, Rule::Sah);
+  EXPECT_TRUE(o.flag);
 }
 
 TEST(Params, DefaultsAndOverrides) {
-  auto p = ParamSet::parse(specs(), {"leaf_size=8", "res=4,5,6"}, "kdtree");
+  auto p = ParamSet::parse(specs(), {"leaf_size=8", "res=4,5,6", "split=median", "flag=off"}, "kdtree");
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p.value().get_int("leaf_size"), 8);
   EXPECT_DOUBLE_EQ(p.value().get_float("lambda"), 1.0);
-  EXPECT_EQ(p.value().get_choice("split"), "sah");
+  EXPECT_EQ(p.value().get_choice("split"), "median");
+  EXPECT_EQ(p.value().get_choice_index("split"), 1);
   EXPECT_EQ(p.value().get_int3("res"), (std::array<int, 3>{4, 5, 6}));
   EXPECT_TRUE(p.value().is_set("leaf_size"));
   EXPECT_FALSE(p.value().is_set("lambda"));
-  EXPECT_EQ(p.value().to_string(), "leaf_size=8,res=4,5,6");
+  EXPECT_EQ(p.value().to_string(), "leaf_size=8,split=median,res=4,5,6,flag=off");
+  const TestOptions o = table().apply(p.value());
+  EXPECT_EQ(o.build.leaf_size, 8);
+  EXPECT_EQ(o.build.split, Rule::Median);
+  EXPECT_EQ(o.res, (std::array<int, 3>{4, 5, 6}));
+  EXPECT_FALSE(o.flag);
+}
+
+// The viewer's widgets set typed values: a double is kept to the last bit, not rounded
+// through text (the old "%.4g" round trip turned 0.123456789 into 0.1235).
+TEST(Params, TypedValuesAreKeptExactly) {
+  ParamSet p(specs(), "test");
+  ASSERT_TRUE(p.set_value("lambda", ParamValue(0.123456789)));
+  EXPECT_EQ(p.get_float("lambda"), 0.123456789);
+  EXPECT_EQ(p.text("lambda"), "0.123456789");
+  auto back = ParamSet::parse(specs(), p.explicit_key_values(), "test");
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back.value().get_float("lambda"), 0.123456789);
+  EXPECT_TRUE(back.value() == p);
+  p.reset("lambda");
+  EXPECT_FALSE(p.is_set("lambda"));
+  EXPECT_DOUBLE_EQ(p.get_float("lambda"), 1.0);
+}
+
+TEST(Params, TypedValuesAreValidated) {
+  ParamSet p(specs(), "test");
+  EXPECT_FALSE(p.set_value("leaf_size", ParamValue(0)));
+  EXPECT_FALSE(p.set_value("leaf_size", ParamValue(2.0)));  // wrong type
+  EXPECT_FALSE(p.set_value("split", ParamValue(3)));        // no fourth choice
+  EXPECT_FALSE(p.set_value("res", ParamValue(std::array<int, 3>{1, 0, 1})));
+  EXPECT_FALSE(p.set_value("lambda", ParamValue(std::nan(""))));
+  EXPECT_FALSE(p.set_value("nope", ParamValue(1)));
+  EXPECT_EQ(p.to_string(), "");  // nothing invalid got in
+  const Status s = p.set_value("leaf_size", ParamValue(99));
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().message, "test parameter 'leaf_size' = '99' is invalid: expected an integer in [1, 64]");
 }
 
 TEST(Params, ErrorsNameParameterAndRange) {
@@ -38,8 +118,16 @@ TEST(Params, ErrorsNameParameterAndRange) {
   expect_error({"lambda=nan"}, "'lambda'");
   expect_error({"split=best"}, "one of: middle, median, sah");
   expect_error({"res=1,2"}, "three integers");
-  expect_error({"bogus=1"}, "unknown parameter 'bogus' for structure 'kdtree' (valid: leaf_size, lambda, split, res)");
+  expect_error({"bogus=1"},
+               "unknown parameter 'bogus' for structure 'kdtree' (valid: leaf_size, lambda, split, res, flag)");
   expect_error({"leaf_size"}, "key=value");
+}
+
+TEST(Params, NumbersPrintShortestExact) {
+  EXPECT_EQ(format_param_number(2.0), "2");
+  EXPECT_EQ(format_param_number(0.2), "0.2");
+  EXPECT_EQ(format_param_number(1000.0), "1000");
+  EXPECT_EQ(format_param_number(double(0.1f)), "0.10000000149011612");
 }
 
 TEST(Registry, UnknownStructureListsValidNames) {
@@ -48,10 +136,56 @@ TEST(Registry, UnknownStructureListsValidNames) {
   EXPECT_NE(s.error().message.find("valid: brute"), std::string::npos) << s.error().message;
 }
 
-TEST(Registry, EveryDefaultIsValid) {
+TEST(Registry, EveryDefaultIsValidAndReadsBack) {
   for (const auto& info : structure_registry()) {
-    for (const auto& spec : info.params) EXPECT_TRUE(validate_param(spec, spec.default_value)) << info.name << "." << spec.name;
+    for (const auto& spec : info.params) {
+      EXPECT_TRUE(validate_param(spec, spec.default_typed)) << info.name << "." << spec.name;
+      auto parsed = parse_param(spec, spec.default_value);
+      ASSERT_TRUE(parsed) << info.name << "." << spec.name;
+      EXPECT_EQ(parsed.value(), spec.default_typed) << info.name << "." << spec.name;
+    }
   }
+}
+
+// The declarations bind to the structs the builders read: a parameter changes its field.
+TEST(Registry, DeclarationsSetTheirFields) {
+  auto grid = ParamSet::parse(UniformGrid::param_specs(), {"lambda=3.5", "insert=bbox", "mailbox=off", "res=2,3,4"});
+  ASSERT_TRUE(grid);
+  const UniformGridOptions g = UniformGrid::param_table().apply(grid.value());
+  EXPECT_EQ(g.build.lambda, 3.5);
+  EXPECT_EQ(g.build.insertion, GridInsertion::Bbox);
+  EXPECT_FALSE(g.mailbox);
+  EXPECT_EQ(g.build.res, (std::array<int, 3>{2, 3, 4}));
+
+  auto kd = ParamSet::parse(KdTree::param_specs(), {"split=median", "clip=off", "empty_bonus=0.5"});
+  ASSERT_TRUE(kd);
+  const KdBuildOptions k = KdTree::param_table().apply(kd.value());
+  EXPECT_EQ(k.split, KdSplit::Median);
+  EXPECT_FALSE(k.clip);
+  EXPECT_EQ(k.empty_bonus, 0.5);
+
+  auto bvh = ParamSet::parse(bvh_param_specs(), {"builder=insertion", "traversal=pqueue", "width=2", "ct=0.5"});
+  ASSERT_TRUE(bvh);
+  const HierarchyOptions h = hierarchy_options(bvh.value());
+  EXPECT_EQ(h.build.builder, BvhBuilderKind::Insertion);
+  EXPECT_EQ(h.traversal, TraversalOrder::PriorityQueue);
+  EXPECT_EQ(h.width, 2);
+  EXPECT_EQ(h.build.ct, 0.5f);
+}
+
+TEST(Registry, EntriesCarryWhatFrontEndsNeed) {
+  int references = 0, cell_structures = 0;
+  for (const auto& info : structure_registry()) {
+    EXPECT_FALSE(info.label.empty()) << info.name;
+    EXPECT_FALSE(info.node_noun.empty()) << info.name;
+    references += info.reference;
+    cell_structures += info.cells;
+    auto params = ParamSet::parse(info.params, {}, info.name);
+    ASSERT_TRUE(params);
+    EXPECT_EQ(info.create(params.value())->name(), info.name);
+  }
+  EXPECT_EQ(references, 1);
+  EXPECT_EQ(cell_structures, 1);
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->stats = built->structure->build_stats();
   built->geometry = structure_geometry(*built->structure, request.geometry);
   for (const accel::ParamSpec& spec : params.value().specs())
-    if (spec.name == "traversal") built->traversal = params.value().get_string("traversal");
+    if (spec.name == "traversal") built->traversal = params.value().get_choice("traversal");
   built->kind = traversal_kind(request.name, built->traversal);
   return BuiltPtr(std::move(built));
 }

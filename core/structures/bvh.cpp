@@ -2,29 +2,10 @@
 
 namespace accel {
 
-std::vector<ParamSpec> hierarchy_param_specs() {
-  std::vector<ParamSpec> specs = bvh_builder_param_specs();
-  specs.push_back({"traversal", ParamSpec::Type::Choice, "ordered", 0, 0, {"dfs", "ordered", "pqueue"},
-                   "node order: depth-first in tree order, nearer child first with skipping, or a priority "
-                   "queue by entry distance (lecture)"});
-  return specs;
-}
-
-TraversalOrder traversal_order(const ParamSet& params) {
-  const std::string& t = params.get_choice("traversal");
-  return t == "dfs" ? TraversalOrder::Dfs : t == "pqueue" ? TraversalOrder::PriorityQueue : TraversalOrder::Ordered;
-}
-
-std::vector<ParamSpec> Bvh::param_specs() {
-  std::vector<ParamSpec> specs = hierarchy_param_specs();
-  specs.push_back({"width", ParamSpec::Type::Choice, "4", 0, 0, {"2", "4"},
-                   "children per node: 2 is the lecture's binary tree, 4 collapses it into nodes whose four "
-                   "boxes are tested at once with SSE (faster)"});
-  return specs;
-}
+std::vector<ParamSpec> Bvh::param_specs() { return bvh_param_specs(); }
 
 Status Bvh::build_impl(const Scene& scene, const ParamSet& params) {
-  width_ = params.get_choice("width") == "2" ? 2 : 4;
+  width_ = hierarchy_options(params).width;
   // The 4-wide layout tests a leaf's triangles four at a time: the SAH builders know it.
   const BuildTree tree = build_tree(scene, params, width_ == 2 ? 1 : 4);
   wide_.clear();

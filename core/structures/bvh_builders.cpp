@@ -1,5 +1,5 @@
 // BVH builders. Index:
-//   [SECTION] Parameters
+//   [SECTION] Names
 //   [SECTION] Shared top-down framework (leaf rule, fallback split)
 //   [SECTION] Median split
 //   [SECTION] SAH sweep (all three axes) and PCA sweep
@@ -21,41 +21,8 @@
 namespace accel {
 
 // ============================================================================
-// [SECTION] Parameters
+// [SECTION] Names
 // ============================================================================
-
-std::vector<ParamSpec> bvh_builder_param_specs() {
-  using T = ParamSpec::Type;
-  return {
-      {"builder", T::Choice, "sah", 0, 0, {"median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion"},
-       "how the tree is built: top-down median split, SAH plane sweep on all axes, binned SAH, SAH sweep along the "
-       "PCA axis, bottom-up agglomerative clustering, or Goldsmith-Salmon insertion"},
-      {"axis", T::Choice, "longest", 0, 0, {"x", "round_robin", "longest"},
-       "median builder only: split axis always x, cycling x,y,z by depth, or the longest extent of the centres"},
-      {"bins", T::Int, "16", 2, 256, {}, "binned_sah only: number of bins per axis"},
-      {"leaf_size", T::Int, "4", 1, 64, {}, "maximum number of triangles in a leaf"},
-      {"ct", T::Float, "1", 0.001, 1000, {}, "SAH cost of one traversal step (inner node)"},
-      {"ci", T::Float, "1", 0.001, 1000, {}, "SAH cost of one ray/triangle test"},
-  };
-}
-
-BvhBuildOptions bvh_build_options(const ParamSet& params) {
-  BvhBuildOptions o;
-  const std::string& b = params.get_choice("builder");
-  o.builder = b == "median"       ? BvhBuilderKind::Median
-              : b == "binned_sah" ? BvhBuilderKind::BinnedSah
-              : b == "pca_sah"    ? BvhBuilderKind::PcaSah
-              : b == "bottom_up"  ? BvhBuilderKind::BottomUp
-              : b == "insertion"  ? BvhBuilderKind::Insertion
-                                  : BvhBuilderKind::Sah;
-  const std::string& a = params.get_choice("axis");
-  o.axis = a == "x" ? MedianAxis::X : a == "round_robin" ? MedianAxis::RoundRobin : MedianAxis::Longest;
-  o.bins = params.get_int("bins");
-  o.leaf_size = params.get_int("leaf_size");
-  o.ct = float(params.get_float("ct"));
-  o.ci = float(params.get_float("ci"));
-  return o;
-}
 
 const char* builder_name(BvhBuilderKind kind) {
   switch (kind) {

@@ -25,7 +25,7 @@ enum class BvhBuilderKind : uint8_t {
 /// Axis rule of the median builder.
 enum class MedianAxis : uint8_t { X, RoundRobin, Longest };
 
-/// Builder options, as parsed from the structure's parameters.
+/// Builder options, as the hierarchies' parameters set them (hierarchy_params.h).
 struct BvhBuildOptions {
   BvhBuilderKind builder = BvhBuilderKind::Sah;
   MedianAxis axis = MedianAxis::Longest;
@@ -40,10 +40,7 @@ struct BvhBuildOptions {
   float leaf_cost(size_t n) const { return ci * float((n + size_t(prims_per_test) - 1) / size_t(prims_per_test)); }
 };
 
-/// Parameters every hierarchy takes (bvh and spheretree alike), besides `traversal`.
-std::vector<ParamSpec> bvh_builder_param_specs();
-/// Reads BvhBuildOptions from validated parameters.
-BvhBuildOptions bvh_build_options(const ParamSet& params);
+/// The builder's parameter name: "median", "sah", ... (the declaration is hierarchy_params.h).
 const char* builder_name(BvhBuilderKind kind);
 
 /// One node of the builder's output. Leaves have count > 0 and cover

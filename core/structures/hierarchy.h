@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "structures/bvh_builders.h"
+#include "structures/hierarchy_params.h"
 #include "check.h"
 #include "structure.h"
 
@@ -22,17 +23,6 @@ namespace accel {
 // [SECTION] Parameters and traversal order
 // ============================================================================
 
-/// The lecture's three ways to walk a hierarchy.
-enum class TraversalOrder : uint8_t {
-  Dfs,            ///< depth-first in tree order (left before right), whatever the ray's direction
-  Ordered,        ///< depth-first, nearer child first; a popped node entered beyond the closest hit is skipped
-  PriorityQueue,  ///< nodes in order of entry distance (lecture: p-queue); stops when the nearest
-                  ///< pending node is farther than the closest hit
-};
-
-/// Builder parameters plus `traversal`.
-std::vector<ParamSpec> hierarchy_param_specs();
-TraversalOrder traversal_order(const ParamSet& params);
 
 // ============================================================================
 // [SECTION] Node layout

@@ -21,27 +21,32 @@ namespace accel {
 // [SECTION] Parameters
 //-----------------------------------------------------------------------------
 
-std::vector<ParamSpec> KdTree::param_specs() {
-  using T = ParamSpec::Type;
-  return {
-      {"split", T::Choice, "sah", 0, 0, {"middle", "median", "sah"},
-       "split position: middle of the node's region, median of its triangles' centres, or the SAH "
-       "minimum over all three axes (Wald & Havran 2006)"},
-      {"axis", T::Choice, "longest", 0, 0, {"round_robin", "longest"},
-       "split axis for middle/median: x,y,z by depth, or the longest axis of the node's region (sah tries all "
-       "three and ignores this)"},
-      {"max_depth", T::Int, "0", 0, kKdMaxDepth, {},
-       "deepest leaf (root = 0); 0 = auto, round(8 + 1.3 log2 N) as in pbrt"},
-      {"leaf_size", T::Int, "1", 1, 1024, {},
-       "a node with at most this many triangles becomes a leaf (sah may stop earlier)"},
-      {"ct", T::Float, "1", 0.01, 1000, {}, "SAH cost of one traversal step"},
-      {"ci", T::Float, "1", 0.01, 1000, {},
-       "SAH cost of one ray/triangle test (only ci/ct matters: higher = deeper trees, smaller leaves)"},
-      {"empty_bonus", T::Float, "0.2", 0, 0.95, {},
-       "SAH cost factor (1 - empty_bonus) for a split that cuts off empty space"},
-      {"clip", T::Choice, "on", 0, 0, {"on", "off"},
-       "perfect splits: clip triangles to the node's region before choosing and distributing splits"},
-  };
+const ParamTable<KdBuildOptions>& KdTree::param_table() {
+  using O = KdBuildOptions;
+  static const auto table =
+      ParamTable<O>()
+          .choice("split", &O::split,
+                  std::vector<std::pair<std::string, KdSplit>>{
+                      {"middle", KdSplit::Middle}, {"median", KdSplit::Median}, {"sah", KdSplit::Sah}},
+                  "split position: middle of the node's region, median of its triangles' centres, or the SAH "
+                  "minimum over all three axes (Wald & Havran 2006)")
+          .choice("axis", &O::axis,
+                  std::vector<std::pair<std::string, KdAxis>>{{"round_robin", KdAxis::RoundRobin},
+                                                             {"longest", KdAxis::Longest}},
+                  "split axis for middle/median: x,y,z by depth, or the longest axis of the node's region (sah tries "
+                  "all three and ignores this)")
+          .integer("max_depth", &O::max_depth, 0, kKdMaxDepth,
+                   "deepest leaf (root = 0); 0 = auto, round(8 + 1.3 log2 N) as in pbrt")
+          .integer("leaf_size", &O::leaf_size, 1, 1024,
+                   "a node with at most this many triangles becomes a leaf (sah may stop earlier)")
+          .number("ct", &O::ct, 0.01, 1000, "SAH cost of one traversal step")
+          .number("ci", &O::ci, 0.01, 1000,
+                  "SAH cost of one ray/triangle test (only ci/ct matters: higher = deeper trees, smaller leaves)")
+          .number("empty_bonus", &O::empty_bonus, 0, 0.95,
+                  "SAH cost factor (1 - empty_bonus) for a split that cuts off empty space")
+          .choice("clip", &O::clip, std::vector<std::pair<std::string, bool>>{{"on", true}, {"off", false}},
+                  "perfect splits: clip triangles to the node's region before choosing and distributing splits");
+  return table;
 }
 
 int kd_auto_max_depth(size_t n) {
@@ -575,16 +580,7 @@ Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& optio
 Status KdTree::build_impl(const Scene& scene, const ParamSet& params) {
   scene_ = nullptr;
   data_ = KdTreeData{};
-  KdBuildOptions o;
-  const std::string& split = params.get_choice("split");
-  o.split = split == "middle" ? KdSplit::Middle : split == "median" ? KdSplit::Median : KdSplit::Sah;
-  o.axis = params.get_choice("axis") == "round_robin" ? KdAxis::RoundRobin : KdAxis::Longest;
-  o.max_depth = params.get_int("max_depth");
-  o.leaf_size = params.get_int("leaf_size");
-  o.ct = params.get_float("ct");
-  o.ci = params.get_float("ci");
-  o.empty_bonus = params.get_float("empty_bonus");
-  o.clip = params.get_choice("clip") == "on";
+  const KdBuildOptions o = param_table().apply(params);
   auto built = build_kd_tree(scene, o);
   if (!built) return built.error();
   data_ = std::move(built.value());

@@ -167,7 +167,9 @@ inline float kd_upper(float t) { return t * (t > 0.0f ? 1.0f + 2.0f * gamma_boun
 /// axis (round_robin|longest), max_depth, leaf_size, ct, ci, empty_bonus, clip (on|off).
 class KdTree final : public StructureWithTraversal<KdTree> {
  public:
-  static std::vector<ParamSpec> param_specs();
+  /// The one declaration of the kd-tree's parameters (over its build options).
+  static const ParamTable<KdBuildOptions>& param_table();
+  static std::vector<ParamSpec> param_specs() { return param_table().specs(); }
   std::string name() const override { return "kdtree"; }
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;

@@ -214,25 +214,30 @@ Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& op
 
 // [SECTION] Structure
 
-std::vector<ParamSpec> Octree::param_specs() {
-  using T = ParamSpec::Type;
-  return {
-      {"max_prims", T::Int, "8", 1, 4096, {}, "a cell holding at most this many triangles is not subdivided"},
-      {"max_depth", T::Int, "16", 0, kOctreeMaxDepth, {}, "deepest level of subdivision (the root is level 0)"},
-      {"insert", T::Choice, "exact", 0, 0, {"bbox", "exact"},
-       "a triangle goes to each child its bounding box (bbox) or the triangle itself (exact) overlaps"},
-      {"order", T::Choice, "sorted", 0, 0, {"sorted", "fixed"},
-       "children visited front to back along the ray (sorted) or in octant order 0..7 (fixed)"},
-  };
+const ParamTable<OctreeOptions>& Octree::param_table() {
+  using O = OctreeOptions;
+  static const auto table =
+      ParamTable<O>()
+          .integer("max_prims", [](O& o) -> auto& { return o.build.max_prims; }, 1, 4096,
+                   "a cell holding at most this many triangles is not subdivided")
+          .integer("max_depth", [](O& o) -> auto& { return o.build.max_depth; }, 0, kOctreeMaxDepth,
+                   "deepest level of subdivision (the root is level 0)")
+          .choice("insert", [](O& o) -> auto& { return o.build.insert; },
+                  std::vector<std::pair<std::string, OctreeInsert>>{{"bbox", OctreeInsert::Bbox},
+                                                                   {"exact", OctreeInsert::Exact}},
+                  "a triangle goes to each child its bounding box (bbox) or the triangle itself (exact) overlaps")
+          .choice("order", &O::order,
+                  std::vector<std::pair<std::string, OctreeOrder>>{{"sorted", OctreeOrder::Sorted},
+                                                                  {"fixed", OctreeOrder::Fixed}},
+                  "children visited front to back along the ray (sorted) or in octant order 0..7 (fixed)");
+  return table;
 }
 
 Status Octree::build_impl(const Scene& scene, const ParamSet& params) {
   scene_ = &scene;
-  OctreeBuildOptions options;
-  options.max_prims = params.get_int("max_prims");
-  options.max_depth = params.get_int("max_depth");
-  options.insert = params.get_choice("insert") == "bbox" ? OctreeInsert::Bbox : OctreeInsert::Exact;
-  order_ = params.get_choice("order") == "fixed" ? OctreeOrder::Fixed : OctreeOrder::Sorted;
+  const OctreeOptions all = param_table().apply(params);
+  const OctreeBuildOptions& options = all.build;
+  order_ = all.order;
   auto built = build_octree(scene, options);
   if (!built) {
     data_ = OctreeData{};

@@ -132,11 +132,19 @@ struct OctreeData {
 /// would be exceeded; never allocates beyond them.
 Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options);
 
+/// Everything the octree's parameters set: the build and the children's visiting order.
+struct OctreeOptions {
+  OctreeBuildOptions build;
+  OctreeOrder order = OctreeOrder::Sorted;
+};
+
 /// Octree over the scene's non-degenerate triangles. Parameters: max_prims, max_depth,
 /// insert (bbox|exact), order (sorted|fixed).
 class Octree final : public StructureWithTraversal<Octree> {
  public:
-  static std::vector<ParamSpec> param_specs();
+  /// The one declaration of the octree's parameters.
+  static const ParamTable<OctreeOptions>& param_table();
+  static std::vector<ParamSpec> param_specs() { return param_table().specs(); }
   std::string name() const override { return "octree"; }
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;

@@ -275,34 +275,37 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config) {
   return g;
 }
 
-std::vector<ParamSpec> UniformGrid::param_specs() {
-  using T = ParamSpec::Type;
-  return {
-      {"resolution", T::Choice, "cbrt", 0, 0, {"cbrt", "avgsize"},
-       "How cells are sized when res is not given: cbrt = lambda*cbrt(N) cells per axis of a cube-shaped "
-       "scene (lambda^3*N cuboid-like cells in all), avgsize = cell edge of the mean triangle bbox extent / lambda."},
-      {"lambda", T::Float, "2", 0.01, 16, {},
-       "Per-axis factor of the resolution rule (lambda=2: 2*cbrt(N) cells per axis of a cube, 8 cells per "
-       "triangle); a result over the memory budget is shrunk to fit."},
-      {"res", T::Int3, "16,16,16", 1, kGridMaxRes, {},
-       "Cells per axis NX,NY,NZ; when given it overrides resolution and lambda (at most 2^26 cells in all)."},
-      {"insert", T::Choice, "exact", 0, 0, {"bbox", "exact"},
-       "Cells a triangle is stored in: every cell of its bounding box (the lecture's choice), or only the cells "
-       "it overlaps (Akenine-Moller 2001 test: slower build, fewer references, faster queries)."},
-      {"mailbox", T::Choice, "on", 0, 0, {"off", "on"},
-       "Skip triangles the ray already tested in an earlier cell (a 32-entry per-ray table on the stack)."},
-  };
+const ParamTable<UniformGridOptions>& UniformGrid::param_table() {
+  using O = UniformGridOptions;
+  static const auto table =
+      ParamTable<O>()
+          .choice("resolution", [](O& o) -> auto& { return o.build.rule; },
+                  std::vector<std::pair<std::string, GridResolutionRule>>{{"cbrt", GridResolutionRule::Cbrt},
+                                                                         {"avgsize", GridResolutionRule::AvgSize}},
+                  "How cells are sized when res is not given: cbrt = lambda*cbrt(N) cells per axis of a cube-shaped "
+                  "scene (lambda^3*N cuboid-like cells in all), avgsize = cell edge of the mean triangle bbox extent "
+                  "/ lambda.")
+          .number("lambda", [](O& o) -> auto& { return o.build.lambda; }, 0.01, 16,
+                  "Per-axis factor of the resolution rule (lambda=2: 2*cbrt(N) cells per axis of a cube, 8 cells per "
+                  "triangle); a result over the memory budget is shrunk to fit.")
+          .int3("res", [](O& o) -> auto& { return o.build.res; }, 1, kGridMaxRes,
+                "Cells per axis NX,NY,NZ; when given it overrides resolution and lambda (at most 2^26 cells in all).")
+          .choice("insert", [](O& o) -> auto& { return o.build.insertion; },
+                  std::vector<std::pair<std::string, GridInsertion>>{{"bbox", GridInsertion::Bbox},
+                                                                    {"exact", GridInsertion::Exact}},
+                  "Cells a triangle is stored in: every cell of its bounding box (the lecture's choice), or only the "
+                  "cells it overlaps (Akenine-Moller 2001 test: slower build, fewer references, faster queries).")
+          .choice("mailbox", &O::mailbox, std::vector<std::pair<std::string, bool>>{{"off", false}, {"on", true}},
+                  "Skip triangles the ray already tested in an earlier cell (a 32-entry per-ray table on the stack).");
+  return table;
 }
 
 Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params) {
   scene_ = &scene;
-  GridConfig config;
-  config.rule = params.get_choice("resolution") == "avgsize" ? GridResolutionRule::AvgSize : GridResolutionRule::Cbrt;
-  config.lambda = params.get_float("lambda");
-  config.explicit_res = params.is_set("res");
-  config.res = params.get_int3("res");
-  config.insertion = params.get_choice("insert") == "exact" ? GridInsertion::Exact : GridInsertion::Bbox;
-  mailbox_ = params.get_choice("mailbox") == "on";
+  UniformGridOptions options = param_table().apply(params);
+  GridConfig& config = options.build;
+  config.explicit_res = params.is_set("res");  // a given res overrides the rule
+  mailbox_ = options.mailbox;
 
   auto built = build_grid(scene, config);
   if (!built) {

@@ -93,11 +93,18 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config);
 bool triangle_box_overlap(const DVec3& box_min, const DVec3& box_max, const Vec3& p0, const Vec3& p1,
                           const Vec3& p2, double pad);
 
+/// Everything the grid's parameters set: the build and the traversal's mailboxing.
+struct UniformGridOptions {
+  GridConfig build;
+  bool mailbox = true;
+};
+
 /// Uniform grid with 3D-DDA traversal (Amanatides & Woo 1987) and optional mailboxing.
 class UniformGrid final : public StructureWithTraversal<UniformGrid> {
  public:
-  /// resolution, lambda, res, insert, mailbox.
-  static std::vector<ParamSpec> param_specs();
+  /// resolution, lambda, res, insert, mailbox: the one declaration of the grid's parameters.
+  static const ParamTable<UniformGridOptions>& param_table();
+  static std::vector<ParamSpec> param_specs() { return param_table().specs(); }
   std::string name() const override { return "grid"; }
   /// Every non-empty cell in id order: depth 0, leaf, its box and triangle count.
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;

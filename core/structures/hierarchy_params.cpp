@@ -1,0 +1,57 @@
+#include "structures/hierarchy_params.h"
+
+namespace accel {
+namespace {
+
+ParamTable<HierarchyOptions> make_table(bool with_width) {
+  using O = HierarchyOptions;
+  using K = BvhBuilderKind;
+  auto table =
+      ParamTable<O>()
+          .choice("builder", [](O& o) -> auto& { return o.build.builder; },
+                  std::vector<std::pair<std::string, K>>{{"median", K::Median},
+                                                         {"sah", K::Sah},
+                                                         {"binned_sah", K::BinnedSah},
+                                                         {"pca_sah", K::PcaSah},
+                                                         {"bottom_up", K::BottomUp},
+                                                         {"insertion", K::Insertion}},
+                  "how the tree is built: top-down median split, SAH plane sweep on all axes, binned SAH, SAH sweep "
+                  "along the PCA axis, bottom-up agglomerative clustering, or Goldsmith-Salmon insertion")
+          .choice("axis", [](O& o) -> auto& { return o.build.axis; },
+                  std::vector<std::pair<std::string, MedianAxis>>{{"x", MedianAxis::X},
+                                                                 {"round_robin", MedianAxis::RoundRobin},
+                                                                 {"longest", MedianAxis::Longest}},
+                  "median builder only: split axis always x, cycling x,y,z by depth, or the longest extent of the "
+                  "centres")
+          .integer("bins", [](O& o) -> auto& { return o.build.bins; }, 2, 256,
+                   "binned_sah only: number of bins per axis")
+          .integer("leaf_size", [](O& o) -> auto& { return o.build.leaf_size; }, 1, 64,
+                   "maximum number of triangles in a leaf")
+          .number("ct", [](O& o) -> auto& { return o.build.ct; }, 0.001, 1000,
+                  "SAH cost of one traversal step (inner node)")
+          .number("ci", [](O& o) -> auto& { return o.build.ci; }, 0.001, 1000, "SAH cost of one ray/triangle test")
+          .choice("traversal", &O::traversal,
+                  std::vector<std::pair<std::string, TraversalOrder>>{{"dfs", TraversalOrder::Dfs},
+                                                                     {"ordered", TraversalOrder::Ordered},
+                                                                     {"pqueue", TraversalOrder::PriorityQueue}},
+                  "node order: depth-first in tree order, nearer child first with skipping, or a priority queue by "
+                  "entry distance (lecture)");
+  if (with_width)
+    table.choice("width", &O::width, std::vector<std::pair<std::string, int>>{{"2", 2}, {"4", 4}},
+                 "children per node: 2 is the lecture's binary tree, 4 collapses it into nodes whose four boxes are "
+                 "tested at once with SSE (faster)");
+  return table;
+}
+
+}  // namespace
+
+const ParamTable<HierarchyOptions>& hierarchy_param_table(bool with_width) {
+  static const ParamTable<HierarchyOptions> binary = make_table(false), bvh = make_table(true);
+  return with_width ? bvh : binary;
+}
+
+HierarchyOptions hierarchy_options(const ParamSet& params) {
+  return hierarchy_param_table(params.has("width")).apply(params);
+}
+
+}  // namespace accel

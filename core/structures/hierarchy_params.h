@@ -1,0 +1,39 @@
+#pragma once
+// The parameters of the two hierarchies (bvh, spheretree), declared once: the builder's
+// (builder, axis, bins, leaf_size, ct, ci), the traversal order, and the BVH's node width.
+#include "params.h"
+#include "structures/bvh_builders.h"
+
+namespace accel {
+
+/// The lecture's three ways to walk a hierarchy.
+enum class TraversalOrder : uint8_t {
+  Dfs,            ///< depth-first in tree order (left before right), whatever the ray's direction
+  Ordered,        ///< depth-first, nearer child first; a popped node entered beyond the closest hit is skipped
+  PriorityQueue,  ///< nodes in order of entry distance (lecture: p-queue); stops when the nearest
+                  ///< pending node is farther than the closest hit
+};
+
+/// Everything a hierarchy's parameters set.
+struct HierarchyOptions {
+  BvhBuildOptions build;
+  TraversalOrder traversal = TraversalOrder::Ordered;
+  int width = 4;  ///< bvh only: children per stored node (2 binary, 4 wide SSE)
+};
+
+/// The declaration: builder parameters and `traversal`, plus `width` when `with_width`
+/// (the bvh; the sphere tree has only the binary layout).
+const ParamTable<HierarchyOptions>& hierarchy_param_table(bool with_width);
+/// The options of validated hierarchy parameters (bvh's or spheretree's).
+HierarchyOptions hierarchy_options(const ParamSet& params);
+
+/// Builder parameters plus `traversal` (the sphere tree's list).
+inline std::vector<ParamSpec> hierarchy_param_specs() { return hierarchy_param_table(false).specs(); }
+/// The same plus `width` (the bvh's list).
+inline std::vector<ParamSpec> bvh_param_specs() { return hierarchy_param_table(true).specs(); }
+/// The traversal order of validated hierarchy parameters.
+inline TraversalOrder traversal_order(const ParamSet& params) { return hierarchy_options(params).traversal; }
+/// The builder options of validated hierarchy parameters.
+inline BvhBuildOptions bvh_build_options(const ParamSet& params) { return hierarchy_options(params).build; }
+
+}  // namespace accel
