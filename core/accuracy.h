@@ -1,5 +1,5 @@
 #pragma once
-// The correctness rule of ../shared/formats.md, used by the tests (against a brute-force
+// The correctness rule of docs/hits.md, used by the tests (against a brute-force
 // double reference) and by the benchmark's error columns.
 #include <cmath>
 #include <cstdint>
@@ -32,10 +32,10 @@ ReferenceHit reference_closest(const Scene& scene, const Ray& ray);
 /// Distance from p to triangle (a, b, c), in double.
 double point_triangle_distance(const DVec3& p, const DVec3& a, const DVec3& b, const DVec3& c);
 
-/// formats.md's allowance: 8 float32 ulps of the scene's largest absolute coordinate M.
+/// docs/hits.md's allowance: 8 float32 ulps of the scene's largest absolute coordinate M.
 double ulp_allowance(const Scene& scene);
 
-/// Judges `got` against `ref` by formats.md's rule.
+/// Judges `got` against `ref` by docs/hits.md's rule.
 HitVerdict judge_hit(const Scene& scene, const Ray& ray, const Hit& got, const ReferenceHit& ref);
 
 }  // namespace accel

@@ -1,6 +1,6 @@
 #pragma once
 // Ray/triangle, ray/box and ray/sphere tests, following the hit rule of
-// ../shared/formats.md: closed triangles (edges and vertices hit), tmin <= t <= tmax
+// docs/hits.md: closed triangles (edges and vertices hit), tmin <= t <= tmax
 // inclusive, never a zero-area triangle, never a triangle whose plane contains the ray.
 #include <cmath>
 #include <cstdint>
@@ -96,7 +96,7 @@ bool intersect_triangle_double(const Ray& ray, const Vec3& p0, const Vec3& p1, c
                                double tmax, double* t, double* u, double* v);
 
 /// True when the triangle has exactly zero area (cross product of its float edges, taken in
-/// double, is the zero vector). formats.md: such triangles are never hit.
+/// double, is the zero vector). docs/hits.md: such triangles are never hit.
 bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2);
 
 /// A ray prepared for slab tests: reciprocal direction with -0.0 giving -inf.

@@ -23,7 +23,7 @@ using UVec3 = glm::uvec3;
 
 inline constexpr float kInf = std::numeric_limits<float>::infinity();
 
-/// A ray o + t*d with t in the closed interval [tmin, tmax] (formats.md). d need not be unit length.
+/// A ray o + t*d, t in the closed interval [tmin, tmax] (docs/hits.md). d need not be unit length.
 struct Ray {
   Vec3 org{0.0f};
   Vec3 dir{0.0f, 0.0f, 1.0f};

@@ -148,7 +148,7 @@ Result<Scene> load_obj(const std::string& path) {
 
   // Materials are ignored: parsing from a string never opens the .mtl file.
   tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // formats.md wants fan triangulation in place, done below
+  config.triangulate = false;  // docs/hits.md wants fan triangulation in place, done below
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromString(text, "", config)) {
@@ -176,7 +176,7 @@ Result<Scene> load_obj(const std::string& path) {
       const auto* idx = &shape.mesh.indices[offset];
       offset += corners;
       // Shapes come in file order; check each face against the validation pass so the
-      // numbering is exactly formats.md's whatever tinyobjloader does with groups.
+      // numbering is exactly docs/hits.md's whatever tinyobjloader does with groups.
       if (face >= info.face_heads.size() || uint32_t(idx[0].vertex_index) != info.face_heads[face][0] ||
           uint32_t(idx[1].vertex_index) != info.face_heads[face][1])
         return make_error(path + ": internal: face order from tinyobjloader differs from the file");

@@ -34,7 +34,7 @@ std::vector<Ray> primary_rays(const PinholeCamera& cam, int width, int height);
 /// rays hit, many start inside the scene).
 std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed);
 
-/// Parses a ray-set spec: "primary:W:H", "random:N:SEED", or a rays file path (formats.md).
+/// Parses a ray-set spec: "primary:W:H", "random:N:SEED", or a rays file path (docs/hits.md).
 Result<std::vector<Ray>> make_rays(const std::string& spec, const Scene& scene);
 
 }  // namespace accel

@@ -1,5 +1,5 @@
 #pragma once
-// The CLI's file formats (../shared/formats.md): rays in, hits out.
+// The CLI's file formats (docs/hits.md): rays in, hits out.
 #include <string>
 #include <vector>
 

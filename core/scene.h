@@ -11,7 +11,7 @@
 
 namespace accel {
 
-/// A triangle soup. Triangles are numbered 0,1,2,... in file order (formats.md); degenerate
+/// A triangle soup. Triangles are numbered 0,1,2,... in file order (docs/hits.md); degenerate
 /// (zero-area) triangles keep their number but are never hit and never enter a structure.
 class Scene {
  public:
@@ -34,7 +34,7 @@ class Scene {
   size_t degenerate_count() const { return triangles_.size() - valid_prims_.size(); }
   /// Bounds of all vertices referenced by a triangle.
   const Aabb& bounds() const { return bounds_; }
-  /// Largest absolute coordinate (the M of formats.md's ulp allowance).
+  /// Largest absolute coordinate (the M of docs/hits.md's ulp allowance).
   float max_abs_coordinate() const;
   const std::string& name() const { return name_; }
 
@@ -49,7 +49,7 @@ class Scene {
   std::string name_;
 };
 
-/// Loads a Wavefront OBJ (formats.md: polygons fan-triangulated in place, materials,
+/// Loads a Wavefront OBJ (docs/hits.md: polygons fan-triangulated in place, materials,
 /// normals and uvs ignored). Rejects, with "FILE:LINE: what" messages: unreadable or
 /// non-text (e.g. UTF-16) files, malformed numbers, NaN/inf coordinates, out-of-range or
 /// zero face indices, faces with fewer than 3 vertices, and files with no triangles.

@@ -61,7 +61,7 @@ class Structure {
   /// Builds over `scene` (kept by reference: it must outlive the structure) with validated
   /// parameters, and times it. The only error is an internal limit, reported as an Error.
   Status build(const Scene& scene, const ParamSet& params);
-  /// Closest hit of `ray` (formats.md rule). Fills per-query counters when `stats` is given.
+  /// Closest hit of `ray` (docs/hits.md rule). Fills per-query counters when `stats` is given.
   virtual Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const = 0;
   /// Same answer as intersect(), recording every traversal step.
   virtual Hit intersect_traced(const Ray& ray, TraceRecorder& recorder) const = 0;

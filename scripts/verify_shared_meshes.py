@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks that `accelviz-cli trace` answers every shared mesh identically to `brute` for every
-structure and option (formats.md rule: same prim, or a tie within the t tolerance).
+structure and option (docs/hits.md rule: same prim, or a tie within the t tolerance).
 
     scripts/verify_shared_meshes.py [--rays random:100000:1] [--meshes a.obj,b.obj] [--structures grid,bvh]
 

@@ -1,5 +1,5 @@
 #pragma once
-// The oracle of the tests: core/accuracy.h's formats.md rule with a readable reason.
+// The oracle of the tests: core/accuracy.h's docs/hits.md rule with a readable reason.
 #include <string>
 
 #include "accuracy.h"
@@ -9,7 +9,7 @@ namespace accel::testing {
 using accel::ReferenceHit;
 using accel::reference_closest;
 
-/// True when `got` is a correct answer for `ray` by formats.md's rule; otherwise `why` says why.
+/// True when `got` is a correct answer for `ray` by docs/hits.md's rule; otherwise `why` says why.
 inline bool hit_is_correct(const Scene& scene, const Ray& ray, const Hit& got, const ReferenceHit& ref,
                            std::string* why = nullptr) {
   const HitVerdict v = judge_hit(scene, ray, got, ref);

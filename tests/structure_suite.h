@@ -1,5 +1,5 @@
 #pragma once
-// The suite every structure x option runs: identical answers to the reference (formats.md
+// The suite every structure x option runs: identical answers to the reference (docs/hits.md
 // rule) on procedural scenes, small shared meshes (when present) and edge-case scenes, and
 // recording that never changes the answer. A structure's test file instantiates it with its
 // configurations:

@@ -1,4 +1,4 @@
-// Ray/triangle and ray/box tests against the hit rule of formats.md.
+// Ray/triangle and ray/box tests against the hit rule of docs/hits.md.
 #include <gtest/gtest.h>
 
 #include "geometry.h"
@@ -32,7 +32,7 @@ TEST(Triangle, InteriorHitGivesTAndBarycentrics) {
 }
 
 TEST(Triangle, EdgesAndVerticesAreHit) {
-  // formats.md: the triangle is closed.
+  // docs/hits.md: the triangle is closed.
   for (Kernel k : {Kernel::Watertight, Kernel::Double}) {
     EXPECT_TRUE(hits(k, down_at(0.0f, 0.0f))) << kernel_name(k);   // vertex
     EXPECT_TRUE(hits(k, down_at(1.0f, 0.0f))) << kernel_name(k);   // vertex

@@ -247,7 +247,7 @@ TEST(KdTreeTrace, RayLyingInTheSplitPlaneVisitsBothSides) {
     for (float dx : {0.0f, -0.0f}) {
       SCOPED_TRACE(std::signbit(dx) ? "dir.x = -0.0" : "dir.x = +0.0");
       // Down -z in the plane x = 0.5 at y = 0.5: T4's edge (z = 0.7) is first, T3's (0.6)
-      // next, T5 (0.3) crosses; T2 lies in the plane and is never hit (formats.md).
+      // next, T5 (0.3) crosses; T2 lies in the plane and is never hit (docs/hits.md).
       ReferenceHit ref;
       Ray down = make_ray({0.5f, 0.5f, 2.0f}, {dx, 0.0f, -1.0f});
       EXPECT_TRUE(matches_reference(scene, *s, down, &ref));

@@ -294,7 +294,7 @@ TEST(OctreeTrace, RecordingNeverChangesTheAnswer) {
 
 // [SECTION] Robustness
 
-/// Every hit correct by formats.md's rule (testing::hit_is_correct against the double
+/// Every hit correct by docs/hits.md's rule (testing::hit_is_correct against the double
 /// reference). Not "same t as brute force": the watertight kernel defers to double near
 /// tmax, and tmax (the closest hit so far) differs with the order triangles are tested in.
 void expect_correct(const Scene& scene, const std::vector<std::string>& params, const std::vector<Ray>& rays) {

@@ -1,4 +1,4 @@
-// Rays file parsing and the hits CSV (formats.md).
+// Rays file parsing and the hits CSV (docs/hits.md).
 #include <filesystem>
 #include <fstream>
 #include <sstream>

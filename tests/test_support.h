@@ -118,7 +118,7 @@ inline const Workload& workload(const std::string& key, const std::function<Scen
   return *slot;
 }
 
-/// Counts rays whose hit breaks formats.md's rule; reports the first few.
+/// Counts rays whose hit breaks docs/hits.md's rule; reports the first few.
 inline size_t count_wrong(const Workload& w, const std::vector<Hit>& hits, std::string* first_failures) {
   size_t wrong = 0;
   for (size_t i = 0; i < hits.size(); ++i) {

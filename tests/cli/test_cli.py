@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """End-to-end tests of accelviz-cli: trace answers (hand-checked), the CSV format of
-../shared/formats.md, and bad input (exit 2, one line naming file and line, no output file)."""
+docs/hits.md, and bad input (exit 2, one line naming file and line, no output file)."""
 import argparse
 import math
 import os

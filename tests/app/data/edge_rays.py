@@ -4,7 +4,7 @@
 A hard mix for ray/triangle tests that are not watertight: a ray through a shared edge or
 vertex may slip between the triangles or hit the one behind. Each ray starts 1.5 scene
 diagonals away from its target point, in a uniformly random direction, so some rays hit
-another triangle first. Output: the rays file of ../shared/formats.md.
+another triangle first. Output: the rays file of docs/hits.md.
 
   edge_rays.py OBJ N SEED > rays.txt
 """
@@ -25,7 +25,7 @@ def main():
         elif p[0] == "f":
             idx = [int(t.split("/")[0]) for t in p[1:]]
             idx = [i - 1 if i > 0 else len(vertices) + i for i in idx]
-            for k in range(1, len(idx) - 1):  # fan, as formats.md numbers them
+            for k in range(1, len(idx) - 1):  # fan, as docs/hits.md numbers them
                 triangles.append((idx[0], idx[k], idx[k + 1]))
     lo = [min(v[i] for v in vertices) for i in range(3)]
     hi = [max(v[i] for v in vertices) for i in range(3)]
