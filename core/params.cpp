@@ -148,7 +148,7 @@ Status validate_param(const ParamSpec& spec, const ParamValue& value, const std:
     case ParamSpec::Type::Choice: {
       const int* v = std::get_if<int>(&value);
       if (!v) return make_error(who + " takes " + spec.range_text());
-      if (*v < 0 || size_t(*v) >= spec.choices.size()) return bad("#" + std::to_string(*v));
+      if (*v < 0 || size_t(*v) >= spec.choices.size()) return bad("choice #" + std::to_string(*v));
       return {};
     }
   }

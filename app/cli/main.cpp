@@ -44,9 +44,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   cli::TraceOptions trace;
-  CLI::App* trace_cmd = app.add_subcommand("trace", "closest hit for every ray of a rays file (formats.md CSV out)");
+  CLI::App* trace_cmd = app.add_subcommand("trace", "closest hit for every ray of a rays file (docs/hits.md CSV out)");
   add_structure_options(trace_cmd, &trace.build);
-  trace_cmd->add_option("--rays", trace.rays, "rays file (formats.md), or primary:W:H, or random:N:SEED")->required();
+  trace_cmd->add_option("--rays", trace.rays, "rays file (docs/hits.md), or primary:W:H, or random:N:SEED")->required();
   trace_cmd->add_option("--out", trace.out, "hits CSV to write")->required();
   trace_cmd->add_option("--threads", trace.threads, "worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024))
