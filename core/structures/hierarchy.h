@@ -1,8 +1,9 @@
 #pragma once
-// The bounding volume hierarchy shared by the AABB tree (bvh.h) and the sphere tree
-// (sphere_tree.h): the same builders (bvh_builders.h), the same flat node layout and the
-// same three traversal orders of the lecture, written once as templates over the bounding
-// volume. Index:
+// The binary bounding volume hierarchy shared by the AABB tree's binary layout (bvh.h,
+// BinaryBvh) and the sphere tree (sphere_tree.h): the same builders (bvh_builders.h), the
+// same flat node layout and the same three traversal orders of the lecture, written once as
+// templates over the bounding volume. The 4-wide AABB layout (wide_bvh.h) shares the
+// parameters and the orders, not the nodes. Index:
 //   [SECTION] Parameters and traversal order
 //   [SECTION] Node layout
 //   [SECTION] Hierarchy: build, stats, views
@@ -114,7 +115,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   }
 
   /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`
-  /// triangles per leaf test); the binary layout is left empty.
+  /// triangles per leaf test); the nodes stay empty until store_binary().
   BuildTree build_tree(const Scene& scene, const ParamSet& params, int prims_per_test = 1) {
     scene_ = &scene;
     options_ = bvh_build_options(params);
