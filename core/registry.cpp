@@ -22,7 +22,7 @@ const std::vector<StructureInfo>& structure_registry() {
       {"kdtree", "kd-tree", "kd-tree: axis-aligned split planes, near/far traversal", "nodes", TF::KdTree, false,
        false, KdTree::param_specs(), [](const ParamSet&) { return std::make_unique<KdTree>(); }},
       {"bvh", "BVH", "bounding volume hierarchy with axis-aligned boxes (AABB tree)", "nodes", TF::Hierarchy, false,
-       false, Bvh::param_specs(), [](const ParamSet&) { return std::make_unique<Bvh>(); }},
+       false, bvh_param_specs(), make_bvh},
       {"spheretree", "sphere tree", "bounding volume hierarchy with bounding spheres (sphere tree)", "nodes",
        TF::Hierarchy, false, false, SphereTree::param_specs(),
        [](const ParamSet&) { return std::make_unique<SphereTree>(); }},

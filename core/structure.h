@@ -90,7 +90,7 @@ class Structure {
   double build_ms_ = 0.0;
 };
 
-/// CRTP glue: turns one `template <class Sink> Hit traverse(const Ray&, Sink&) const` in
+/// CRTP glue: turns one `template <TraversalSink Sink> Hit traverse(const Ray&, Sink&) const` in
 /// Derived into the virtual query functions, so each traversal is written once.
 template <class Derived>
 class StructureWithTraversal : public Structure {
@@ -116,7 +116,7 @@ class StructureWithTraversal : public Structure {
 /// Takes the outcome of testing triangle `prim` into `closest` (whose t is the current
 /// tmax). The first hit in [tmin, tmax] counts even at t == tmax (inclusive); later ones
 /// only when strictly closer, so ties keep the first triangle found.
-template <class Sink>
+template <TraversalSink Sink>
 ACCEL_FORCE_INLINE bool take_triangle_result(uint32_t prim, bool hit, const TriangleHit& th, Hit& closest,
                                              Sink& sink) {
   sink.test_prim(prim, hit, th.t);
@@ -129,7 +129,7 @@ ACCEL_FORCE_INLINE bool take_triangle_result(uint32_t prim, bool hit, const Tria
 }
 
 /// Tests triangle `prim` with vertices (p0, p1, p2) and takes the result into `closest`.
-template <class Sink>
+template <TraversalSink Sink>
 ACCEL_FORCE_INLINE bool test_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, uint32_t prim,
                                       const TriangleTester& tester, Hit& closest, Sink& sink) {
   TriangleHit th{kInf, 0.0f, 0.0f};
@@ -138,7 +138,7 @@ ACCEL_FORCE_INLINE bool test_triangle(const Vec3& p0, const Vec3& p1, const Vec3
 }
 
 /// The same, reading the triangle's vertices from the scene.
-template <class Sink>
+template <TraversalSink Sink>
 inline bool test_triangle(const Scene& scene, const TriangleTester& tester, uint32_t prim, Hit& closest,
                           Sink& sink) {
   return test_triangle(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), prim, tester, closest,
@@ -157,7 +157,7 @@ inline Hit finish_hit(Hit h) {
   return h;
 }
 /// Ends a query: the answer of finish_hit(), reported to the sink.
-template <class Sink>
+template <TraversalSink Sink>
 inline Hit finish_query(const Hit& closest, Sink& sink) {
   const Hit result = finish_hit(closest);
   sink.done(result);

@@ -1,9 +1,10 @@
 #pragma once
 // Observers of the one real traversal of each structure. Every structure writes its loop
-// once, as `template <class Sink> Hit traverse(const Ray&, Sink&) const`, and calls the sink
-// at each step. NullSink compiles to nothing (the fast path), StatsSink counts, and
+// once, as `template <TraversalSink Sink> Hit traverse(const Ray&, Sink&) const`, and calls
+// the sink at each step. NullSink compiles to nothing (the fast path), StatsSink counts, and
 // TraceRecorder keeps every step for the viewer's animation -- so the animation shows
-// exactly what the real query does.
+// exactly what the real query does. TraversalSink names the contract.
+#include <concepts>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -55,7 +56,10 @@ std::string describe_event(const TraceEvent& e);
 
 /// The fast path: every callback is empty and inlined away.
 struct NullSink {
+  /// Keeps no steps: no extra tests to tell why a node was culled.
   static constexpr bool kRecords = false;
+  /// Nothing is counted or kept: traversals may skip work done only for observers.
+  static constexpr bool kObserves = false;
   void visit(NodeId, int, float, float) {}
   void enter_cell(NodeId, float, float) {}
   void cull(NodeId, int, CullReason, float) {}
@@ -83,7 +87,8 @@ struct QueryStats {
 
 /// Counts steps; the same calls as the recorder, nothing stored.
 struct StatsSink {
-  static constexpr bool kRecords = false;
+  static constexpr bool kRecords = false;  ///< counts only: no extra tests to tell why a node was culled
+  static constexpr bool kObserves = true;  ///< the counters are its whole point
   QueryStats stats;
   uint64_t stack_size = 0;
   void visit(NodeId, int, float, float) { ++stats.nodes_visited; }
@@ -99,7 +104,8 @@ struct StatsSink {
 /// Records every step in order, for the animation and for tests of the traversal order.
 class TraceRecorder {
  public:
-  static constexpr bool kRecords = true;
+  static constexpr bool kRecords = true;   ///< keeps every step, cull reasons included
+  static constexpr bool kObserves = true;
   void visit(NodeId n, int depth, float t0, float t1) { add(TraceEventKind::Visit, n, depth, t0, t1); }
   void enter_cell(NodeId n, float t0, float t1) { add(TraceEventKind::EnterCell, n, 0, t0, t1); }
   void cull(NodeId n, int depth, CullReason why, float t0) {
@@ -145,5 +151,36 @@ class TraceRecorder {
   void add(TraceEventKind k, NodeId n, int depth, float t0, float t1) { events_.push_back(make(k, n, depth, t0, t1)); }
   std::vector<TraceEvent> events_;
 };
+
+/// What every traversal may call on its sink, in the order of a query: visit (enter a node)
+/// or enter_cell (a grid cell), cull, push / pop (stack or queue), test_prim and
+/// new_closest (triangles), done (the answer). kRecords: the sink keeps the steps, so a
+/// traversal spends extra tests on telling it why a node was culled. kObserves: the sink
+/// counts or keeps anything at all; when it does not, the traversal may skip the work
+/// done only to report steps (node ids, missed children), which is what keeps the fast
+/// path free.
+template <class S>
+concept TraversalSink = requires(S& sink, NodeId node, int depth, float t, CullReason why, uint32_t prim, bool hit,
+                                 const Hit& answer) {
+  { S::kRecords } -> std::convertible_to<bool>;
+  { S::kObserves } -> std::convertible_to<bool>;
+  sink.visit(node, depth, t, t);
+  sink.enter_cell(node, t, t);
+  sink.cull(node, depth, why, t);
+  sink.push(node, depth, t);
+  sink.pop(node, depth, t);
+  sink.test_prim(prim, hit, t);
+  sink.new_closest(prim, t);
+  sink.done(answer);
+};
+
+/// True for a sink that observes nothing (NullSink): the traversal's fast path.
+template <TraversalSink S>
+inline constexpr bool kObservesNothing = !S::kObserves;
+
+static_assert(TraversalSink<NullSink> && TraversalSink<StatsSink> && TraversalSink<TraceRecorder>,
+              "the three sinks implement the whole contract");
+static_assert(kObservesNothing<NullSink> && !kObservesNothing<StatsSink> && !kObservesNothing<TraceRecorder>,
+              "only NullSink is the fast path");
 
 }  // namespace accel

@@ -330,7 +330,7 @@ TEST(WideBvh, BothWidthsFindTheSameHits) {
 }
 
 /// Every triangle in exactly one leaf, leaves within leaf_size, children inside parents.
-void expect_valid_tree(const Bvh& bvh, const Scene& scene, int leaf_size) {
+void expect_valid_tree(const BinaryBvh& bvh, const Scene& scene, int leaf_size) {
   const auto& nodes = bvh.nodes();
   std::multiset<uint32_t> seen;
   for (NodeId i = 0; i < nodes.size(); ++i) {
@@ -354,8 +354,8 @@ void expect_valid_tree(const Bvh& bvh, const Scene& scene, int leaf_size) {
 
 /// The same for the 4-wide layout: every triangle in exactly one leaf, within the leaf's
 /// box; every child slot's box inside its node's box, and at most four children.
-void expect_valid_wide_tree(const Bvh& bvh, const Scene& scene, int leaf_size) {
-  const WideBvh& wide = bvh.wide();
+void expect_valid_wide_tree(const WideBvh& wide, const Scene& scene, int leaf_size) {
+  const Structure& bvh = wide;
   std::multiset<uint32_t> seen;
   for (NodeId i = 0; i < wide.size(); ++i) {
     const NodeView v = bvh.node_view(i);
@@ -392,19 +392,53 @@ TEST(BvhBuilders, EveryBuilderMakesAValidTree) {
       for (int leaf : {1, 4}) {
         for (const char* width : {"2", "4"}) {
           SCOPED_TRACE(scene.name() + " " + builder + " leaf " + std::to_string(leaf) + " width " + width);
-          Bvh bvh;
-          auto params = ParamSet::parse(Bvh::param_specs(), {std::string("builder=") + builder,
-                                                             "leaf_size=" + std::to_string(leaf),
-                                                             std::string("width=") + width});
-          ASSERT_TRUE(params);
-          ASSERT_TRUE(bvh.build(scene, params.value()));
-          if (bvh.width() == 2)
-            expect_valid_tree(bvh, scene, leaf);
+          auto bvh = build_structure("bvh", scene, {std::string("builder=") + builder,
+                                                    "leaf_size=" + std::to_string(leaf), std::string("width=") + width});
+          ASSERT_TRUE(bvh);
+          if (const auto* binary = dynamic_cast<const BinaryBvh*>(bvh.value().get()))
+            expect_valid_tree(*binary, scene, leaf);
+          else if (const auto* wide = dynamic_cast<const WideBvh*>(bvh.value().get()))
+            expect_valid_wide_tree(*wide, scene, leaf);
           else
-            expect_valid_wide_tree(bvh, scene, leaf);
-          EXPECT_LT(bvh.build_stats().max_depth, kMaxBvhDepth);
+            FAIL() << "bvh is neither layout";
+          EXPECT_LT(bvh.value()->build_stats().max_depth, kMaxBvhDepth);
         }
       }
+    }
+  }
+}
+
+// `width` picks the class at creation: the binary tree for 2, the 4-wide layout for 4 (the
+// default); both are "bvh", report their width and answer alike.
+TEST(BvhWidth, PicksTheLayoutClass) {
+  const Scene scene = make_procedural_scene("cornell").value();
+  auto binary = build_structure("bvh", scene, {"width=2"});
+  auto wide = build_structure("bvh", scene, {"width=4"});
+  auto fallback = build_structure("bvh", scene, {});
+  ASSERT_TRUE(binary && wide && fallback);
+  EXPECT_NE(dynamic_cast<const BinaryBvh*>(binary.value().get()), nullptr);
+  EXPECT_EQ(dynamic_cast<const WideBvh*>(binary.value().get()), nullptr);
+  EXPECT_NE(dynamic_cast<const WideBvh*>(wide.value().get()), nullptr);
+  EXPECT_EQ(dynamic_cast<const BinaryBvh*>(wide.value().get()), nullptr);
+  EXPECT_NE(dynamic_cast<const WideBvh*>(fallback.value().get()), nullptr);
+  for (const auto* s : {binary.value().get(), wide.value().get()}) {
+    EXPECT_EQ(s->name(), "bvh");
+    const auto extra = s->build_stats().extra;
+    ASSERT_FALSE(extra.empty());
+    EXPECT_EQ(extra.back().first, "width");
+  }
+  EXPECT_EQ(binary.value()->build_stats().extra.back().second, "2");
+  EXPECT_EQ(wide.value()->build_stats().extra.back().second, "4");
+  Rng rng(5);
+  const Aabb box = scene.bounds();
+  for (int i = 0; i < 2000; ++i) {
+    Ray r;
+    r.org = box.center() + box.extent() * Vec3(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f));
+    r.dir = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const Hit a = binary.value()->intersect(r), b = wide.value()->intersect(r);
+    ASSERT_EQ(a.valid(), b.valid()) << "ray " << i;
+    if (a.valid()) {
+      EXPECT_TRUE(a.prim == b.prim || a.t == b.t) << "ray " << i;
     }
   }
 }

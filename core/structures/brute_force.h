@@ -15,7 +15,7 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
   std::vector<uint32_t> node_prims(NodeId id) const override;
 
   /// The one traversal: a linear scan over the non-degenerate triangles.
-  template <class Sink>
+  template <TraversalSink Sink>
   Hit traverse(const Ray& ray, Sink& sink) const {
     const TriangleTester tester(ray, kernel_);
     Hit closest = no_hit(ray);

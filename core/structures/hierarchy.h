@@ -1,8 +1,9 @@
 #pragma once
-// The bounding volume hierarchy shared by the AABB tree (bvh.h) and the sphere tree
-// (sphere_tree.h): the same builders (bvh_builders.h), the same flat node layout and the
-// same three traversal orders of the lecture, written once as templates over the bounding
-// volume. Index:
+// The binary bounding volume hierarchy shared by the AABB tree's binary layout (bvh.h,
+// BinaryBvh) and the sphere tree (sphere_tree.h): the same builders (bvh_builders.h), the
+// same flat node layout and the same three traversal orders of the lecture, written once as
+// templates over the bounding volume. The 4-wide AABB layout (wide_bvh.h) shares the
+// parameters and the orders, not the nodes. Index:
 //   [SECTION] Parameters and traversal order
 //   [SECTION] Node layout
 //   [SECTION] Hierarchy: build, stats, views
@@ -23,6 +24,8 @@ namespace accel {
 // [SECTION] Parameters and traversal order
 // ============================================================================
 
+/// The builder and traversal order, as lines of the statistics (every hierarchy layout's).
+void add_hierarchy_option_lines(const BvhBuildOptions& options, TraversalOrder order, BuildStats* stats);
 
 // ============================================================================
 // [SECTION] Node layout
@@ -79,7 +82,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   const std::vector<Node>& nodes() const { return nodes_; }
 
   /// The one query of this hierarchy; the traversal order was chosen at build time.
-  template <class Sink>
+  template <TraversalSink Sink>
   Hit traverse(const Ray& ray, Sink& sink) const {
     Hit closest = no_hit(ray);
     if (!nodes_.empty()) {
@@ -101,12 +104,13 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   }
 
   /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`
-  /// triangles per leaf test); the binary layout is left empty.
+  /// triangles per leaf test); the nodes stay empty until store_binary().
   BuildTree build_tree(const Scene& scene, const ParamSet& params, int prims_per_test = 1) {
     scene_ = &scene;
-    options_ = bvh_build_options(params);
+    const HierarchyOptions options = hierarchy_options(params);
+    options_ = options.build;
     options_.prims_per_test = prims_per_test;
-    order_ = traversal_order(params);
+    order_ = options.traversal;
     nodes_.clear();
     boxes_.clear();
     depth_.clear();
@@ -149,11 +153,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   }
 
   /// The builder and traversal order, as lines of the statistics.
-  void add_option_lines(BuildStats* s) const {
-    s->extra.push_back({"builder", builder_name(options_.builder)});
-    static constexpr const char* kOrder[] = {"dfs", "ordered", "pqueue"};
-    s->extra.push_back({"traversal", kOrder[int(order_)]});
-  }
+  void add_option_lines(BuildStats* s) const { add_hierarchy_option_lines(options_, order_, s); }
 
   const Scene* scene_ = nullptr;
   BvhBuildOptions options_;
@@ -211,7 +211,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   static constexpr int kStackSize = kMaxBvhDepth + 4;
 
   /// Tests a node's volume against [tmin, closest.t]; on a miss tells the sink why.
-  template <class Sink>
+  template <TraversalSink Sink>
   bool test_volume(uint32_t node, uint32_t depth, const Ray& ray, const VolumeRay& vray,
                    const Hit& closest, Sink& sink, float* t0, float* t1) const {
     if (Derived::hit(nodes_[node].volume, vray, ray, ray.tmin, closest.t, t0, t1)) return true;
@@ -225,13 +225,13 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     return false;
   }
 
-  template <class Sink>
+  template <TraversalSink Sink>
   void test_leaf(const Node& n, const TriangleTester& tester, Hit& closest, Sink& sink) const {
     for (uint32_t k = n.index; k < n.index + n.count; ++k) test_triangle(*scene_, tester, prims_[k], closest, sink);
   }
 
   /// Lecture: pure DFS -- the visiting order depends only on the tree's topology.
-  template <class Sink>
+  template <TraversalSink Sink>
   void traverse_dfs(const Ray& ray, const VolumeRay& vray, const TriangleTester& tester,
                     Hit& closest, Sink& sink) const {
     Pending stack[kStackSize];
@@ -260,7 +260,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// Nearer child first: both children's volumes are tested at the parent, the farther one
   /// waits on the stack with its entry distance and is skipped if a hit closer than that
   /// has been found by the time it is popped.
-  template <class Sink>
+  template <TraversalSink Sink>
   void traverse_ordered(const Ray& ray, const VolumeRay& vray, const TriangleTester& tester,
                         Hit& closest, Sink& sink) const {
     Pending stack[kStackSize];
@@ -304,7 +304,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// Lecture: a priority queue of nodes keyed by the distance along the ray to their volume.
   /// Its warning holds: the nearest volume need not hold the nearest triangle, so the search
   /// continues until the nearest pending volume is farther than the closest hit.
-  template <class Sink>
+  template <TraversalSink Sink>
   void traverse_pqueue(const Ray& ray, const VolumeRay& vray, const TriangleTester& tester,
                        Hit& closest, Sink& sink) const {
     // The queue can outgrow any fixed stack; a per-thread buffer avoids allocating per ray.

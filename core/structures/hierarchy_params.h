@@ -31,9 +31,5 @@ HierarchyOptions hierarchy_options(const ParamSet& params);
 inline std::vector<ParamSpec> hierarchy_param_specs() { return hierarchy_param_table(false).specs(); }
 /// The same plus `width` (the bvh's list).
 inline std::vector<ParamSpec> bvh_param_specs() { return hierarchy_param_table(true).specs(); }
-/// The traversal order of validated hierarchy parameters.
-inline TraversalOrder traversal_order(const ParamSet& params) { return hierarchy_options(params).traversal; }
-/// The builder options of validated hierarchy parameters.
-inline BvhBuildOptions bvh_build_options(const ParamSet& params) { return hierarchy_options(params).build; }
 
 }  // namespace accel

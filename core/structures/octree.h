@@ -157,7 +157,7 @@ class Octree final : public StructureWithTraversal<Octree> {
   /// (BeyondClosestHit, checked when pushed and again when popped, since a triangle can
   /// straddle children and the closest hit may lie in a later child). Children are tested
   /// in visiting order and the hit ones pushed in reverse, so the first pops first.
-  template <class Sink>
+  template <TraversalSink Sink>
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
@@ -176,7 +176,7 @@ class Octree final : public StructureWithTraversal<Octree> {
   BuildStats stats_;
 };
 
-template <class Sink>
+template <TraversalSink Sink>
 Hit Octree::traverse(const Ray& ray, Sink& sink) const {
   const TriangleTester tester(ray, kernel_);
   Hit closest = no_hit(ray);

@@ -119,7 +119,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
   /// (Amanatides & Woo 1987). Calls sink.enter_cell for every cell stepped into (empty
   /// ones too), test_prim/new_closest inside test_triangle (not for prims skipped by the
   /// mailbox), and done at the end.
-  template <class Sink>
+  template <TraversalSink Sink>
   Hit traverse(const Ray& ray, Sink& sink) const {
     const TriangleTester tester(ray, kernel_);
     Hit closest = no_hit(ray);
@@ -143,7 +143,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
   /// merely tested again (same answer: the kernel's result does not depend on the cell).
   static constexpr uint32_t kMailboxSize = 32;  // power of two
   /// The 3D-DDA walk of one ray (defined below), with or without the mailbox.
-  template <bool kMailbox, class Sink>
+  template <bool kMailbox, TraversalSink Sink>
   void walk(const Ray& ray, const TriangleTester& tester, Hit& closest, Sink& sink) const;
   Aabb cell_box(NodeId id) const;
 
@@ -158,7 +158,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
 // The 3D-DDA (Amanatides & Woo 1987), following the lecture's loop: step the axis whose
 // next boundary crossing is nearest, until the ray leaves the grid or the closest hit lies
 // in the cell just processed.
-template <bool kMailbox, class Sink>
+template <bool kMailbox, TraversalSink Sink>
 void UniformGrid::walk(const Ray& ray, const TriangleTester& tester, Hit& closest, Sink& sink) const {
   const double org[3] = {ray.org.x, ray.org.y, ray.org.z};
   const double dir[3] = {ray.dir.x, ray.dir.y, ray.dir.z};

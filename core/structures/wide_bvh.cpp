@@ -16,7 +16,17 @@ void WideBvh::clear() {
   prim_count_ = 0;
 }
 
-void WideBvh::build(const Scene& scene, const BuildTree& tree) {
+Status WideBvh::build_impl(const Scene& scene, const ParamSet& params) {
+  const HierarchyOptions options = hierarchy_options(params);
+  options_ = options.build;
+  // The 4-wide layout tests a leaf's triangles four at a time: the SAH builders know it.
+  options_.prims_per_test = 4;
+  order_ = options.traversal;
+  collapse(scene, build_bvh_tree(scene, options_));
+  return {};
+}
+
+void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
   clear();
   if (tree.empty()) return;
   prim_count_ = tree.prims.size();
@@ -100,6 +110,10 @@ NodeId WideBvh::emit(const Scene& scene, const BuildTree& tree, uint32_t src, in
   return id;
 }
 
+void WideBvh::for_each_node(const std::function<void(const NodeView&)>& fn) const {
+  for (NodeId i = 0; i < entries_.size(); ++i) fn(node_view(i));
+}
+
 NodeView WideBvh::node_view(NodeId id) const {
   NodeView v;
   if (id >= entries_.size()) return v;
@@ -123,27 +137,32 @@ size_t WideBvh::memory_bytes() const {
          blocks_.size() * sizeof(TriangleBlock);
 }
 
-void WideBvh::add_stats(const BvhBuildOptions& o, BuildStats* s) const {
-  s->nodes = entries_.size();
-  s->prims = prim_count_;
-  s->prim_references = prim_count_;
-  s->memory_bytes = memory_bytes();
-  s->sah_ct = o.ct;
-  s->sah_ci = o.ci;
-  if (entries_.empty()) return;
-  const double root_area = double(boxes_[0].area());
-  double cost = 0.0;
-  for (size_t i = 0; i < entries_.size(); ++i) {
-    const double rel = root_area > 0.0 ? double(boxes_[i].area()) / root_area : 1.0;
-    if (entries_[i].leaf()) {
-      s->add_leaf(entries_[i].count);
-      cost += double(o.leaf_cost(entries_[i].count)) * rel;
-    } else {
-      cost += double(o.ct) * rel;
+BuildStats WideBvh::compute_stats() const {
+  BuildStats s;
+  s.nodes = entries_.size();
+  s.prims = prim_count_;
+  s.prim_references = prim_count_;
+  s.memory_bytes = memory_bytes();
+  s.sah_ct = options_.ct;
+  s.sah_ci = options_.ci;
+  if (!entries_.empty()) {
+    const double root_area = double(boxes_[0].area());
+    double cost = 0.0;
+    for (size_t i = 0; i < entries_.size(); ++i) {
+      const double rel = root_area > 0.0 ? double(boxes_[i].area()) / root_area : 1.0;
+      if (entries_[i].leaf()) {
+        s.add_leaf(entries_[i].count);
+        cost += double(options_.leaf_cost(entries_[i].count)) * rel;
+      } else {
+        cost += double(options_.ct) * rel;
+      }
+      s.max_depth = std::max(s.max_depth, int(depth_[i]));
     }
-    s->max_depth = std::max(s->max_depth, int(depth_[i]));
+    s.sah_cost = cost;
   }
-  s->sah_cost = cost;
+  add_hierarchy_option_lines(options_, order_, &s);
+  s.extra.push_back({"width", "4"});
+  return s;
 }
 
 }  // namespace accel

@@ -1,14 +1,15 @@
 #pragma once
-// The AABB tree's 4-wide layout (bvh width=4, the default): the binary tree of any builder
-// collapsed into nodes of up to four children, whose four boxes are tested against the ray
-// at once with SSE, and the leaves' triangles copied in leaf order so a leaf reads one
-// contiguous block. This is how production tracers lay out a BVH for single rays
+// The AABB tree's 4-wide layout as a structure of its own (WideBvh: bvh width=4, the
+// default; bvh.h has the parameters, the factory and the binary layout): the binary tree of
+// any builder collapsed into nodes of up to four children, whose four boxes are tested
+// against the ray at once with SSE, and the leaves' triangles copied in leaf order so a leaf
+// reads one contiguous block. This is how production tracers lay out a BVH for single rays
 // (Dammertz et al. 2008, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of
 // Incoherent Rays"; Wald et al. 2008, "Getting Rid of Packets"). The node order, the
 // recorder calls and the cull rules are those of hierarchy.h's traversals, so the viewer
 // animates this very loop. Index:
 //   [SECTION] Node layout and the 4-wide slab test
-//   [SECTION] WideBvh: collapse, views, stats
+//   [SECTION] WideBvh: build, views, stats
 //   [SECTION] Traversals: stack (dfs / ordered) and priority queue
 #include <emmintrin.h>  // SSE2 only: every x86-64 CPU has it, so no -m flag is needed
 
@@ -16,7 +17,6 @@
 
 #include <algorithm>
 #include <array>
-#include <type_traits>
 #include <vector>
 
 #include "structures/bvh_builders.h"
@@ -87,12 +87,14 @@ ACCEL_FORCE_INLINE int intersect_children(const WideNode& node, const WideRay& r
 }
 
 // ============================================================================
-// [SECTION] WideBvh: collapse, views, stats
+// [SECTION] WideBvh: build, views, stats
 // ============================================================================
 
-/// The collapsed tree. Node ids number every node, inner and leaf, in depth-first order
-/// (root 0), as in the binary layout, so the viewer draws and highlights them alike.
-class WideBvh {
+/// The collapsed tree, registered as "bvh" with width=4 (same parameters, builders and
+/// traversal orders as BinaryBvh). Node ids number every node, inner and leaf, in
+/// depth-first order (root 0), as in the binary layout, so the viewer draws and highlights
+/// them alike.
+class WideBvh final : public StructureWithTraversal<WideBvh> {
  public:
   /// What a node id stands for. Inner node: `index` is its WideNode, `count` is 0. Leaf:
   /// `count` > 0 triangles in the triangle blocks from block `index` on.
@@ -102,27 +104,34 @@ class WideBvh {
     bool leaf() const { return count != 0; }
   };
 
-  /// Collapses a builder's binary tree: each inner node adopts the children of its largest
-  /// inner child (by surface area, the child most rays enter) until it has four.
-  void build(const Scene& scene, const BuildTree& tree);
-  void clear();
+  /// The registry name both layouts share.
+  std::string name() const override { return "bvh"; }
+  void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
+  NodeView node_view(NodeId id) const override;
+  std::vector<uint32_t> node_prims(NodeId id) const override;
 
+  /// Number of nodes, inner and leaf.
   size_t size() const { return entries_.size(); }
   /// The WideNode of inner node `id` (for tests of the tree's shape).
   const WideNode& wide_node(NodeId id) const { return nodes_[entries_[id].index]; }
-  NodeView node_view(NodeId id) const;
-  std::vector<uint32_t> node_prims(NodeId id) const;
   /// Nodes, entries, triangle references and the leaf-ordered triangle copies.
   size_t memory_bytes() const;
-  /// Fills the node counters and the SAH cost (ct per inner node, the options' leaf cost per
-  /// leaf, by area relative to the root) of `stats`.
-  void add_stats(const BvhBuildOptions& options, BuildStats* stats) const;
 
-  /// Closest hit in `closest` (whose t is the current tmax) visiting nodes in `order`.
-  template <class Sink>
-  void traverse(const Ray& ray, const TriangleTester& tester, TraversalOrder order, Hit& closest, Sink& sink) const;
+  /// The one query, visiting nodes in the traversal order chosen at build time.
+  template <TraversalSink Sink>
+  Hit traverse(const Ray& ray, Sink& sink) const;
+
+ protected:
+  Status build_impl(const Scene& scene, const ParamSet& params) override;
+  /// The node counters, the SAH cost (ct per inner node, the options' leaf cost per leaf, by
+  /// area relative to the root) and the builder, traversal and width lines.
+  BuildStats compute_stats() const override;
 
  private:
+  /// Collapses a builder's binary tree: each inner node adopts the children of its largest
+  /// inner child (by surface area, the child most rays enter) until it has four.
+  void collapse(const Scene& scene, const BuildTree& tree);
+  void clear();
   NodeId emit(const Scene& scene, const BuildTree& tree, uint32_t src, int depth);
 
   struct Pending {
@@ -131,14 +140,14 @@ class WideBvh {
     float t0, t1;  ///< the ray's interval inside the node's box
   };
   /// Node id of a child for the sink; the fast path never reads the id table.
-  template <class Sink>
+  template <TraversalSink Sink>
   NodeId child_id(uint32_t wide, int slot) const {
-    if constexpr (std::is_same_v<Sink, NullSink>) return kNoNode;
+    if constexpr (kObservesNothing<Sink>) return kNoNode;
     else return child_ids_[wide][slot];
   }
-  template <class Sink>
+  template <TraversalSink Sink>
   int node_depth(NodeId id) const {
-    if constexpr (std::is_same_v<Sink, NullSink>) return 0;
+    if constexpr (kObservesNothing<Sink>) return 0;
     else return depth_[id];
   }
   /// Starts fetching what a pushed child will read when it is popped.
@@ -152,11 +161,11 @@ class WideBvh {
   // Each pop pushes at most four children in place of one node: 3 per level, plus slack.
   static constexpr int kStackSize = 3 * kMaxBvhDepth + 4;
 
-  template <class Sink>
+  template <TraversalSink Sink>
   void report_misses(uint32_t wide, int hit_mask, const WideRay& wray, float tmin, Sink& sink) const;
   /// Tests a leaf's triangles four at a time. Lanes are taken in order with the same rule
   /// as test_triangle (first hit, then strictly closer), so ties resolve as in the binary tree.
-  template <class Sink>
+  template <TraversalSink Sink>
   void test_leaf(ChildRef r, const TriangleTester& tester, Hit& closest, Sink& sink) const {
     const TriangleBlock* block = blocks_.data() + ref_first(r);
     for (uint32_t left = ref_count(r); left > 0; left -= std::min(left, 4u), ++block) {
@@ -164,7 +173,7 @@ class WideBvh {
       alignas(16) float t[4], u[4], v[4];
       const int hits = tester.intersect4(*block, lanes, closest.t, t, u, v);
       // The fast path looks at hit lanes only; an observer sees every test.
-      const int seen = std::is_same_v<Sink, NullSink> ? hits : lanes;
+      const int seen = kObservesNothing<Sink> ? hits : lanes;
       for (int lane = 0; lane < 4; ++lane) {
         if (!((seen >> lane) & 1)) continue;
         const bool hit = (hits >> lane) & 1;
@@ -174,12 +183,12 @@ class WideBvh {
       }
     }
   }
-  template <class Sink>
+  template <TraversalSink Sink>
   bool enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink, Pending* root) const;
-  template <class Sink>
+  template <TraversalSink Sink>
   void traverse_stack(const Ray& ray, const WideRay& wray, const TriangleTester& tester, bool nearest_first,
                       Pending root, Hit& closest, Sink& sink) const;
-  template <class Sink>
+  template <TraversalSink Sink>
   void traverse_pqueue(const Ray& ray, const WideRay& wray, const TriangleTester& tester, Pending root,
                        Hit& closest, Sink& sink) const;
 
@@ -196,15 +205,17 @@ class WideBvh {
   std::vector<uint16_t> depth_;    ///< by node id
   std::vector<TriangleBlock> blocks_;  ///< leaf triangles in leaf order, four per block
   size_t prim_count_ = 0;
+  BvhBuildOptions options_;
+  TraversalOrder order_ = TraversalOrder::Ordered;
 };
 
 // ============================================================================
 // [SECTION] Traversals
 // ============================================================================
 
-template <class Sink>
+template <TraversalSink Sink>
 void WideBvh::report_misses(uint32_t wide, int hit_mask, const WideRay& wray, float tmin, Sink& sink) const {
-  if constexpr (std::is_same_v<Sink, NullSink>) {
+  if constexpr (kObservesNothing<Sink>) {
     return;  // nothing to count: the fast path skips the loop entirely
   } else {
     int beyond_mask = 0;
@@ -220,7 +231,7 @@ void WideBvh::report_misses(uint32_t wide, int hit_mask, const WideRay& wray, fl
   }
 }
 
-template <class Sink>
+template <TraversalSink Sink>
 bool WideBvh::enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink,
                          Pending* root) const {
   float t0, t1;
@@ -233,18 +244,22 @@ bool WideBvh::enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& cl
   return false;
 }
 
-template <class Sink>
-void WideBvh::traverse(const Ray& ray, const TriangleTester& tester, TraversalOrder order, Hit& closest,
-                       Sink& sink) const {
-  if (entries_.empty()) return;
-  const BoxTester box_ray(ray);
-  Pending root;
-  if (!enter_root(ray, box_ray, closest, sink, &root)) return;
-  const WideRay wray(box_ray);
-  if (order == TraversalOrder::PriorityQueue)
-    traverse_pqueue(ray, wray, tester, root, closest, sink);
-  else
-    traverse_stack(ray, wray, tester, order == TraversalOrder::Ordered, root, closest, sink);
+template <TraversalSink Sink>
+Hit WideBvh::traverse(const Ray& ray, Sink& sink) const {
+  Hit closest = no_hit(ray);
+  if (!entries_.empty()) {
+    const TriangleTester tester(ray, kernel_);
+    const BoxTester box_ray(ray);
+    Pending root;
+    if (enter_root(ray, box_ray, closest, sink, &root)) {
+      const WideRay wray(box_ray);
+      if (order_ == TraversalOrder::PriorityQueue)
+        traverse_pqueue(ray, wray, tester, root, closest, sink);
+      else
+        traverse_stack(ray, wray, tester, order_ == TraversalOrder::Ordered, root, closest, sink);
+    }
+  }
+  return finish_query(closest, sink);
 }
 
 /// Depth-first. All four child boxes are tested at their parent; the loop descends
@@ -253,7 +268,7 @@ void WideBvh::traverse(const Ray& ray, const TriangleTester& tester, TraversalOr
 /// entered beyond the closest hit found meanwhile is skipped. Descending without a push and
 /// pop is what makes the wide layout pay off (the child was tested against the current
 /// closest hit a moment ago).
-template <class Sink>
+template <TraversalSink Sink>
 void WideBvh::traverse_stack(const Ray& ray, const WideRay& wray, const TriangleTester& tester, bool nearest_first,
                              Pending root, Hit& closest, Sink& sink) const {
   Pending stack[kStackSize];
@@ -302,7 +317,7 @@ void WideBvh::traverse_stack(const Ray& ray, const WideRay& wray, const Triangle
 
 /// The lecture's priority queue by entry distance, over 4-wide nodes: stops when the
 /// nearest pending node is farther than the closest hit.
-template <class Sink>
+template <TraversalSink Sink>
 void WideBvh::traverse_pqueue(const Ray& ray, const WideRay& wray, const TriangleTester& tester, Pending root,
                               Hit& closest, Sink& sink) const {
   thread_local std::vector<Pending> heap;  // outgrows any fixed stack; reused, not allocated per ray
