@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "bench_chart.h"
+#include "geometry.h"
+#include "registry.h"
 #include "viewer_test_support.h"
 
 namespace viz {
@@ -340,6 +342,26 @@ TEST(BenchChart, OptionsAndWindowState) {
   ASSERT_TRUE(state.data.has_value());
   EXPECT_EQ(state.data->rows.size(), 23u);
   EXPECT_EQ(state.options.group, 1u);
+}
+
+TEST(BenchChart, LabelsAndOrderFromTheRegistry) {
+  // Registry structures: the registry's label, its lecture order with the reference last.
+  for (const accel::StructureInfo& info : accel::structure_registry())
+    EXPECT_EQ(structure_label(info.name), info.label);
+  EXPECT_LT(structure_order("grid"), structure_order("kdtree"));
+  EXPECT_LT(structure_order("spheretree"), structure_order("brute"));
+  // The Embree baselines keep the chart's labels and come after every registry structure.
+  EXPECT_EQ(structure_label("embree-medium"), "Embree med");
+  EXPECT_EQ(structure_label("embree-high"), "Embree high");
+  EXPECT_LT(structure_order("brute"), structure_order("embree-medium"));
+  EXPECT_LT(structure_order("embree-medium"), structure_order("embree-high"));
+  // Anything else: its name, last.
+  EXPECT_EQ(structure_label("mystery"), "mystery");
+  EXPECT_LT(structure_order("embree-high"), structure_order("mystery"));
+  // Kernels: the core's order, then Embree.
+  for (size_t i = 0; i < std::size(accel::kAllKernels); ++i)
+    EXPECT_EQ(kernel_order(std::string(accel::kernel_name(accel::kAllKernels[i]))), static_cast<int>(i));
+  EXPECT_EQ(kernel_order("embree"), static_cast<int>(std::size(accel::kAllKernels)));
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The debug ray's highlights of one step, moved out of App (app_ray.cpp) so tests reach it.
+// The debug ray's highlights of one step: GL-free, so the tests reach them (tests/app/test_ray_debugger.cpp).
 #include "tools/highlights.h"
 
 #include <algorithm>

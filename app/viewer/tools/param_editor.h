@@ -1,8 +1,7 @@
 #pragma once
-// The structure editor of the Structure section: which structure, its parameters and the
-// triangle kernel, as the user set them. Owns the edited values; it talks to the rest only
-// through StructureRequest (set() in, request() out), so moving the values from strings to
-// the core's typed parameters later changes this module alone.
+// The Structure section's editor: which structure, its parameters and the triangle kernel.
+// Owns the edited values and talks to the rest only through StructureRequest (set() in,
+// request() out), so moving to the core's typed parameters later changes this module alone.
 #include <string>
 #include <vector>
 

@@ -84,7 +84,7 @@ class StructureSession {
   /// The lecture presets.
   const std::vector<Preset>& presets() const { return presets_; }
   /// True while a build runs.
-  bool building() { return build_job_.busy(); }
+  bool building() const { return build_job_.busy(); }
   /// Seconds the running build has taken.
   double build_seconds() const { return build_job_.seconds(); }
   /// The name being built.
