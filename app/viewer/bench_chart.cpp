@@ -1,5 +1,8 @@
 #include "bench_chart.h"
 
+#include "geometry.h"
+#include "registry.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -248,18 +251,50 @@ ChartAxis linear_zero_axis(double max, int target_ticks) {
 // ---------------------------------------------------------------------------------------
 // The chart
 
+namespace {
+
+/// Bench rows that are no registry structure: the Embree baselines. Their labels and their
+/// place after the registry's structures are the chart's own.
+struct ExternalStructure {
+  const char* name;
+  const char* label;
+};
+constexpr ExternalStructure kExternal[] = {{"embree-medium", "Embree med"}, {"embree-high", "Embree high"}};
+
+}  // namespace
+
 int kernel_order(const std::string& kernel) {
-  static const char* kOrder[] = {"watertight", "moller", "double", "embree"};
-  for (int i = 0; i < 4; ++i)
-    if (kernel == kOrder[i]) return i;
-  return 4;
+  // The core's kernels in its order, then Embree's (the baseline rows), then any other.
+  constexpr int kCore = static_cast<int>(std::size(accel::kAllKernels));
+  for (int i = 0; i < kCore; ++i)
+    if (kernel == accel::kernel_name(accel::kAllKernels[i])) return i;
+  return kernel == "embree" ? kCore : kCore + 1;
 }
 
 int structure_order(const std::string& structure) {
-  static const char* kOrder[] = {"grid", "octree", "kdtree", "bvh", "spheretree", "brute", "embree-medium", "embree-high"};
-  for (int i = 0; i < 8; ++i)
-    if (structure == kOrder[i]) return i;
-  return 8;
+  // The registry's lecture order with the reference (brute force) last: it is the slow
+  // oracle, not one of the structures compared.
+  const auto& registry = accel::structure_registry();
+  int order = 0;
+  for (const bool reference : {false, true})
+    for (const accel::StructureInfo& info : registry) {
+      if (info.reference != reference) continue;
+      if (info.name == structure) return order;
+      ++order;
+    }
+  for (const ExternalStructure& e : kExternal) {
+    if (structure == e.name) return order;
+    ++order;
+  }
+  return order;
+}
+
+std::string structure_label(const std::string& structure) {
+  auto info = accel::find_structure(structure);
+  if (info) return info.value()->label;
+  for (const ExternalStructure& e : kExternal)
+    if (structure == e.name) return e.label;
+  return structure;
 }
 
 std::string set_chart_option(ChartOptions& options, const std::string& key_value) {
@@ -390,7 +425,7 @@ ChartModel make_chart(const BenchData& data, const ChartOptions& options) {
 // ---------------------------------------------------------------------------------------
 // Window state
 
-std::optional<accel::Error> load_bench_into(BenchChartState& state, const std::string& path) {
+accel::Status load_bench_into(BenchChartState& state, const std::string& path) {
   auto loaded = load_bench_json(path);
   if (!loaded) {
     state.error = loaded.error().message;
@@ -401,7 +436,7 @@ std::optional<accel::Error> load_bench_into(BenchChartState& state, const std::s
   state.error.clear();
   state.path_field = path;
   state.open = true;
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace viz

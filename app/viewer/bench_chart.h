@@ -2,7 +2,7 @@
 // The speed-against-error chart of `accelviz-cli bench --out-json` results, without a
 // window: loading and validating the JSON, the (scene, rays) groups, and every coordinate
 // and tick of the chart. bench_chart_panel.cpp only draws what this computes, so the
-// numbers a lecturer reads off the chart are unit-tested (tests/app/viewer_logic_test.cpp).
+// numbers a lecturer reads off the chart are unit-tested (tests/app/test_bench_chart.cpp).
 //
 // The chart: one point per bench row of the chosen group. y = Mrays/s (all threads, or one);
 // x = error rate = (false misses + false hits + wrong triangles) / rays on a log axis, or the
@@ -181,11 +181,14 @@ struct ChartModel {
 /// error rate, 1e-8..1e-6 for t errors). Needs a non-empty `data`.
 ChartModel make_chart(const BenchData& data, const ChartOptions& options);
 
-/// Legend order of the kernels: watertight, moller, double, embree, then any other.
+/// Legend order of the kernels: the core's (watertight, moller, double), embree, then any other.
 int kernel_order(const std::string& kernel);
-/// Legend order of the structures: grid, octree, kdtree, bvh, spheretree, brute, Embree
-/// medium and high, then any other.
+/// Legend order of the structures: the registry's in lecture order with the reference
+/// (brute force) last, then Embree medium and high, then any other.
 int structure_order(const std::string& structure);
+/// The label of a bench row's structure: the registry's ("kd-tree"), "Embree med" /
+/// "Embree high" for the baselines, else the name itself.
+std::string structure_label(const std::string& structure);
 
 /// "650 of 20,000 (3.25%)": wrong answers, rays and the rate to 3 significant digits;
 /// "0 of 20,000" when there is none (a percentage would suggest a rounded small number).
@@ -206,6 +209,6 @@ struct BenchChartState {
 /// Loads `path` into `state`: on success replaces the data, selects the first group, clears
 /// the error and opens the window; on failure keeps the previous data and returns (and
 /// stores) the one-line error.
-std::optional<accel::Error> load_bench_into(BenchChartState& state, const std::string& path);
+accel::Status load_bench_into(BenchChartState& state, const std::string& path);
 
 }  // namespace viz

@@ -44,16 +44,7 @@ enum class Shape { Square, Diamond, TriangleUp, Circle, TriangleDown, Cross, Sta
 Shape structure_shape(const std::string& structure) {
   static const Shape kShapes[] = {Shape::Square, Shape::Diamond,     Shape::TriangleUp, Shape::Circle, Shape::TriangleDown,
                                   Shape::Cross,  Shape::StarOutline, Shape::Star,       Shape::Ring};
-  return kShapes[structure_order(structure)];
-}
-
-/// The label next to a point: short, since points crowd.
-std::string short_name(const std::string& structure) {
-  if (structure == "embree-medium") return "Embree med";
-  if (structure == "embree-high") return "Embree high";
-  if (structure == "spheretree") return "sphere tree";
-  if (structure == "kdtree") return "kd-tree";
-  return structure;
+  return kShapes[std::min<size_t>(static_cast<size_t>(structure_order(structure)), std::size(kShapes) - 1)];
 }
 
 void draw_marker(ImDrawList* dl, Shape shape, ImVec2 c, float r, ImU32 fill) {
@@ -340,7 +331,7 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
     };
     for (size_t i : order) {
       const BenchRow& row = data.rows[m.points[i].row];
-      std::string name = short_name(row.structure);
+      std::string name = structure_label(row.structure);
       if (!row.params.empty() && twins(row) > 1)
         name += " " + (row.params.size() > 18 ? row.params.substr(0, 16) + ".." : row.params);
       const ImVec2 ts = text_size(name.c_str());
@@ -402,7 +393,7 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
   y += line;
   for (const std::string& s : m.structures) {
     draw_marker(dl, structure_shape(s), ImVec2(x + 0.45f * em, y + 0.6f * em), r, IM_COL32(215, 218, 225, 255));
-    dl->AddText(ImVec2(x + 1.4f * em, y), text, short_name(s).c_str());
+    dl->AddText(ImVec2(x + 1.4f * em, y), text, structure_label(s).c_str());
     y += line;
   }
   if (m.baseline_fy) {

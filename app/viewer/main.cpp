@@ -172,13 +172,13 @@ class WindowScriptHost final : public viz::ScriptHost {
  public:
   WindowScriptHost(GLFWwindow* window, viz::App& app) : window_(window), app_(app) {}
 
-  std::optional<accel::Error> resize(int width, int height) override {
+  accel::Status resize(int width, int height) override {
     glfwSetWindowSize(window_, width, height);
     // The X server answers asynchronously: wait (up to 2 s) until the framebuffer follows.
     for (int i = 0; i < 200; ++i) {
       glfwWaitEventsTimeout(0.01);
       const glm::ivec2 fb = framebuffer_size();
-      if (fb.x == width && fb.y == height) return std::nullopt;
+      if (fb.x == width && fb.y == height) return {};
     }
     const glm::ivec2 fb = framebuffer_size();
     return accel::make_error("size: the window stayed " + std::to_string(fb.x) + "x" + std::to_string(fb.y) +
@@ -192,13 +192,13 @@ class WindowScriptHost final : public viz::ScriptHost {
     }
   }
 
-  std::optional<accel::Error> screenshot(const std::string& path) override {
+  accel::Status screenshot(const std::string& path) override {
     // ImGui sizes auto-resized windows and scrolls lists one frame late: settle first.
     render(2);
     const glm::ivec2 fb = render_frame(window_, app_, dt());
-    auto error = viz::save_framebuffer_png(path, fb.x, fb.y);
+    accel::Status st = viz::save_framebuffer_png(path, fb.x, fb.y);
     glfwSwapBuffers(window_);
-    return error;
+    return st;
   }
 
   double measure_frames(int frames) override {
@@ -244,8 +244,8 @@ int run_script(const std::string& script_name, const std::vector<viz::ScriptComm
   WindowScriptHost host(window, app);
   host.render(1);
   for (const viz::ScriptCommand& command : commands) {
-    if (auto error = app.execute(command, host)) {
-      std::fprintf(stderr, "accelviz: %s\n", viz::script_error(script_name, command.line, error->message).c_str());
+    if (const accel::Status st = app.execute(command, host); !st) {
+      std::fprintf(stderr, "accelviz: %s\n", viz::script_error(script_name, command.line, st.error().message).c_str());
       return 2;
     }
   }
@@ -287,14 +287,14 @@ int main(int argc, char** argv) {
   // the background while the window opens (synchronously for a script).
   viz::App app;
   app.set_synchronous(script_mode);
-  if (const auto error = app.load_scene(options.scene)) {
-    std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
+  if (const accel::Status st = app.load_scene(options.scene); !st) {
+    std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
     return 2;
   }
   // Likewise a bad bench file: "accelviz: FILE: ..." before any window.
   if (!options.bench_json.empty()) {
-    if (const auto error = app.load_bench(options.bench_json)) {
-      std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
+    if (const accel::Status st = app.load_bench(options.bench_json); !st) {
+      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
       return 2;
     }
   }
@@ -370,8 +370,8 @@ int main(int argc, char** argv) {
 
   app.set_ui_visible(!options.no_ui);
   int exit_code = 0;
-  if (const auto error = app.init(window, shader_dir.value(), fonts)) {
-    std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
+  if (const accel::Status st = app.init(window, shader_dir.value(), fonts); !st) {
+    std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
     exit_code = 1;
     glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
@@ -392,8 +392,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "accelviz: warning: framebuffer is %dx%d, not the requested %dx%d\n", fb.x, fb.y,
                    options.width, options.height);
     }
-    if (const auto error = viz::save_framebuffer_png(options.screenshot, fb.x, fb.y)) {
-      std::fprintf(stderr, "accelviz: %s\n", error->message.c_str());
+    if (const accel::Status st = viz::save_framebuffer_png(options.screenshot, fb.x, fb.y); !st) {
+      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
       exit_code = 1;
     }
     glfwSetWindowShouldClose(window, GLFW_TRUE);

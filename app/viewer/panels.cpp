@@ -86,4 +86,16 @@ void error_text(const std::string& text, float width) {
   ImGui::PopTextWrapPos();
 }
 
+void place(const PanelPlace& where) {
+  const ImGuiCond cond = where.apply ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+  ImGui::SetNextWindowPos(ImVec2(where.rect.pos.x, where.rect.pos.y), cond);
+  if (where.rect.size.x > 0.0f) ImGui::SetNextWindowSize(ImVec2(where.rect.size.x, where.rect.size.y), cond);
+}
+
+void note_docked(const PanelPlace& where) {
+  if (where.dock == nullptr) return;
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  viz::note_docked(*where.dock, ImGui::GetIO().DisplaySize.x, {pos.x, pos.y}, {size.x, size.y});
+}
+
 }  // namespace viz::ui

@@ -1,10 +1,11 @@
 #pragma once
-// Plain data the panels show, and small ImGui helpers shared by them (app_ui.cpp has the
-// panels themselves, one App member function each).
+// Plain data the panels show, and small ImGui helpers shared by them (the tools in tools/
+// have the panels themselves).
 #include <string>
 #include <vector>
 
 #include "math.h"
+#include "view_layout.h"
 
 namespace viz {
 
@@ -49,6 +50,12 @@ void text_row(const char* label, const std::string& value, size_t max_chars = 20
 void help_marker(const char* text);
 /// Red error text wrapped at `width` pixels.
 void error_text(const std::string& text, float width);
+/// Places the next window at `place.rect` when the layout is (re)applied, and the first time
+/// it appears; otherwise the user may move it. A zero size leaves the size alone.
+void place(const PanelPlace& place);
+/// Inside a window's Begin/End: notes the window in place.dock (when given), so a window
+/// along the left or right edge narrows the 3D view.
+void note_docked(const PanelPlace& place);
 
 }  // namespace ui
 }  // namespace viz

@@ -1,6 +1,7 @@
 #include "presets.h"
 
 #include <filesystem>
+#include <string_view>
 #include <utility>
 
 namespace viz {
@@ -65,6 +66,26 @@ std::vector<Preset> lecture_presets(const std::string& source_dir) {
     out.push_back(preset);
   }
   return out;
+}
+
+int preset_for_scene(const std::vector<Preset>& presets, const std::string& spec) {
+  namespace fs = std::filesystem;
+  for (size_t i = 0; i < presets.size(); ++i) {
+    const std::string& scene = presets[i].scene;
+    if (scene == spec) return static_cast<int>(i);
+    // Files: "../shared/scenes/bunny.obj" and the preset's absolute path are the same file.
+    std::error_code ec;
+    if (!scene.starts_with("procedural:") && !spec.starts_with("procedural:") && fs::equivalent(scene, spec, ec) && !ec)
+      return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::string scene_label(const std::string& spec) {
+  constexpr std::string_view kProcedural = "procedural:";
+  if (spec.starts_with(kProcedural)) return spec.substr(kProcedural.size());
+  const std::string name = std::filesystem::path(spec).filename().string();
+  return name.empty() ? "(file)" : name;
 }
 
 const Preset* find_preset(const std::vector<Preset>& presets, const std::string& name) {

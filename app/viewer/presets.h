@@ -25,6 +25,14 @@ struct Preset {
 /// ../shared/scenes are looked up from it).
 std::vector<Preset> lecture_presets(const std::string& source_dir);
 
+/// The index of the preset whose scene is `spec` (the same file, however the path is
+/// spelled), or -1 when none is.
+int preset_for_scene(const std::vector<Preset>& presets, const std::string& spec);
+
+/// What the scene combo shows for a scene that is no preset: the file's name
+/// ("bunny.obj"), or the procedural scene's ("procedural:NAME" -> "NAME").
+std::string scene_label(const std::string& spec);
+
 /// The preset named `name` in `presets`, or nullptr.
 const Preset* find_preset(const std::vector<Preset>& presets, const std::string& name);
 

@@ -303,15 +303,16 @@ std::string anchor_of(TraversalKind kind, std::span<const TraceEvent> events, si
 
 }  // namespace
 
-TraversalKind traversal_kind(const std::string& structure, const std::string& traversal) {
-  if (structure == "brute") return TraversalKind::Brute;
-  if (structure == "grid") return TraversalKind::Grid;
-  if (structure == "octree") return TraversalKind::Octree;
-  if (structure == "kdtree") return TraversalKind::KdTree;
-  if (structure == "bvh" || structure == "spheretree") {
-    if (traversal == "dfs") return TraversalKind::HierarchyDfs;
-    if (traversal == "pqueue") return TraversalKind::HierarchyPqueue;
-    return TraversalKind::HierarchyOrdered;
+TraversalKind traversal_kind(accel::TraversalFamily family, const std::string& traversal) {
+  switch (family) {
+    case accel::TraversalFamily::Linear: return TraversalKind::Brute;
+    case accel::TraversalFamily::Dda: return TraversalKind::Grid;
+    case accel::TraversalFamily::Octree: return TraversalKind::Octree;
+    case accel::TraversalFamily::KdTree: return TraversalKind::KdTree;
+    case accel::TraversalFamily::Hierarchy:
+      if (traversal == "dfs") return TraversalKind::HierarchyDfs;
+      if (traversal == "pqueue") return TraversalKind::HierarchyPqueue;
+      return TraversalKind::HierarchyOrdered;
   }
   return TraversalKind::Unknown;
 }

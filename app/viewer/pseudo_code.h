@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "registry.h"
 #include "structure.h"
 
 namespace viz {
@@ -23,8 +24,9 @@ enum class TraversalKind {
   Unknown,
 };
 
-/// The kind for a registry name and its `traversal` parameter ("" when it has none).
-TraversalKind traversal_kind(const std::string& structure, const std::string& traversal);
+/// The kind for a structure's traversal family (accel::StructureInfo::traversal) and its
+/// `traversal` parameter ("" when it has none).
+TraversalKind traversal_kind(accel::TraversalFamily family, const std::string& traversal);
 /// Short label, e.g. "priority queue".
 const char* traversal_label(TraversalKind kind);
 

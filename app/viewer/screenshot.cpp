@@ -14,7 +14,7 @@
 
 namespace viz {
 
-std::optional<accel::Error> save_framebuffer_png(const std::string& path, int width, int height) {
+accel::Status save_framebuffer_png(const std::string& path, int width, int height) {
   if (width <= 0 || height <= 0) {
     return accel::make_error("save_framebuffer_png: invalid size " + std::to_string(width) + "x" +
                              std::to_string(height));
@@ -39,7 +39,7 @@ std::optional<accel::Error> save_framebuffer_png(const std::string& path, int wi
   if (stbi_write_png(path.c_str(), width, height, 3, pixels.data(), static_cast<int>(row_bytes)) == 0) {
     return accel::make_error("cannot write screenshot " + path);
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace viz

@@ -62,7 +62,8 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->geometry = structure_geometry(*built->structure, request.geometry);
   for (const accel::ParamSpec& spec : params.value().specs())
     if (spec.name == "traversal") built->traversal = params.value().get_choice("traversal");
-  built->kind = traversal_kind(request.name, built->traversal);
+  built->info = info.value();
+  built->kind = traversal_kind(info.value()->traversal, built->traversal);
   return BuiltPtr(std::move(built));
 }
 

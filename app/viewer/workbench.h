@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "pseudo_code.h"
+#include "registry.h"
 #include "ray_gen.h"
 #include "structure.h"
 #include "structure_view.h"
@@ -97,6 +98,7 @@ struct StructureRequest {
 struct BuiltStructure {
   std::shared_ptr<const accel::Scene> scene;  ///< kept alive as long as the structure
   std::unique_ptr<accel::Structure> structure;
+  const accel::StructureInfo* info = nullptr;  ///< its registry entry (label, node noun, ...)
   StructureRequest request;
   std::string params_text;      ///< every parameter, "key=value ..."
   accel::BuildStats stats;

@@ -154,6 +154,10 @@ def main():
         ("bad_step.txt", f"size {W} {H}\nscene {SCENE}\nstep 3\n", r"^accelviz: .*bad_step\.txt:3: no debug ray yet"),
         ("bad_pixel.txt", f"size {W} {H}\nscene {SCENE}\n\nray-at-pixel 5000 10\n",
          r"^accelviz: .*bad_pixel\.txt:4: ray-at-pixel: \(5000, 10\) is outside the 480x320 window"),
+        # 1280x720 with the panels: the 3D view lies between them (the scene is framed there),
+        # so x = 100 is under the controls.
+        ("under_panel.txt", f"size 1280 720\nscene {SCENE}\nray-at-pixel 100 360\n",
+         r"^accelviz: .*under_panel\.txt:3: ray-at-pixel: x = 100 is under a panel; the 3D view spans x = 3\d\d\.\.7\d\d "),
         ("bad_scene.txt", f"size {W} {H}\nscene /no/such/file.obj\n", r"^accelviz: .*bad_scene\.txt:2: .*/no/such/file\.obj"),
         ("bad_chart.txt", f"size {W} {H}\nshow-chart on\nload-bench {BENCH_JSON}\nshow-chart on group=3\n",
          r"^accelviz: .*bad_chart\.txt:2: show-chart: no bench JSON loaded"),

@@ -1,0 +1,43 @@
+#pragma once
+// GL-free judgement of the left mouse button: click (shoot a ray) or drag (orbit). Owns
+// only the press position and time; App feeds it the button, cursor and clock per frame.
+#include <glm/glm.hpp>
+
+namespace viz {
+
+/// What one frame of left-button input means.
+struct ClickResult {
+  bool click = false;           ///< released as a click this frame: shoot through press_pos
+  glm::vec2 press_pos{0.0f};    ///< where the button went down (window coordinates)
+  glm::vec2 orbit{0.0f};        ///< pixels to orbit by this frame (zero unless dragging)
+};
+
+/// Tells a click from a drag by positions and time, never by mouse deltas: on a slow frame
+/// the movement before the press arrives in the press frame, and must not count.
+class ClickTracker {
+ public:
+  /// Farther than this from the press position (pixels) makes a drag.
+  static constexpr float kTolerance = 4.0f;
+  /// A press held longer than this (seconds) before its release is no click. Generous,
+  /// since at 2 fps press and release already land half a second apart.
+  static constexpr double kMaxClickSeconds = 1.0;
+
+  /// One frame: whether the button is down, the cursor position, the time in seconds, and
+  /// whether a press seen now may start a click or drag (false over a panel).
+  ClickResult update(bool down, glm::vec2 pos, double time, bool press_allowed);
+
+  /// The button went down in the 3D view and is still held.
+  bool held() const { return held_; }
+  /// The held button has moved beyond kTolerance: orbiting.
+  bool dragging() const { return dragging_; }
+
+ private:
+  bool was_down_ = false;
+  bool held_ = false;
+  bool dragging_ = false;
+  glm::vec2 press_pos_{0.0f};
+  glm::vec2 last_pos_{0.0f};
+  double press_time_ = 0.0;
+};
+
+}  // namespace viz

@@ -1,0 +1,41 @@
+#pragma once
+// The Structure section's editor: which structure, its parameters and the triangle kernel.
+// Owns the edited values and talks to the rest only through StructureRequest (set() in,
+// request() out), so moving to the core's typed parameters later changes this module alone.
+#include <string>
+#include <vector>
+
+#include "registry.h"
+#include "workbench.h"
+
+namespace viz {
+
+/// Edits one structure's parameters (on the core's key=value string API for now).
+class ParamEditor {
+ public:
+  /// Shows `request`: its structure, its parameters (others at their defaults), its kernel.
+  void set(const StructureRequest& request);
+  /// What the editor shows, as a request: only parameters set explicitly are passed.
+  StructureRequest request() const;
+  /// The registry entry being edited.
+  const accel::StructureInfo& info() const;
+  /// The kernel chosen.
+  accel::Kernel kernel() const { return kernel_; }
+  /// Chooses the kernel.
+  void set_kernel(accel::Kernel kernel) { kernel_ = kernel; }
+
+  /// The structure combo (returns the registry name chosen, or "" when unchanged).
+  std::string structure_combo();
+  /// The kernel combo; true when the kernel changed.
+  bool kernel_combo();
+  /// One widget per parameter, each with a reset button; true when a value changed.
+  bool parameter_widgets();
+
+ private:
+  int structure_ = 0;                // index into accel::structure_registry()
+  std::vector<std::string> values_;  // per parameter of that structure
+  std::vector<bool> explicit_;       // set by the user (else the default is in use)
+  accel::Kernel kernel_ = accel::Kernel::Watertight;
+};
+
+}  // namespace viz

@@ -1,0 +1,432 @@
+#include "tools/ray_debugger.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "panels.h"
+#include "tools/ui_colors.h"
+
+namespace viz {
+namespace {
+
+using ui::kCullText;
+using ui::kCurrentText;
+using ui::kDimText;
+using ui::kHitText;
+using ui::kMissText;
+using ui::kQueueText;
+
+ImVec4 event_color(const accel::TraceEvent& e) {
+  switch (e.kind) {
+    case accel::TraceEventKind::Visit:
+    case accel::TraceEventKind::EnterCell: return kCurrentText;
+    case accel::TraceEventKind::Cull: return kCullText;
+    case accel::TraceEventKind::Push:
+    case accel::TraceEventKind::Pop: return kQueueText;
+    case accel::TraceEventKind::TestPrim: return e.hit ? kHitText : kMissText;
+    case accel::TraceEventKind::NewClosest:
+    case accel::TraceEventKind::Done: return ImVec4(1.0f, 1.0f, 1.0f, 1.0f);
+  }
+  return kDimText;
+}
+
+std::string fmt(const char* format, double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// The ray and its trace
+
+void RayDebugger::shoot(const accel::PinholeCamera& camera, glm::ivec4 view, float px, float py, bool from_saved_view,
+                        const BuiltStructure* built) {
+  // The core's camera model: the same ray the heat map and `accel::primary_rays` use for
+  // this pixel, and the one through what is drawn there (Camera::pinhole()).
+  // (px, py) are framebuffer pixels from the window's top-left; the camera images the view.
+  accel::Ray ray = accel::camera_ray(camera, px - static_cast<float>(view.x),
+                                     py - static_cast<float>(view.y), view.z, view.w);
+  std::string origin = "click";
+  if (from_saved_view && saved_view_ && built) {
+    // From the saved viewpoint towards the surface point under the cursor.
+    const accel::Hit h = built->structure->intersect(ray);
+    if (h.valid() && ray.at(h.t) != saved_view_->eye) {
+      const glm::vec3 target = ray.at(h.t);
+      ray.org = saved_view_->eye;
+      ray.dir = glm::normalize(target - ray.org);
+      origin = "click from saved view";
+    }
+  }
+  set_ray(ray, origin, built);
+}
+
+void RayDebugger::set_ray(const accel::Ray& ray, const std::string& origin, const BuiltStructure* built) {
+  ray_.active = true;
+  ray_.ray = ray;
+  ray_.origin = origin;
+  for (int i = 0; i < 3; ++i) {
+    typed_ray_[i] = ray.org[i];
+    typed_ray_[3 + i] = ray.dir[i];
+  }
+  if (built) {
+    ray_.record(*built->structure, /*keep_step=*/false);
+  } else {
+    ray_.hit = accel::Hit{};
+    ray_.player.clear();
+  }
+  dirty_ = true;
+}
+
+void RayDebugger::replay(const BuiltStructure* built) {
+  if (!ray_.active) return;
+  if (built) {
+    // Same ray, new structure: the step index stays, clamped to the new trace.
+    ray_.record(*built->structure, /*keep_step=*/true);
+  }
+  dirty_ = true;
+}
+
+std::string RayDebugger::hit_line() const {
+  char text[96];
+  if (ray_.hit.valid()) std::snprintf(text, sizeof text, "hit %d %.9g", ray_.hit.prim, static_cast<double>(ray_.hit.t));
+  else std::snprintf(text, sizeof text, "miss");
+  return text;
+}
+
+std::string RayDebugger::step_line() const {
+  const accel::TraceEvent* e = ray_.player.current();
+  if (!e) return "no trace";
+  char text[64];
+  std::snprintf(text, sizeof text, "step %zu/%zu: ", ray_.player.step() + 1, ray_.player.size());
+  return text + accel::describe_event(*e);
+}
+
+void RayDebugger::reset() {
+  ray_ = DebugRay{};
+  dirty_ = true;
+}
+
+void RayDebugger::advance(double seconds) {
+  if (ray_.player.advance(seconds)) dirty_ = true;
+}
+
+void RayDebugger::update(const accel::Scene& scene, const BuiltStructure* built) {
+  if (!dirty_ && highlight_step_ == ray_.player.step()) return;
+  dirty_ = false;
+  highlight_step_ = ray_.player.step();
+  highlights_ = build_highlights(ray_, scene, built, options_);
+  upload_ = true;
+}
+
+accel::Status RayDebugger::need_ray() const {
+  if (!ray_.active) return accel::make_error("no debug ray yet (use ray-at-pixel or ray first)");
+  return {};
+}
+
+accel::Status RayDebugger::need_trace() const {
+  if (!ray_.active) return accel::make_error("no debug ray yet (use ray-at-pixel or ray first)");
+  if (ray_.player.empty()) return accel::make_error("the ray has no recorded trace (no structure built)");
+  return {};
+}
+
+std::string RayDebugger::ray_line() const {
+  const accel::Ray& r = ray_.ray;
+  char text[256];
+  std::snprintf(text, sizeof text, "%a %a %a %a %a %a", static_cast<double>(r.org.x), static_cast<double>(r.org.y),
+                static_cast<double>(r.org.z), static_cast<double>(r.dir.x), static_cast<double>(r.dir.y),
+                static_cast<double>(r.dir.z));
+  return text;
+}
+
+// ---------------------------------------------------------------------------------------
+// Panels
+
+bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built) {
+  const float em = ImGui::GetFontSize();
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin("Debug ray")) {
+    ImGui::End();
+    return false;
+  }
+  ui::note_docked(where);
+  bool compare = false;
+  if (!ray_.active) {
+    ImGui::TextWrapped("Click into the scene to shoot a ray through that pixel.");
+  } else {
+    ImGui::TextDisabled("%s, %s", ray_.origin.c_str(), built ? built->request.name.c_str() : "?");
+    if (built) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(%s)", traversal_label(built->kind));
+    }
+  }
+  // Playback.
+  accel::TracePlayer& p = ray_.player;
+  const bool has = !p.empty();
+  ImGui::BeginDisabled(!has);
+  if (ImGui::Button("|<")) { p.pause(); p.seek(0); }
+  ImGui::SameLine();
+  if (ImGui::Button("<")) { p.pause(); p.step_back(); }
+  ImGui::SameLine();
+  if (ImGui::Button(p.playing() ? "Pause" : "Play", ImVec2(4.0f * em, 0.0f))) p.toggle();
+  ImGui::SameLine();
+  if (ImGui::Button(">")) { p.pause(); p.step_forward(); }
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) { p.pause(); p.jump_to_end(); }
+  ImGui::SameLine();
+  if (ImGui::Button("Jump to hit")) p.jump_to_hit();
+  // Step and speed side by side.
+  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+  int step = static_cast<int>(p.step()) + 1;
+  ImGui::SetNextItemWidth(half);
+  char step_format[48];
+  if (p.empty()) std::snprintf(step_format, sizeof step_format, "no trace");
+  else std::snprintf(step_format, sizeof step_format, "step %%d of %zu", p.size());
+  if (ImGui::SliderInt("##step", &step, 1, std::max(static_cast<int>(p.size()), 1), step_format,
+                       ImGuiSliderFlags_AlwaysClamp)) {
+    p.pause();
+    p.seek(static_cast<size_t>(step - 1));
+  }
+  ImGui::SameLine();
+  float speed = static_cast<float>(p.speed());
+  ImGui::SetNextItemWidth(half);
+  if (ImGui::SliderFloat("##speed", &speed, static_cast<float>(accel::TracePlayer::kMinSpeed),
+                         static_cast<float>(accel::TracePlayer::kMaxSpeed), "speed %.3g steps/s",
+                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
+    p.set_speed(speed);
+  ImGui::EndDisabled();
+
+  if (has) {
+    // The current step, large and in its colour.
+    const accel::TraceEvent& e = *p.current();
+    ImGui::PushStyleColor(ImGuiCol_Text, event_color(e));
+    ImGui::TextWrapped("%s", accel::describe_event(e).c_str());
+    ImGui::PopStyleColor();
+    const accel::TraceHighlight& h = highlights_.step;
+    // Counters of this ray: up to this step, and for the whole traversal.
+    if (ImGui::BeginTable("counters", 5, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerH)) {
+      const char* noun = built ? built->info->node_noun.c_str() : "nodes";
+      for (const char* h_name : {"this ray", noun, "skipped", "triangles", "steps"})
+        ImGui::TableSetupColumn(h_name);
+      ImGui::TableHeadersRow();
+      auto row = [](const char* label, std::initializer_list<uint64_t> values) {
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextDisabled("%s", label);
+        int column = 1;
+        for (uint64_t v : values) {
+          ImGui::TableSetColumnIndex(column++);
+          ImGui::Text("%llu", static_cast<unsigned long long>(v));
+        }
+      };
+      row("so far", {h.counters.nodes_visited, h.counters.nodes_culled, h.counters.prims_tested, p.step() + 1});
+      row("total", {ray_.stats.nodes_visited, ray_.stats.nodes_culled, ray_.stats.prims_tested, p.size()});
+      ImGui::EndTable();
+    }
+    if (h.closest_prim >= 0)
+      ImGui::Text("closest so far: triangle %d at t=%.5g", h.closest_prim, static_cast<double>(h.closest_t));
+    if (ray_.hit.valid())
+      ImGui::Text("answer: triangle %d at t=%.5g", ray_.hit.prim, static_cast<double>(ray_.hit.t));
+    else
+      ImGui::TextUnformatted("answer: miss");
+    // Stack / priority queue contents, reconstructed from the push/pop events so far.
+    if (!h.pending.empty()) {
+      const bool pq = built && built->kind == TraversalKind::HierarchyPqueue;
+      ImGui::PushStyleColor(ImGuiCol_Text, kQueueText);
+      ImGui::Text("%s (%zu):", pq ? "priority queue, nearest first" : "stack, top first", h.pending.size());
+      ImGui::PopStyleColor();
+      std::vector<accel::PendingNode> list = pq ? accel::sorted_by_key(h.pending)
+                                                : std::vector<accel::PendingNode>(h.pending.rbegin(), h.pending.rend());
+      // "node @key" entries, wrapped between entries (never inside one).
+      const float right_edge = ImGui::GetCursorPosX() + ImGui::GetContentRegionAvail().x;
+      constexpr size_t kShown = 10;
+      for (size_t i = 0; i < list.size() && i <= kShown; ++i) {
+        const std::string item =
+            i == kShown ? "..." : std::to_string(list[i].node) + fmt(" @%.3g", static_cast<double>(list[i].key));
+        if (i > 0) {
+          ImGui::SameLine(0.0f, em);
+          if (ImGui::GetCursorPosX() + ImGui::CalcTextSize(item.c_str()).x > right_edge) ImGui::NewLine();
+        }
+        ImGui::TextUnformatted(item.c_str());
+      }
+    }
+  }
+  if (ImGui::Button("Compare structures (C)")) {
+    compare = true;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the same ray through every structure and traversal order");
+  ImGui::SameLine();
+  ImGui::Checkbox("from saved view", &shoot_from_saved_);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("a click aims from the saved viewpoint (Scene > Save view) at the point under the cursor");
+  if (ImGui::TreeNode("Colours")) {
+    ImGui::TextColored(kCurrentText, "current node and the ray's interval in it");
+    ImGui::TextColored(ImVec4(0.85f, 0.88f, 0.95f, 1.0f), "nodes visited before (trail)");
+    ImGui::TextColored(kQueueText, "pending on the stack / queue (thick: popped next)");
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.15f, 1.0f), "skipped: entered beyond the closest hit");
+    ImGui::TextColored(ImVec4(0.7f, 0.55f, 1.0f, 1.0f), "skipped: the ray misses its bounds");
+    ImGui::TextColored(kHitText, "triangle tested: hit");
+    ImGui::SameLine();
+    ImGui::TextColored(kMissText, "  miss");
+    ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.05f, 1.0f), "closest hit so far");
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.2f, 0.9f, 1.0f), "  hit point");
+    ImGui::TreePop();
+  }
+  if (ImGui::TreeNode("Type a ray")) {
+    ImGui::SetNextItemWidth(-4.0f * em);
+    ImGui::InputFloat3("origin", typed_ray_, "%.4g");
+    ImGui::SetNextItemWidth(-4.0f * em);
+    ImGui::InputFloat3("dir", typed_ray_ + 3, "%.4g");
+    if (ImGui::Button("Shoot")) {
+      accel::Ray r;
+      r.org = {typed_ray_[0], typed_ray_[1], typed_ray_[2]};
+      r.dir = {typed_ray_[3], typed_ray_[4], typed_ray_[5]};
+      if (r.dir != glm::vec3(0.0f)) set_ray(r, "typed", built);
+    }
+    ImGui::TreePop();
+  }
+  ImGui::End();
+  return compare;
+}
+
+void RayDebugger::steps_panel(const PanelPlace& where) {
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin("Traversal steps")) {
+    ImGui::End();
+    return;
+  }
+  ui::note_docked(where);
+  const auto& events = ray_.player.events();
+  if (events.empty()) {
+    ImGui::TextDisabled("no trace yet: click into the scene");
+    ImGui::End();
+    return;
+  }
+  ImGui::Checkbox("follow", &follow_step_);
+  ImGui::SameLine();
+  ImGui::TextDisabled("click a step to go there");
+  ImGui::BeginChild("steps");
+  const float row_h = ImGui::GetTextLineHeightWithSpacing();
+  const size_t current = ray_.player.step();
+  if (follow_step_ && current != steps_scrolled_) {
+    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(current) * row_h - 0.5f * ImGui::GetWindowHeight()));
+    steps_scrolled_ = current;
+  }
+  ImGuiListClipper clipper;
+  clipper.Begin(static_cast<int>(events.size()), row_h);
+  while (clipper.Step()) {
+    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
+      const accel::TraceEvent& e = events[static_cast<size_t>(i)];
+      char label[256];
+      std::snprintf(label, sizeof label, "%5d  %*s%s", i + 1, std::min<int>(e.depth, 24), "",
+                    accel::describe_event(e).c_str());
+      ImGui::PushStyleColor(ImGuiCol_Text, static_cast<size_t>(i) == current ? ImVec4(0, 0, 0, 1) : event_color(e));
+      if (static_cast<size_t>(i) == current)
+        ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
+      if (ImGui::Selectable(label, static_cast<size_t>(i) == current)) {
+        ray_.player.pause();
+        ray_.player.seek(static_cast<size_t>(i));
+        steps_scrolled_ = static_cast<size_t>(i);
+      }
+      if (static_cast<size_t>(i) == current) ImGui::PopStyleColor();
+      ImGui::PopStyleColor();
+    }
+  }
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+void RayDebugger::code_panel(const PanelPlace& where, const BuiltStructure* built, ImFont* mono) {
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  const TraversalKind kind = built ? built->kind : TraversalKind::Unknown;
+  if (!ImGui::Begin("Pseudo code")) {
+    ImGui::End();
+    return;
+  }
+  ui::note_docked(where);
+  const PseudoCode& code = pseudo_code(kind);
+  ImGui::TextDisabled("%s", code.title.c_str());
+  ImGui::BeginChild("code", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
+  if (mono) ImGui::PushFont(mono);
+  const float row_h = ImGui::GetTextLineHeightWithSpacing();
+  if (highlights_.code_line >= 0 && highlights_.code_line != code_scrolled_) {
+    // Keep the current line in view (the grid's listing is longer than the panel).
+    const float y = static_cast<float>(highlights_.code_line) * row_h;
+    if (y < ImGui::GetScrollY() + row_h || y > ImGui::GetScrollY() + ImGui::GetWindowHeight() - 2.0f * row_h)
+      ImGui::SetScrollY(std::max(0.0f, y - 0.4f * ImGui::GetWindowHeight()));
+    code_scrolled_ = highlights_.code_line;
+  }
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  for (size_t i = 0; i < code.lines.size(); ++i) {
+    const bool current = static_cast<int>(i) == highlights_.code_line;
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    if (current) {
+      dl->AddRectFilled(ImVec2(p.x - 4.0f, p.y - 1.0f),
+                        ImVec2(p.x + ImGui::GetContentRegionAvail().x + ImGui::GetScrollX(), p.y + row_h - 1.0f),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.9f)));
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 1));
+    }
+    ImGui::TextUnformatted(code.lines[i].empty() ? " " : code.lines[i].c_str());
+    if (current) ImGui::PopStyleColor();
+  }
+  if (mono) ImGui::PopFont();
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+void RayDebugger::highlight_options() {
+  bool changed = ImGui::Checkbox("trail", &options_.trail);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("nodes the ray visited before the current one");
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("skipped", &options_.culled);
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("pending", &options_.pending);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("nodes waiting on the stack / priority queue");
+  if (changed) dirty_ = true;
+}
+
+// ---------------------------------------------------------------------------------------
+// Drawing
+
+void RayDebugger::init_gl() {
+  segments_gl_.emplace();
+  triangles_gl_.emplace(GL_TRIANGLES);
+  lines_gl_.emplace(GL_LINES);
+  upload_ = true;
+}
+
+void RayDebugger::sync_gl() {
+  if (!segments_gl_ || !upload_) return;
+  segments_gl_->upload(highlights_.segments);
+  triangles_gl_->upload(highlights_.triangles, GL_DYNAMIC_DRAW);
+  lines_gl_->upload(highlights_.lines, GL_DYNAMIC_DRAW);
+  upload_ = false;
+}
+
+void RayDebugger::draw(Renderer& renderer) {
+  if (!segments_gl_) return;
+  // Highlights of the debug ray's current step (rebuilt only when the step changes).
+  LineStyle thin;
+  thin.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.35f);
+  renderer.draw_lines(*lines_gl_, thin);
+  renderer.draw_triangles(*triangles_gl_);
+  LineStyle thick;
+  thick.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.4f);
+  thick.depth_bias = 0.001f;
+  renderer.draw_segments(*segments_gl_, thick);
+}
+
+void RayDebugger::release_gl() {
+  lines_gl_.reset();
+  triangles_gl_.reset();
+  segments_gl_.reset();
+}
+
+}  // namespace viz

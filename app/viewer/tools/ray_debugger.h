@@ -1,0 +1,95 @@
+#pragma once
+// The ray debugger: the debug ray and its recorded trace, the trace player, the highlights
+// of the current step (and their GL buffers), the saved viewpoint, and the "Debug ray",
+// "Traversal steps" and "Pseudo code" panels. Gets the structure passed in, never reads it.
+#include <optional>
+#include <string>
+
+#include "ray_gen.h"
+#include "renderer.h"
+#include "result.h"
+#include "tools/highlights.h"
+#include "view_layout.h"
+#include "workbench.h"
+
+struct ImFont;
+
+namespace viz {
+
+/// The debug ray and everything shown about its traversal.
+class RayDebugger {
+ public:
+  /// Makes `ray` the debug ray and records its trace on `built` (nullptr: no structure).
+  void set_ray(const accel::Ray& ray, const std::string& origin, const BuiltStructure* built);
+  /// The ray through framebuffer pixel (px, py) of a view at `view` (x, y, w, h) seen by
+  /// `camera`; `from_saved_view` aims from the saved viewpoint at the surface point there.
+  void shoot(const accel::PinholeCamera& camera, glm::ivec4 view, float px, float py, bool from_saved_view,
+             const BuiltStructure* built);
+  /// The same ray on a new structure: the step stays, clamped.
+  void replay(const BuiltStructure* built);
+  /// Forgets the ray (a new scene).
+  void reset();
+  /// Plays the animation on by `seconds`.
+  void advance(double seconds);
+  /// Rebuilds the highlights when the step (or what they show) changed.
+  void update(const accel::Scene& scene, const BuiltStructure* built);
+
+  /// The debug ray.
+  const DebugRay& ray() const { return ray_; }
+  /// The trace player (keys and scripts step it; the highlights follow).
+  accel::TracePlayer& player() { return ray_.player; }
+  /// Success, or why there is no trace to step through.
+  accel::Status need_trace() const;
+  /// Success, or that there is no ray yet.
+  accel::Status need_ray() const;
+  /// "hit PRIM T" or "miss" (print-hit).
+  std::string hit_line() const;
+  /// "step I/N: EVENT" (print-step).
+  std::string step_line() const;
+  /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
+  std::string ray_line() const;
+
+  /// Remembers `view` as the saved viewpoint.
+  void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }
+  /// The saved viewpoint, if any.
+  const std::optional<accel::PinholeCamera>& saved_view() const { return saved_view_; }
+  /// Clicks shoot from the saved viewpoint ("from saved view").
+  bool shoot_from_saved() const { return shoot_from_saved_; }
+
+  /// The "Debug ray" panel; true when its Compare button was pressed.
+  bool ray_panel(const PanelPlace& place, const BuiltStructure* built);
+  /// The "Traversal steps" panel.
+  void steps_panel(const PanelPlace& place);
+  /// The "Pseudo code" panel in `mono` (nullptr: the default font).
+  void code_panel(const PanelPlace& place, const BuiltStructure* built, ImFont* mono);
+  /// The trail / skipped / pending checkboxes (end of the Display section).
+  void highlight_options();
+
+  /// Creates the GL buffers (context current).
+  void init_gl();
+  /// Uploads highlights rebuilt since the last frame (before the frame begins).
+  void sync_gl();
+  /// Draws the highlights of the current step.
+  void draw(Renderer& renderer);
+  /// Releases the GL buffers.
+  void release_gl();
+
+ private:
+  DebugRay ray_;
+  HighlightOptions options_;
+  Highlights highlights_;
+  bool dirty_ = true;                   // rebuild the highlights at the next update()
+  bool upload_ = false;                 // rebuilt on the CPU, not yet on the GPU
+  size_t highlight_step_ = ~size_t(0);  // the step highlights_ shows
+  bool follow_step_ = true;             // scroll the step list to the current step
+  size_t steps_scrolled_ = ~size_t(0);  // step the list was last scrolled to
+  int code_scrolled_ = -2;              // code line last scrolled into view
+  bool shoot_from_saved_ = false;
+  std::optional<accel::PinholeCamera> saved_view_;
+  float typed_ray_[6] = {0, 0, 5, 0, 0, -1};
+  std::optional<SegmentBatch> segments_gl_;
+  std::optional<ColorBatch> triangles_gl_;
+  std::optional<ColorBatch> lines_gl_;
+};
+
+}  // namespace viz

@@ -1,0 +1,270 @@
+#include "tools/structure_session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "registry.h"
+
+namespace viz {
+namespace {
+
+std::string fmt(const char* format, double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+}  // namespace
+
+StructureSession::StructureSession() : scene_(std::make_shared<accel::Scene>()) {
+#ifdef ACCEL_SOURCE_DIR
+  presets_ = lecture_presets(ACCEL_SOURCE_DIR);
+#endif
+  StructureRequest initial;
+  initial.name = "bvh";
+  initial.params = {"width=2"};  // the lecture's binary tree first; width=4 is one click away
+  editor_.set(initial);
+  requested_ = initial;
+}
+
+accel::Status StructureSession::load_scene(const std::string& spec) {
+  const auto start = std::chrono::steady_clock::now();
+  accel::Result<accel::Scene> loaded = accel::load_scene(spec);
+  const auto stop = std::chrono::steady_clock::now();
+  if (!loaded) {
+    panel_.load_error = loaded.error().message;
+    return loaded.error();
+  }
+  scene_ = std::make_shared<const accel::Scene>(std::move(loaded.value()));
+  scene_info_.spec = spec;
+  scene_info_.name = scene_->name();
+  scene_info_.triangles = scene_->triangle_count();
+  scene_info_.vertices = scene_->vertex_count();
+  scene_info_.degenerate = scene_->degenerate_count();
+  scene_info_.bounds = scene_->bounds();
+  scene_info_.load_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+  scene_uploaded_ = false;
+  panel_.load_error.clear();
+  // The combo shows what is loaded: its preset, or no preset at all (then the file's name).
+  preset_index_ = preset_for_scene(presets_, spec);
+  events_.scene_loaded = true;
+  rebuild();
+  return {};
+}
+
+accel::Status StructureSession::load_preset_scene(const Preset& preset) {
+  if (!preset.structure.empty() && editor_.info().name != preset.structure) {
+    StructureRequest r = editor_.request();
+    r.name = preset.structure;
+    r.params.clear();
+    editor_.set(r);
+  }
+  accel::Status st = load_scene(preset.scene);
+  for (size_t i = 0; i < presets_.size(); ++i)
+    if (presets_[i].name == preset.name) preset_index_ = static_cast<int>(i);
+  return st;
+}
+
+void StructureSession::poll() {
+  // Loads requested since the last frame; only the last one matters to the user, but a
+  // failure of an earlier one would then go unreported, so run them in order.
+  std::vector<std::string> loads;
+  loads.swap(pending_loads_);
+  for (const std::string& spec : loads) (void)load_scene(spec);  // errors are shown in the panel
+  poll_build();
+}
+
+void StructureSession::poll_build() {
+  if (!build_job_.ready()) return;
+  accel::Result<BuiltPtr> result = build_job_.take();
+  if (!result) {
+    build_error_ = result.error().message;
+  } else if (result.value()->scene == scene_) {
+    install(std::move(result.value()));
+  }
+  // else: built for a scene replaced meanwhile; its rebuild is queued.
+  if (queued_request_) {
+    const StructureRequest next = *queued_request_;
+    queued_request_.reset();
+    start_build(next);
+  }
+}
+
+SessionEvents StructureSession::take_events() {
+  SessionEvents e = events_;
+  events_ = {};
+  return e;
+}
+
+StructureRequest StructureSession::editor_request() const {
+  StructureRequest r = editor_.request();
+  r.geometry.empty_cells = empty_cells_;
+  return r;
+}
+
+void StructureSession::switch_structure(const std::string& name, const std::vector<std::string>& params) {
+  StructureRequest r;
+  r.name = name;
+  r.params = params;
+  r.kernel = editor_.kernel();
+  editor_.set(r);
+  rebuild();
+}
+
+void StructureSession::set_kernel(accel::Kernel kernel) {
+  editor_.set_kernel(kernel);
+  rebuild();
+}
+
+void StructureSession::request(const StructureRequest& request) {
+  requested_ = request;
+  if (build_job_.busy() && !synchronous_) {
+    // The running build cannot be interrupted; only the newest request matters next.
+    queued_request_ = request;
+    return;
+  }
+  start_build(request);
+}
+
+void StructureSession::start_build(const StructureRequest& request) {
+  build_error_.clear();
+  auto scene = scene_;
+  build_job_.start([scene, request](const std::atomic<bool>&) { return build_structure_now(scene, request); },
+                   synchronous_);
+  if (synchronous_) poll_build();
+}
+
+void StructureSession::install(BuiltPtr built) {
+  built_ = std::move(built);
+  events_.structure_installed = true;
+}
+
+accel::Status StructureSession::need_structure() const {
+  if (!build_error_.empty()) return accel::make_error(build_error_);
+  if (!matches_scene()) return accel::make_error("no structure built for this scene");
+  return {};
+}
+
+std::string StructureSession::window_title() const {
+  std::string title = "accelviz - " + (scene_info_.name.empty() ? scene_info_.spec : scene_info_.name);
+  if (built_) title += " - " + built_->request.name;
+  return title;
+}
+
+SceneActions StructureSession::scene_section(bool has_saved_view) {
+  SceneActions actions;
+  const float em = ImGui::GetFontSize();
+  if (!presets_.empty()) {
+    preset_index_ = std::clamp(preset_index_, -1, static_cast<int>(presets_.size()) - 1);
+    const std::string shown =
+        preset_index_ >= 0 ? presets_[static_cast<size_t>(preset_index_)].name : scene_label(scene_info_.spec);
+    ImGui::SetNextItemWidth(12.0f * em);
+    if (ImGui::BeginCombo("##preset", shown.c_str())) {
+      for (int i = 0; i < static_cast<int>(presets_.size()); ++i) {
+        const Preset& p = presets_[static_cast<size_t>(i)];
+        if (ImGui::Selectable(p.name.c_str(), i == preset_index_)) preset_index_ = i;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
+      }
+      ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Load preset") && preset_index_ >= 0) actions.load_preset = preset_index_;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("scene, saved camera and saved ray");
+  }
+  ImGui::SetNextItemWidth(12.0f * em);
+  const bool entered = ImGui::InputTextWithHint("##obj", "path/to/scene.obj", &panel_.obj_path,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  const bool clicked = ImGui::Button("Load OBJ");
+  if ((entered || clicked) && !panel_.obj_path.empty()) (void)load_scene(panel_.obj_path);  // error shown below
+  if (!panel_.load_error.empty()) ui::error_text(panel_.load_error, 19.0f * em);
+
+  if (ImGui::BeginTable("scene", 2, ImGuiTableFlags_SizingFixedFit)) {
+    ui::path_row("scene", scene_info_.name.empty() ? scene_info_.spec : scene_info_.name);
+    ui::stat_row("triangles", ui::with_separators(scene_info_.triangles) +
+                                  (scene_info_.degenerate ? " (" + ui::with_separators(scene_info_.degenerate) +
+                                                                " degenerate)"
+                                                          : ""));
+    ui::stat_row("size", scene_info_.bounds.empty() ? "(empty)" : ui::format_vec(scene_info_.bounds.extent()));
+    ui::stat_row("load time", fmt("%.1f ms", scene_info_.load_ms));
+    ImGui::EndTable();
+  }
+  if (ImGui::Button("Frame scene (F)")) actions.frame = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Save view")) actions.save_view = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("remember this camera (shift-click then shoots from it)");
+  if (has_saved_view) {
+    ImGui::SameLine();
+    if (ImGui::Button("Go to saved")) actions.go_to_saved = true;
+  }
+  return actions;
+}
+
+void StructureSession::structure_section() {
+  const float em = ImGui::GetFontSize();
+  const std::string chosen = editor_.structure_combo();
+  if (!chosen.empty()) switch_structure(chosen, {});
+  if (editor_.kernel_combo()) rebuild();
+  // Every change rebuilds in the background; the old structure stays drawn meanwhile.
+  if (editor_.parameter_widgets()) rebuild();
+
+  if (build_job_.busy()) {
+    // Indeterminate: the core reports no progress; the bar sweeps while the build runs.
+    const float phase = std::fmod(static_cast<float>(build_job_.seconds()) * 0.7f, 1.0f);
+    char overlay[96];
+    std::snprintf(overlay, sizeof overlay, "building %s ... %.1f s", requested_.name.c_str(), build_job_.seconds());
+    ImGui::ProgressBar(phase, ImVec2(-1.0f, 0.0f), overlay);
+  }
+  if (!build_error_.empty()) ui::error_text(build_error_, 19.0f * em);
+  if (!built_) return;
+  const accel::BuildStats& s = built_->stats;
+  if (ImGui::BeginTable("build", 2, ImGuiTableFlags_SizingFixedFit)) {
+    ui::stat_row("built", built_->request.name + (built_->scene == scene_ ? "" : " (old scene)"));
+    ui::stat_row("build time", fmt("%.2f ms", s.build_ms));
+    ui::stat_row("memory", ui::format_bytes(s.memory_bytes));
+    ui::stat_row(built_->info->node_noun.c_str(),
+                 ui::with_separators(s.nodes) + " (" + ui::with_separators(s.leaves) + " leaves)");
+    if (s.empty_leaves) ui::stat_row("empty", ui::with_separators(s.empty_leaves));
+    ui::stat_row("max depth", std::to_string(s.max_depth));
+    ui::stat_row("refs / triangle", fmt("%.2f", s.refs_per_prim()));
+    ui::stat_row("largest leaf", std::to_string(s.max_leaf_size));
+    ui::stat_row("SAH cost", std::isnan(s.sah_cost) ? std::string("-") : fmt("%.2f", s.sah_cost));
+    for (const auto& [key, value] : s.extra) ui::text_row(key.c_str(), value);
+    ImGui::EndTable();
+  }
+}
+
+void StructureSession::init_gl() {
+  bounds_lines_.emplace(GL_LINES);
+  scene_uploaded_ = false;
+}
+
+void StructureSession::upload(Renderer& renderer) {
+  if (scene_uploaded_ || !bounds_lines_) return;
+  renderer.set_scene(*scene_);
+  std::vector<ColorVertex> lines;
+  append_box_edges(lines, scene_->bounds(), glm::vec4(0.55f, 0.62f, 0.75f, 0.55f));
+  bounds_lines_->upload(lines);
+  scene_uploaded_ = true;
+}
+
+void StructureSession::draw_bounds(Renderer& renderer) const {
+  if (!bounds_lines_) return;
+  // A subtle box around the scene: shows its extent without competing with the mesh;
+  // edges hidden by the mesh still show, fainter.
+  LineStyle style;
+  style.tint = glm::vec4(1.0f);
+  style.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.35f);
+  renderer.draw_lines(*bounds_lines_, style);
+}
+
+void StructureSession::wait() { build_job_.wait(); }
+
+void StructureSession::release_gl() { bounds_lines_.reset(); }
+
+}  // namespace viz

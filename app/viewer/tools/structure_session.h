@@ -1,0 +1,137 @@
+#pragma once
+// The structure session: the scene (loading, what the panel shows about it, presets), the
+// structure built over it (background build and its one-deep queue), and the parameter
+// editor. Owns the scene's GL mesh upload and its bounding-box lines.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "panels.h"
+#include "presets.h"
+#include "renderer.h"
+#include "result.h"
+#include "scene.h"
+#include "tools/param_editor.h"
+#include "workbench.h"
+
+namespace viz {
+
+/// What happened in the session since take_events(): the App tells the other tools.
+struct SessionEvents {
+  bool scene_loaded = false;         ///< a new scene: old rays, comparisons and images are void
+  bool structure_installed = false;  ///< a new structure is drawn (current() changed)
+};
+
+/// What the Scene section's camera buttons asked for (the camera is App's).
+struct SceneActions {
+  int load_preset = -1;      ///< index into presets(): "Load preset"
+  bool frame = false;        ///< "Frame scene (F)"
+  bool save_view = false;    ///< "Save view"
+  bool go_to_saved = false;  ///< "Go to saved"
+};
+
+/// Scene + structure + editor.
+class StructureSession {
+ public:
+  /// Starts with the lecture's binary BVH in the editor and an empty scene.
+  StructureSession();
+
+  /// Loads `spec` (OBJ path or procedural:NAME); on success it becomes the scene and its
+  /// structure is rebuilt. On failure the old scene stays and the error is also shown.
+  accel::Status load_scene(const std::string& spec);
+  /// Queues a load for the next poll() (drop callback: outside any ImGui frame).
+  void request_load(std::string spec) { pending_loads_.push_back(std::move(spec)); }
+  /// Loads a preset's scene, its structure in the editor first when it names one.
+  accel::Status load_preset_scene(const Preset& preset);
+  /// Builds and scripts wait for each other (script mode) instead of running behind.
+  void set_synchronous(bool synchronous) { synchronous_ = synchronous; }
+
+  /// Runs the queued loads and takes a finished build (per frame, before the panels).
+  void poll();
+  /// The events since the last call.
+  SessionEvents take_events();
+
+  /// Shows structure `name` with `params` (the editor's kernel kept) and builds it.
+  void switch_structure(const std::string& name, const std::vector<std::string>& params);
+  /// Chooses the triangle kernel and rebuilds.
+  void set_kernel(accel::Kernel kernel);
+  /// Whether builds list a grid's empty cells (the node display asks for it).
+  void set_empty_cells(bool on) { empty_cells_ = on; }
+  /// Rebuilds from the editor's values.
+  void rebuild() { request(editor_request()); }
+
+  /// The scene shown.
+  const accel::Scene& scene() const { return *scene_; }
+  /// The scene, shared (jobs keep it alive).
+  const std::shared_ptr<const accel::Scene>& scene_ptr() const { return scene_; }
+  /// What was loaded last.
+  const SceneInfo& scene_info() const { return scene_info_; }
+  /// The structure built for the current scene, or nullptr (none yet, or an old scene's).
+  const BuiltStructure* current() const { return matches_scene() ? built_.get() : nullptr; }
+  /// current(), shared (for jobs).
+  BuiltPtr current_ptr() const { return matches_scene() ? built_ : nullptr; }
+  /// The structure drawn, even if for an old scene.
+  const BuiltStructure* shown() const { return built_.get(); }
+  /// The request of what is shown, or else of what is being built.
+  StructureRequest current_request() const { return built_ ? built_->request : requested_; }
+  /// The editor's request (with the node display's geometry options).
+  StructureRequest editor_request() const;
+  /// The registry entry in the editor.
+  const accel::StructureInfo& editor_info() const { return editor_.info(); }
+  /// Success, or why there is no structure for this scene (a build error first).
+  accel::Status need_structure() const;
+  /// The lecture presets.
+  const std::vector<Preset>& presets() const { return presets_; }
+  /// True while a build runs.
+  bool building() const { return build_job_.busy(); }
+  /// Seconds the running build has taken.
+  double build_seconds() const { return build_job_.seconds(); }
+  /// The name being built.
+  const std::string& requested_name() const { return requested_.name; }
+  /// "accelviz - SCENE - STRUCTURE".
+  std::string window_title() const;
+
+  /// The Scene section; its camera buttons are returned (`has_saved_view` shows "Go to saved").
+  SceneActions scene_section(bool has_saved_view);
+  /// The Structure section: structure, kernel, parameters, build progress and statistics.
+  void structure_section();
+
+  /// Creates the GL objects (context current).
+  void init_gl();
+  /// Uploads a new scene's mesh to `renderer` (and its box lines) when needed.
+  void upload(Renderer& renderer);
+  /// Draws the scene's bounding box.
+  void draw_bounds(Renderer& renderer) const;
+  /// Waits for the build thread.
+  void wait();
+  /// Releases the GL objects.
+  void release_gl();
+
+ private:
+  bool matches_scene() const { return built_ && built_->scene == scene_; }
+  void request(const StructureRequest& request);
+  void start_build(const StructureRequest& request);
+  void poll_build();
+  void install(BuiltPtr built);
+
+  std::shared_ptr<const accel::Scene> scene_;
+  SceneInfo scene_info_;
+  ScenePanelState panel_;
+  std::vector<std::string> pending_loads_;
+  std::vector<Preset> presets_;
+  int preset_index_ = 0;  // the combo's entry; -1: the loaded scene is no preset
+  ParamEditor editor_;
+  bool empty_cells_ = false;
+  BuiltPtr built_;
+  Job<accel::Result<BuiltPtr>> build_job_;
+  std::optional<StructureRequest> queued_request_;  // asked for while a build was running
+  StructureRequest requested_;                      // the latest request (shown as "building")
+  std::string build_error_;
+  bool synchronous_ = false;
+  SessionEvents events_;
+  bool scene_uploaded_ = false;  // false after a load until upload() ran
+  std::optional<ColorBatch> bounds_lines_;
+};
+
+}  // namespace viz

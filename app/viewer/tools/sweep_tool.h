@@ -1,0 +1,50 @@
+#pragma once
+// The parameter sweep ("tune at the end"): which parameter, its range and steps, the
+// background job building and tracing once per value, its points, and the sweep window
+// with its two plots.
+#include <memory>
+#include <string>
+
+#include "ray_gen.h"
+#include "registry.h"
+#include "result.h"
+#include "view_layout.h"
+#include "workbench.h"
+
+namespace viz {
+
+/// The sweep's settings, job and results.
+class SweepTool {
+ public:
+  /// Chooses numeric parameter `param` of `info`, its range and steps (the sweep command).
+  accel::Status configure(const accel::StructureInfo& info, const std::string& param, float lo, float hi, int steps);
+  /// Sweeps the chosen parameter of `info` from `base` (the editor's request) over the
+  /// primary rays of `camera`; opens the window. Synchronous in script mode; the error
+  /// (also shown in the section) when nothing can be swept or the run failed.
+  accel::Status start(const accel::StructureInfo& info, std::shared_ptr<const accel::Scene> scene,
+                      const StructureRequest& base, const accel::PinholeCamera& camera, bool synchronous);
+  /// Waits for the job.
+  void wait() { job_.wait(); }
+
+  /// The main panel's "Parameter sweep" section; true when "Run sweep" was pressed.
+  bool section(const accel::StructureInfo& info);
+  /// Whether the window is shown.
+  bool open() const { return open_; }
+  /// Shows or hides the window.
+  void set_open(bool open) { open_ = open; }
+  /// The window with the build-time and trace-time plots.
+  void panel(const PanelPlace& place);
+
+ private:
+  Job<accel::Status> job_;
+  std::shared_ptr<SweepProgress> progress_;
+  SweepRequest request_;
+  std::string error_;
+  int param_ = 0;  // index among the numeric parameters
+  float lo_ = 0.5f, hi_ = 4.0f;
+  int steps_ = 10;
+  bool log_ = false;
+  bool open_ = false;
+};
+
+}  // namespace viz

@@ -1,0 +1,15 @@
+#pragma once
+// Text colours of the ray debugger's panels and the compare table: the same meaning as the
+// 3D highlights (tools/highlights.cpp). Shared by the tools' panels, hence one header.
+#include <imgui.h>
+
+namespace viz::ui {
+
+inline const ImVec4 kCurrentText(1.0f, 0.85f, 0.1f, 1.0f);
+inline const ImVec4 kCullText(1.0f, 0.55f, 0.3f, 1.0f);
+inline const ImVec4 kHitText(0.35f, 0.95f, 0.45f, 1.0f);
+inline const ImVec4 kMissText(1.0f, 0.45f, 0.45f, 1.0f);
+inline const ImVec4 kQueueText(0.35f, 0.85f, 1.0f, 1.0f);
+inline const ImVec4 kDimText(0.62f, 0.65f, 0.72f, 1.0f);
+
+}  // namespace viz::ui

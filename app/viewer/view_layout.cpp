@@ -1,0 +1,55 @@
+#include "view_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace viz {
+
+PanelLayout compute_layout(glm::vec2 display, float em, bool lecture, bool main_open) {
+  PanelLayout l;
+  const float pad = 0.4f * em;
+  const float w = display.x, h = display.y;
+  // Left: controls (collapsed in lecture mode, for a bigger view). Right: the debug ray, the
+  // pseudo code and the step list, wide enough for the lecture's code lines.
+  const float left = std::min(21.0f * em, 0.3f * w);
+  const float right = std::min(34.0f * em, (lecture ? 0.42f : 0.4f) * w);
+  l.main = {{pad, pad}, {left, h - 2.0f * pad}};
+  const float rx = w - right - pad;
+  const float ray_h = lecture ? 0.4f * h : std::max(0.42f * h, 19.5f * em);
+  const float code_h = lecture ? 0.38f * h : 0.32f * h;
+  l.ray = {{rx, pad}, {right, ray_h}};
+  l.code = {{rx, 2.0f * pad + ray_h}, {right, code_h}};
+  l.steps = {{rx, 3.0f * pad + ray_h + code_h}, {right, std::max(h - ray_h - code_h - 4.0f * pad, 4.0f * em)}};
+  // Compare table and sweep plot: temporary, wide, over the lower left (they need the width).
+  const float cx = left + 2.0f * pad;
+  const float bottom_h = std::min(0.34f * h, 16.0f * em);
+  l.bottom = {{pad, h - bottom_h - pad}, {std::max(rx - 2.0f * pad, 10.0f * em), bottom_h}};
+  l.legend = {{cx, pad}, {0.0f, 0.0f}};
+  // The bench chart needs room more than the debug ray does: everything right of the
+  // controls (the whole width when they are hidden or collapsed).
+  const float chart_x = main_open && !lecture ? cx : pad;
+  l.chart = {{chart_x, pad}, {w - chart_x - pad, h - 2.0f * pad}};
+  l.status = {{cx, pad}, {0.0f, 0.0f}};
+  return l;
+}
+
+void note_docked(DockEdges& edges, float display_width, glm::vec2 pos, glm::vec2 size) {
+  const float w = display_width;
+  if (pos.x < 0.3f * w && pos.x + size.x < 0.5f * w) edges.left = std::max(edges.left, pos.x + size.x);
+  if (pos.x + size.x > 0.7f * w && pos.x > 0.5f * w) edges.right = std::min(edges.right, pos.x);
+}
+
+glm::ivec4 view_rect(const DockEdges& edges, glm::vec2 display, glm::vec2 scale, bool ui_visible) {
+  const float w = display.x;
+  float left = ui_visible ? edges.left : 0.0f, right = ui_visible ? edges.right : w;
+  if (right - left < std::max(kMinViewFraction * w, kMinViewPixels)) {
+    left = 0.0f;
+    right = w;
+  }
+  const float sx = scale.x > 0.0f ? scale.x : 1.0f, sy = scale.y > 0.0f ? scale.y : 1.0f;
+  const int fb_h = static_cast<int>(std::lround(display.y * sy));
+  const int x0 = static_cast<int>(std::lround(left * sx)), x1 = static_cast<int>(std::lround(right * sx));
+  return {x0, 0, std::max(x1 - x0, 1), std::max(fb_h, 1)};
+}
+
+}  // namespace viz

@@ -1,0 +1,180 @@
+// The script parser: every command, its errors (naming script and line), the chart commands.
+#include <gtest/gtest.h>
+
+#include "script.h"
+#include "viewer_test_support.h"
+
+namespace viz {
+namespace {
+
+
+// ---------------------------------------------------------------------------------------
+// Script parser
+
+TEST(Script, ParsesEveryCommand) {
+  const std::string text =
+      "# a comment line\n"
+      "size 800 600\n"
+      "\n"
+      "scene procedural:cornell   # trailing comment\n"
+      "structure bvh traversal=pqueue leaf_size=2\n"
+      "kernel moller\n"
+      "camera 0 1 5 0 1 0 40\n"
+      "camera 0 1 5 0 1 0\n"
+      "ray-at-pixel 320 240\n"
+      "ray 0x1p-2 0 5 0 0 -1\n"
+      "step 3\n"
+      "step end\n"
+      "step back 2\n"
+      "step hit\n"
+      "show depth=2..4\n"
+      "show depth=3\n"
+      "show leaves\n"
+      "show all\n"
+      "heatmap prims\n"
+      "mesh translucent\n"
+      "empty-cells on\n"
+      "nodes off\n"
+      "opacity 0.4\n"
+      "panel off\n"
+      "panel code on\n"
+      "large on\n"
+      "compare\n"
+      "sweep leaf_size 1 16 8\n"
+      "screenshot out.png\n"
+      "frames out/f_\n"
+      "print-hit\nprint-step\nprint-ray\nprint-stats\nprint-frame-time 10\n"
+      "preset stadium\n";
+  auto parsed = parse_script(text, "t.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const auto& c = parsed.value();
+  ASSERT_EQ(c.size(), 34u);
+  EXPECT_EQ(c[0].kind, CommandKind::Size);
+  EXPECT_EQ(c[0].line, 2);
+  EXPECT_EQ(c[0].ints[0], 800);
+  EXPECT_EQ(c[0].ints[1], 600);
+  EXPECT_EQ(c[1].kind, CommandKind::Scene);
+  EXPECT_EQ(c[1].name, "procedural:cornell");
+  EXPECT_EQ(c[1].line, 4);
+  EXPECT_EQ(c[2].kind, CommandKind::Structure);
+  EXPECT_EQ(c[2].name, "bvh");
+  EXPECT_EQ(c[2].params, (std::vector<std::string>{"traversal=pqueue", "leaf_size=2"}));
+  EXPECT_EQ(c[3].kind, CommandKind::Kernel);
+  EXPECT_EQ(c[4].kind, CommandKind::Camera);
+  EXPECT_TRUE(c[4].has_fov);
+  EXPECT_EQ(c[4].values[6], 40.0f);
+  EXPECT_FALSE(c[5].has_fov);
+  EXPECT_EQ(c[6].kind, CommandKind::RayAtPixel);
+  EXPECT_EQ(c[6].values[0], 320.0f);
+  EXPECT_EQ(c[7].kind, CommandKind::Ray);
+  EXPECT_EQ(c[7].values[0], 0.25f);  // hex float
+  EXPECT_EQ(c[7].values[5], -1.0f);
+  EXPECT_EQ(c[8].step, StepMode::Forward);
+  EXPECT_EQ(c[8].ints[0], 3);
+  EXPECT_EQ(c[9].step, StepMode::End);
+  EXPECT_EQ(c[10].step, StepMode::Back);
+  EXPECT_EQ(c[10].ints[0], 2);
+  EXPECT_EQ(c[11].step, StepMode::Hit);
+  EXPECT_EQ(c[12].show, ShowMode::Depth);
+  EXPECT_EQ(c[12].ints[0], 2);
+  EXPECT_EQ(c[12].ints[1], 4);
+  EXPECT_EQ(c[13].ints[0], 3);
+  EXPECT_EQ(c[13].ints[1], 3);
+  EXPECT_EQ(c[14].show, ShowMode::Leaves);
+  EXPECT_EQ(c[15].show, ShowMode::All);
+  EXPECT_EQ(c[16].kind, CommandKind::Heatmap);
+  EXPECT_EQ(c[16].name, "prims");
+  EXPECT_EQ(c[17].name, "translucent");
+  EXPECT_TRUE(c[18].on);
+  EXPECT_EQ(c[19].kind, CommandKind::Nodes);
+  EXPECT_FALSE(c[19].on);
+  EXPECT_EQ(c[20].kind, CommandKind::Opacity);
+  EXPECT_EQ(c[20].values[0], 0.4f);
+  EXPECT_EQ(c[21].name, "all");
+  EXPECT_FALSE(c[21].on);
+  EXPECT_EQ(c[22].name, "code");
+  EXPECT_EQ(c[24].kind, CommandKind::Compare);
+  EXPECT_EQ(c[25].kind, CommandKind::Sweep);
+  EXPECT_EQ(c[25].name, "leaf_size");
+  EXPECT_EQ(c[25].ints[0], 8);
+  EXPECT_EQ(c[26].kind, CommandKind::Screenshot);
+  EXPECT_EQ(c[27].kind, CommandKind::Frames);
+  EXPECT_EQ(c[27].name, "out/f_");
+  EXPECT_EQ(c[31].kind, CommandKind::PrintStats);
+  EXPECT_EQ(c[32].ints[0], 10);
+  EXPECT_EQ(c[33].kind, CommandKind::Preset);
+}
+
+TEST(Script, ErrorsNameScriptAndLine) {
+  struct Case {
+    const char* text;
+    const char* expected;  // substring of the message
+  };
+  const Case cases[] = {
+      {"size 800 600\nfly away\n", "s.txt:2: unknown command 'fly'"},
+      {"size 10 600\n", "s.txt:1: size: W and H must be integers in 64..8192"},
+      {"size 800\n", "s.txt:1: usage: size W H"},
+      {"\n\nstructure octopus\n", "s.txt:3: unknown structure 'octopus'"},
+      {"structure bvh leaf_size=0\n", "s.txt:1: bvh parameter 'leaf_size' = '0' is invalid: expected an integer in [1, 64]"},
+      {"structure bvh nonsense=1\n", "s.txt:1: unknown parameter 'nonsense'"},
+      {"camera 0 0 0 1 1\n", "s.txt:1: usage: camera"},
+      {"camera 0 0 0 1 1 1 200\n", "FOVY_DEG must be in (1, 170)"},
+      {"camera 1 1 1 1 1 1\n", "eye and target are the same point"},
+      {"ray 0 0 0 0 0 0\n", "ray: the direction is zero"},
+      {"ray 0 0 nan 0 0 1\n", "'nan' is not a finite number"},
+      {"ray-at-pixel 10 x\n", "'x' is not a finite number"},
+      {"step sideways\n", "usage: step N"},
+      {"step -3\n", "usage: step N"},
+      {"show depth=4..2\n", "not depth=A..B"},
+      {"heatmap hot\n", "usage: heatmap off|nodes|prims"},
+      {"panel left on\n", "usage: panel"},
+      {"print-hit now\n", "'print-hit' takes no arguments"},
+      {"kernel fast\n", "usage: kernel"},
+      {"sweep leaf_size 8 2 5\n", "LO < HI"},
+      {"screenshot\n", "usage: screenshot PATH"},
+      {"opacity 2\n", "usage: opacity A"},
+      {"nodes maybe\n", "usage: nodes on|off"},
+  };
+  for (const Case& c : cases) {
+    auto parsed = parse_script(c.text, "s.txt");
+    ASSERT_FALSE(parsed.ok()) << c.text;
+    EXPECT_NE(parsed.error().message.find(c.expected), std::string::npos)
+        << "script: " << c.text << "\nmessage: " << parsed.error().message;
+  }
+  EXPECT_FALSE(load_script("/nonexistent/script.txt").ok());
+  EXPECT_EQ(script_error("a.txt", 7, "boom"), "a.txt:7: boom");
+}
+
+TEST(Script, BenchChartCommands) {
+  auto parsed = parse_script("load-bench out/bench.json\nshow-chart on x=t-error speed=1t y=log labels=off group=2\n"
+                             "show-chart off\n",
+                             "t.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const auto& c = parsed.value();
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].kind, CommandKind::LoadBench);
+  EXPECT_EQ(c[0].name, "out/bench.json");
+  EXPECT_EQ(c[1].kind, CommandKind::ShowChart);
+  EXPECT_TRUE(c[1].on);
+  EXPECT_EQ(c[1].params, (std::vector<std::string>{"x=t-error", "speed=1t", "y=log", "labels=off", "group=2"}));
+  EXPECT_EQ(c[2].kind, CommandKind::ShowChart);
+  EXPECT_FALSE(c[2].on);
+
+  const std::pair<const char*, const char*> errors[] = {
+      {"load-bench\n", "t.txt:1: usage: load-bench FILE"},
+      {"load-bench a.json b.json\n", "t.txt:1: usage: load-bench FILE"},
+      {"show-chart\n", "t.txt:1: usage: show-chart on|off"},
+      {"show-chart maybe\n", "t.txt:1: usage: show-chart on|off"},
+      {"show-chart on x=speed\n", "t.txt:1: show-chart: x: expected errors or t-error, got 'speed'"},
+      {"show-chart on group=0\n", "t.txt:1: show-chart: group: expected a group number from 1, got '0'"},
+      {"show-chart on colour=red\n", "t.txt:1: show-chart: unknown chart setting 'colour=red'"},
+  };
+  for (const auto& [text, expected] : errors) {
+    auto bad = parse_script(text, "t.txt");
+    ASSERT_FALSE(bad.ok()) << text;
+    EXPECT_NE(bad.error().message.find(expected), std::string::npos) << bad.error().message;
+  }
+}
+
+}  // namespace
+}  // namespace viz
