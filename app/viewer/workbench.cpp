@@ -180,8 +180,9 @@ accel::Status run_sweep(std::shared_ptr<const accel::Scene> scene, const SweepRe
     if (cancel.load()) break;
     SweepPoint point;
     point.value = v;
-    point.text = number_text(v, integer);
-    const auto params = with_param(request.base.params, request.param, point.text);
+    point.text = number_text(v, integer);  // the label; the parameter gets the exact value
+    const auto params =
+        with_param(request.base.params, request.param, integer ? point.text : accel::format_param_number(v));
     const auto start = std::chrono::steady_clock::now();
     auto built = accel::build_structure(request.base.name, *scene, params, request.base.kernel);
     point.build_ms = ms_since(start);

@@ -1,47 +1,33 @@
 #include "tools/param_editor.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
+#include <array>
+#include <optional>
 
 #include <imgui.h>
 
 namespace viz {
-namespace {
-
-long to_long(const std::string& s) { return std::strtol(s.c_str(), nullptr, 10); }
-double to_double(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
-
-std::string fmt(const char* format, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
-
-}  // namespace
 
 void ParamEditor::set(const StructureRequest& request) {
   const auto& registry = accel::structure_registry();
   structure_ = 0;
   for (size_t i = 0; i < registry.size(); ++i)
     if (registry[i].name == request.name) structure_ = static_cast<int>(i);
-  const auto& specs = registry[static_cast<size_t>(structure_)].params;
-  values_.clear();
-  explicit_.clear();
-  for (const auto& spec : specs) {
+  const accel::StructureInfo& entry = registry[static_cast<size_t>(structure_)];
+  params_ = accel::ParamSet(entry.params, entry.name);
+  // Requests come validated (scripts, compare rows, the editor itself); a value that does
+  // not parse keeps the default rather than half-applying.
+  for (const auto& spec : entry.params) {
     const std::string value = param_value(request.params, spec.name);
-    values_.push_back(value.empty() ? spec.default_value : value);
-    explicit_.push_back(!value.empty());
+    if (!value.empty()) (void)params_.set(spec.name, value);
   }
   kernel_ = request.kernel;
 }
 
 StructureRequest ParamEditor::request() const {
   StructureRequest r;
-  const accel::StructureInfo& spec = info();
-  r.name = spec.name;
-  for (size_t i = 0; i < spec.params.size() && i < values_.size(); ++i)
-    if (explicit_[i]) r.params.push_back(spec.params[i].name + "=" + values_[i]);
+  r.name = info().name;
+  r.params = params_.explicit_key_values();  // shortest text that reads back exactly
   r.kernel = kernel_;
   return r;
 }
@@ -96,55 +82,48 @@ bool ParamEditor::parameter_widgets() {
     return false;
   }
   bool changed = false;
-  for (size_t i = 0; i < specs.size() && i < values_.size(); ++i) {
+  for (size_t i = 0; i < specs.size(); ++i) {
     const accel::ParamSpec& spec = specs[i];
-    std::string& value = values_[i];
+    if (!params_.has(spec.name)) continue;
+    const bool is_set = params_.is_set(spec.name);
     ImGui::PushID(static_cast<int>(i));
     ImGui::SetNextItemWidth(12.0f * em);
-    bool edited = false;
-    // Wide ranges (1..4096, 0.001..1000) get a logarithmic slider; every slider clamps to
-    // the spec's range, the same the CLI validates against.
+    // The widget edits a typed copy; set_value validates it against the same spec the CLI
+    // uses (the sliders clamp to its range, so it always passes).
+    std::optional<accel::ParamValue> edited;
+    // Wide ranges (1..4096, 0.001..1000) get a logarithmic slider.
     const bool wide = spec.min > 0.0 && spec.max / spec.min >= 100.0;
     const ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (wide ? ImGuiSliderFlags_Logarithmic : 0);
     switch (spec.type) {
       case accel::ParamSpec::Type::Int: {
-        int v = static_cast<int>(to_long(value));
+        int v = params_.get_int(spec.name);
         if (ImGui::SliderInt(spec.name.c_str(), &v, static_cast<int>(spec.min), static_cast<int>(spec.max), "%d",
-                             flags)) {
-          value = std::to_string(v);
-          edited = true;
-        }
+                             flags))
+          edited = accel::ParamValue(v);
         break;
       }
       case accel::ParamSpec::Type::Float: {
-        float v = static_cast<float>(to_double(value));
-        if (ImGui::SliderFloat(spec.name.c_str(), &v, static_cast<float>(spec.min), static_cast<float>(spec.max),
-                               "%.3g", flags)) {
-          value = fmt("%.4g", static_cast<double>(v));
-          edited = true;
-        }
+        double v = params_.get_float(spec.name);
+        const double lo = spec.min, hi = spec.max;
+        if (ImGui::SliderScalar(spec.name.c_str(), ImGuiDataType_Double, &v, &lo, &hi, "%.4g", flags))
+          edited = accel::ParamValue(v);
         break;
       }
       case accel::ParamSpec::Type::Choice: {
-        if (ImGui::BeginCombo(spec.name.c_str(), value.c_str())) {
-          for (const std::string& c : spec.choices) {
-            if (ImGui::Selectable(c.c_str(), c == value) && c != value) {
-              value = c;
-              edited = true;
-            }
-          }
+        const int current = params_.get_choice_index(spec.name);
+        if (ImGui::BeginCombo(spec.name.c_str(), params_.get_choice(spec.name).c_str())) {
+          for (int c = 0; c < static_cast<int>(spec.choices.size()); ++c)
+            if (ImGui::Selectable(spec.choices[static_cast<size_t>(c)].c_str(), c == current) && c != current)
+              edited = accel::ParamValue(c);
           ImGui::EndCombo();
         }
         break;
       }
       case accel::ParamSpec::Type::Int3: {
-        int v[3] = {1, 1, 1};
-        std::sscanf(value.c_str(), "%d,%d,%d", &v[0], &v[1], &v[2]);
-        if (ImGui::SliderInt3(spec.name.c_str(), v, static_cast<int>(spec.min), static_cast<int>(spec.max), "%d",
-                              flags)) {
-          value = std::to_string(v[0]) + "," + std::to_string(v[1]) + "," + std::to_string(v[2]);
-          edited = true;
-        }
+        std::array<int, 3> v = params_.get_int3(spec.name);
+        if (ImGui::SliderInt3(spec.name.c_str(), v.data(), static_cast<int>(spec.min), static_cast<int>(spec.max),
+                              "%d", flags))
+          edited = accel::ParamValue(v);
         break;
       }
     }
@@ -153,19 +132,15 @@ bool ParamEditor::parameter_widgets() {
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
       ImGui::TextUnformatted(spec.doc.c_str());
       ImGui::TextDisabled("%s; default %s%s", spec.range_text().c_str(), spec.default_value.c_str(),
-                          explicit_[i] ? "" : " (in use: not set explicitly)");
+                          is_set ? "" : " (in use: not set explicitly)");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }
-    if (edited) {
-      explicit_[i] = true;
-      changed = true;
-    }
-    if (explicit_[i]) {
+    if (edited && params_.set_value(spec.name, *edited)) changed = true;
+    if (params_.is_set(spec.name)) {
       ImGui::SameLine();
       if (ImGui::SmallButton("x")) {
-        value = spec.default_value;
-        explicit_[i] = false;
+        params_.reset(spec.name);
         changed = true;
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the default (%s)", spec.default_value.c_str());

@@ -1,7 +1,8 @@
 #pragma once
 // The Structure section's editor: which structure, its parameters and the triangle kernel.
-// Owns the edited values and talks to the rest only through StructureRequest (set() in,
-// request() out), so moving to the core's typed parameters later changes this module alone.
+// Owns the edited values, typed (an accel::ParamSet: a slider's double is kept to the last
+// bit), and talks to the rest only through StructureRequest (set() in, request() out, whose
+// key=value texts read back as exactly the edited values).
 #include <string>
 #include <vector>
 
@@ -10,7 +11,7 @@
 
 namespace viz {
 
-/// Edits one structure's parameters (on the core's key=value string API for now).
+/// Edits one structure's parameters.
 class ParamEditor {
  public:
   /// Shows `request`: its structure, its parameters (others at their defaults), its kernel.
@@ -32,9 +33,8 @@ class ParamEditor {
   bool parameter_widgets();
 
  private:
-  int structure_ = 0;                // index into accel::structure_registry()
-  std::vector<std::string> values_;  // per parameter of that structure
-  std::vector<bool> explicit_;       // set by the user (else the default is in use)
+  int structure_ = 0;     // index into accel::structure_registry()
+  accel::ParamSet params_;  // that structure's values; only the explicitly set ones are requested
   accel::Kernel kernel_ = accel::Kernel::Watertight;
 };
 

@@ -20,7 +20,6 @@ std::string fmt(const char* format, double v) {
   return text;
 }
 
-double to_double(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
 bool numeric(const accel::ParamSpec& spec) {
   return spec.type == accel::ParamSpec::Type::Int || spec.type == accel::ParamSpec::Type::Float;
@@ -95,7 +94,8 @@ bool SweepTool::section(const accel::StructureInfo& info) {
         param_ = i;
         // A range around the default, inside the spec's range.
         const accel::ParamSpec& s = *numeric[static_cast<size_t>(i)];
-        const double d = to_double(s.default_value);
+        const double d = s.type == accel::ParamSpec::Type::Int ? double(std::get<int>(s.default_typed))
+                                                               : std::get<double>(s.default_typed);
         lo_ = static_cast<float>(std::max(s.min, d > 0.0 ? d / 4.0 : s.min));
         hi_ = static_cast<float>(std::min(s.max, d > 0.0 ? d * 4.0 : s.min + 10.0));
       }
