@@ -16,6 +16,7 @@
 #include "panels.h"
 
 namespace viz {
+using ui::fmt;
 namespace {
 
 // ============================================================================
@@ -135,12 +136,6 @@ void power_label(ImDrawList* dl, const AxisTick& tick, ImVec2 pos, ImU32 color, 
     x += minus_width();
   }
   dl->AddText(ImGui::GetFont(), kSmall * em, ImVec2(x, sup_y), color, digits.c_str());
-}
-
-std::string fmt(const char* format, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
 }
 
 bool overlaps(const ImVec4& a, const ImVec4& b) { return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w; }

@@ -22,6 +22,12 @@ std::string with_separators(size_t n) {
   return out;
 }
 
+std::string fmt(const char* format, double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
 std::string format_vec(const accel::Vec3& v) {
   char text[96];
   std::snprintf(text, sizeof(text), "(%.4g, %.4g, %.4g)", v.x, v.y, v.z);

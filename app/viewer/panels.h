@@ -36,6 +36,8 @@ namespace ui {
 
 /// 1234567 -> "1,234,567": triangle counts of real scenes are long numbers.
 std::string with_separators(size_t n);
+/// One number through a printf `format` ("%.1f ms"): the panels' labels.
+std::string fmt(const char* format, double v);
 /// "(x, y, z)" with 4 significant digits.
 std::string format_vec(const accel::Vec3& v);
 /// Bytes as "12.3 MB".

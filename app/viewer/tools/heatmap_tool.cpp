@@ -10,16 +10,7 @@
 #include "tools/ui_colors.h"
 
 namespace viz {
-namespace {
-
-std::string fmt(const char* format, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
-
-}  // namespace
-
+using ui::fmt;
 HeatmapTool::Inputs HeatmapTool::inputs(const HeatmapView& view) const {
   Inputs in;
   in.camera = view.camera;

@@ -9,6 +9,7 @@
 #include "tools/ui_colors.h"
 
 namespace viz {
+using ui::fmt;
 namespace {
 
 using ui::kCullText;
@@ -30,12 +31,6 @@ ImVec4 event_color(const accel::TraceEvent& e) {
     case accel::TraceEventKind::Done: return ImVec4(1.0f, 1.0f, 1.0f, 1.0f);
   }
   return kDimText;
-}
-
-std::string fmt(const char* format, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
 }
 
 }  // namespace

@@ -8,19 +8,11 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "panels.h"
 #include "registry.h"
 
 namespace viz {
-namespace {
-
-std::string fmt(const char* format, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
-
-}  // namespace
-
+using ui::fmt;
 StructureSession::StructureSession() : scene_(std::make_shared<accel::Scene>()) {
 #ifdef ACCEL_SOURCE_DIR
   presets_ = lecture_presets(ACCEL_SOURCE_DIR);

@@ -12,13 +12,8 @@
 #include "tools/ui_colors.h"
 
 namespace viz {
+using ui::fmt;
 namespace {
-
-std::string fmt(const char* format, double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
 
 
 bool numeric(const accel::ParamSpec& spec) {
