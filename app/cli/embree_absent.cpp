@@ -8,7 +8,7 @@ bool embree_available() { return false; }
 
 struct EmbreeScene::Impl {};
 
-EmbreeScene::EmbreeScene(const accel::Scene&, const std::string&) {}
+EmbreeScene::EmbreeScene(const accel::Scene&, const std::string&, int) {}
 EmbreeScene::~EmbreeScene() = default;
 size_t EmbreeScene::memory_bytes() const { return 0; }
 accel::Hit EmbreeScene::intersect(const accel::Ray&) const { return {}; }

@@ -23,8 +23,11 @@ bool memory_monitor(void* user, ssize_t bytes, bool) {
 }
 }  // namespace
 
-EmbreeScene::EmbreeScene(const accel::Scene& scene, const std::string& quality) : impl_(std::make_unique<Impl>()) {
-  impl_->device = rtcNewDevice(nullptr);
+EmbreeScene::EmbreeScene(const accel::Scene& scene, const std::string& quality, int threads)
+    : impl_(std::make_unique<Impl>()) {
+  // Without "threads=N" Embree builds on every core whatever --threads says.
+  const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : std::string();
+  impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
   rtcSetDeviceMemoryMonitorFunction(impl_->device, memory_monitor, &impl_->bytes);
   const auto start = std::chrono::steady_clock::now();
   impl_->scene = rtcNewScene(impl_->device);

@@ -18,13 +18,17 @@ bool embree_available();
 /// skips them itself, and prim ids stay the scene's triangle numbers).
 class EmbreeScene {
  public:
-  /// quality: "medium" or "high".
-  EmbreeScene(const accel::Scene& scene, const std::string& quality);
+  /// quality: "medium" or "high". threads: Embree's build threads (0 = all cores), so its
+  /// build time compares with ours at the bench's thread count.
+  EmbreeScene(const accel::Scene& scene, const std::string& quality, int threads = 0);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
+  /// Wall time of the build: rtcNewScene, the geometry's buffers filled and committed, and
+  /// rtcCommitScene (the device is made before the clock starts: it is not per scene).
   double build_ms() const { return build_ms_; }
+  /// Bytes Embree allocated for this scene (its memory monitor callback).
   size_t memory_bytes() const;
   /// Closest hit via rtcIntersect1 (prim = Embree's primID, t = tfar, u, v its barycentrics).
   accel::Hit intersect(const accel::Ray& ray) const;

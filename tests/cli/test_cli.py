@@ -2,6 +2,7 @@
 """End-to-end tests of accelviz-cli: trace answers (hand-checked), the CSV format of
 docs/hits.md, and bad input (exit 2, one line naming file and line, no output file)."""
 import argparse
+import csv
 import math
 import os
 import shutil
@@ -178,6 +179,20 @@ def test_bench(cli, work):
             check(key in r and isinstance(r[key], kind), f"bench row {r.get('structure')}: key {key!r} missing or mistyped")
         check(r["n_rays"] == 2000 and r["rays"] == "random:2000:1", f"bench row {r['structure']}: rays {r['rays']}")
         check(r["mrays_1t"] > 0 and r["mrays_mt"] > 0, f"bench row {r['structure']}: no throughput")
+    for r in rows:
+        # Build ratio on every row (Embree's own too): Embree medium build ms / this row's.
+        check("embree_build_ratio" in r, f"bench row {r['structure']}: no embree_build_ratio key")
+        ratio = r.get("embree_build_ratio")
+        if embree:
+            check(isinstance(ratio, (int, float)) and ratio > 0 and math.isfinite(ratio),
+                  f"bench row {r['scene']} {r['structure']}: embree_build_ratio {ratio!r} with Embree")
+        else:
+            check(ratio is None, f"bench row {r['structure']}: embree_build_ratio {ratio!r} without Embree")
+        check(r["build_ms"] >= 0, f"bench row {r['structure']}: build_ms {r['build_ms']}")
+    for r in embree:
+        check(r["build_ms"] > 0, f"bench row {r['scene']} {r['structure']}: Embree build_ms {r['build_ms']}")
+        if r["structure"] == "embree-medium":
+            check(r["embree_build_ratio"] == 1, f"bench: embree-medium build ratio {r['embree_build_ratio']}, not 1")
     for r in ours:
         check("embree_ratio_mt" in r, f"bench row {r['structure']}: no embree_ratio_mt key")
         check((r["embree_ratio_mt"] is None) == (not embree), f"bench row {r['structure']}: ratio {r['embree_ratio_mt']}")
@@ -188,9 +203,16 @@ def test_bench(cli, work):
         csv_lines = f.read().splitlines()
     check(len(csv_lines) == len(rows) + 1 and csv_lines[0].startswith("scene,structure,params,kernel,rays,n_rays"),
           f"bench CSV: {len(csv_lines)} lines")
+    csv_rows = list(csv.DictReader(csv_lines))
+    check("build_ms" in csv_rows[0] and "embree_build_ratio" in csv_rows[0], f"bench CSV header {csv_lines[0]!r}")
+    cells = [r.get("embree_build_ratio") for r in csv_rows]
+    check(all((c not in ("", None)) == bool(embree) for c in cells), f"bench CSV: embree_build_ratio cells {cells[:4]}")
     with open(out["md"]) as f:
         md = f.read()
     check(md == stdout and md.count("\n") == len(rows) + 2, "bench Markdown: not the printed table")
+    md_header = [c.strip() for c in md.splitlines()[0].strip("|").split("|")]
+    check("build ms" in md_header and "Embree build ratio" in md_header, f"bench Markdown header {md_header}")
+    test_bench_without_embree(cli, work)
     bad_out = os.path.join(work, "bench_bad.json")
     bench = ["bench", "--scene", "procedural:cornell", "--rays", "random:10:1", "--out-json", bad_out]
     expect_bad(cli, bench + ["--structures", "grid,quadtree"], "unknown structure 'quadtree'", bad_out)
@@ -202,6 +224,37 @@ def test_bench(cli, work):
     expect_bad(cli, bench + ["--min-time", "0"], "--min-time", bad_out)
     expect_bad(cli, ["bench", "--scene", "/nonexistent/x.obj", "--out-json", bad_out], "/nonexistent/x.obj: cannot open",
                bad_out)
+
+
+def test_bench_without_embree(cli, work):
+    """--no-embree: no Embree rows, and the build ratio is null / empty / "-" everywhere."""
+    import json
+    out = {ext: os.path.join(work, f"bench_noembree.{ext}") for ext in ("json", "csv", "md")}
+    code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh,grid", "--rays", "random:500:1",
+                       "--threads", "2", "--min-time", "0.001", "--no-embree", "--out-json", out["json"],
+                       "--out-csv", out["csv"], "--out-md", out["md"])
+    check(code == 0, f"bench --no-embree: exit {code}, stderr {err!r}")
+    if code != 0:
+        return
+    with open(out["json"]) as f:
+        rows = json.load(f)
+    check(len(rows) == 2 and not any(r["structure"].startswith("embree-") for r in rows),
+          f"bench --no-embree: rows {[r['structure'] for r in rows]}")
+    for r in rows:
+        check("embree_build_ratio" in r and r["embree_build_ratio"] is None,
+              f"bench --no-embree {r['structure']}: embree_build_ratio {r.get('embree_build_ratio')!r}")
+        check(isinstance(r.get("build_ms"), (int, float)), f"bench --no-embree {r['structure']}: build_ms")
+    with open(out["csv"]) as f:
+        lines = f.read().splitlines()
+    cells = [r.get("embree_build_ratio") for r in csv.DictReader(lines)]
+    check(len(cells) == 2 and all(c == "" for c in cells), f"bench --no-embree CSV: ratio cells {cells}")
+    with open(out["md"]) as f:
+        md_lines = f.read().splitlines()
+    md_header = [c.strip() for c in md_lines[0].strip("|").split("|")]
+    if "Embree build ratio" in md_header:
+        col = md_header.index("Embree build ratio")
+        cells = [[c.strip() for c in l.strip("|").split("|")][col] for l in md_lines[2:]]
+        check(cells and all(c == "-" for c in cells), f"bench --no-embree Markdown: ratio cells {cells}")
 
 
 def main():
