@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Summary tables of `accelviz-cli bench` JSON files (as scripts/bench_shared.sh writes them):
-throughput per mesh and structure against Embree, and errors per structure and kernel.
+throughput per mesh and structure against Embree, build time per mesh and structure against
+Embree's medium build, and errors per structure and kernel.
 
     scripts/bench_report.py A.json [B.json ...] [--out-json ALL.json] > report.md
 
@@ -85,6 +86,46 @@ def speed_table(rows, rays):
     return out
 
 
+def build_table(rows):
+    """Build ms per mesh: Embree medium, then each structure with its embree_build_ratio. Each
+    mesh's numbers come from the first run that built it (the rows of one run share thread
+    count and timing policy; merge() keeps that run's Embree rows). Files older than the
+    embree_build_ratio key timed one build of each on different threads: their build ms are
+    shown, the ratio cell stays empty rather than mixing policies."""
+    structures = list(dict.fromkeys(r["structure"] for r in rows if not r["structure"].startswith("embree-")))
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    threads = sorted({r["threads"] for r in rows if "threads" in r})
+    out = [f"\nBuild time in ms on {'/'.join(map(str, threads))} threads (best of 3 builds; files without "
+           "`embree_build_ratio` are from an older bench that timed one build), and in parentheses Embree medium "
+           "build ms / the row's (> 1: builds faster than Embree medium), timed in the same run:\n",
+           "| mesh | Embree medium | Embree high | " + " | ".join(structures) + " |",
+           "|---|---:|---:|" + "---:|" * len(structures)]
+    ratios = {s: [] for s in structures}
+    for scene in scenes:
+        here = [r for r in rows if r["scene"] == scene]
+        first = {}
+        for r in here:
+            first.setdefault(r["structure"], r)  # the first run's row of each structure
+
+        def cell(r):
+            if r is None:
+                return ""
+            ratio = r.get("embree_build_ratio")
+            return f"{r['build_ms']:.1f}" + (f" ({ratio:.2f})" if ratio else "")
+
+        cells = [cell(first.get("embree-medium")), cell(first.get("embree-high"))]
+        for s in structures:
+            r = first.get(s)
+            cells.append(cell(r))
+            if r and r.get("embree_build_ratio"):
+                ratios[s].append(r["embree_build_ratio"])
+        out.append(f"| {mesh(scene)} | " + " | ".join(cells) + " |")
+    means = [f"{s} {geomean(v):.2f}" for s, v in ratios.items() if v]
+    if means:
+        out.append(f"\nEmbree medium build ms / structure build ms, geometric mean over the meshes: {', '.join(means)}.")
+    return out
+
+
 def error_table(rows):
     keys = list(dict.fromkeys((r["structure"], r["kernel"]) for r in rows))
     out = ["\nErrors against the double-precision reference, summed over every mesh and both ray sets "
@@ -118,6 +159,7 @@ def main():
     lines = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} (`scripts/bench_shared.sh`)."]
     for rays in dict.fromkeys(r["rays"] for r in rows):
         lines += speed_table(rows, rays)
+    lines += build_table(rows)
     lines += error_table(rows)
     print("\n".join(lines))
     return 0
