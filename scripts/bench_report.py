@@ -93,7 +93,8 @@ def build_table(rows):
     embree_build_ratio key timed one build of each on different threads: their build ms are
     shown, the ratio cell stays empty rather than mixing policies."""
     structures = list(dict.fromkeys(r["structure"] for r in rows if not r["structure"].startswith("embree-")))
-    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    # By mesh name, not path: a mesh benched under two paths is one row (its first run's).
+    meshes = list(dict.fromkeys(mesh(r["scene"]) for r in rows))
     threads = sorted({r["threads"] for r in rows if "threads" in r})
     out = [f"\nBuild time in ms on {'/'.join(map(str, threads))} threads (best of 3 builds; files without "
            "`embree_build_ratio` are from an older bench that timed one build), and in parentheses Embree medium "
@@ -101,8 +102,8 @@ def build_table(rows):
            "| mesh | Embree medium | Embree high | " + " | ".join(structures) + " |",
            "|---|---:|---:|" + "---:|" * len(structures)]
     ratios = {s: [] for s in structures}
-    for scene in scenes:
-        here = [r for r in rows if r["scene"] == scene]
+    for name in meshes:
+        here = [r for r in rows if mesh(r["scene"]) == name]
         first = {}
         for r in here:
             first.setdefault(r["structure"], r)  # the first run's row of each structure
@@ -119,7 +120,7 @@ def build_table(rows):
             cells.append(cell(r))
             if r and r.get("embree_build_ratio"):
                 ratios[s].append(r["embree_build_ratio"])
-        out.append(f"| {mesh(scene)} | " + " | ".join(cells) + " |")
+        out.append(f"| {name} | " + " | ".join(cells) + " |")
     means = [f"{s} {geomean(v):.2f}" for s, v in ratios.items() if v]
     if means:
         out.append(f"\nEmbree medium build ms / structure build ms, geometric mean over the meshes: {', '.join(means)}.")
