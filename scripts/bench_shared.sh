@@ -11,7 +11,8 @@
 # bench/shared_report.md (the summary tables of the README, by scripts/bench_report.py).
 #   scripts/bench_shared.sh [--rays-random random:1000000:1] [--rays-primary primary:1000:1000]
 #                           [--rays-terrain random:100000:1] [--min-time 0.5]
-# Takes about 40 minutes on a 2-core machine. The CLI is taken from $ACCEL_BUILD_DIR/bin
+# Takes about 40 minutes on a 2-core machine (the terrain run about 3.5 of them, 300 MB of
+# memory). The CLI is taken from $ACCEL_BUILD_DIR/bin
 # (default build/, as scripts/build.sh makes it).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
