@@ -116,7 +116,9 @@ TEST(BuildControl, ProgressIsMonotoneAndEndsAtOneForEveryStructure) {
     for (size_t i = 1; i < seen.size(); ++i)
       ASSERT_LE(seen[i - 1], seen[i]) << label(c) << ": report " << i << " went back";
     // Builders with real work report in between, not just the two ends (brute force has none).
-    if (c.name != "brute") EXPECT_GE(seen.size(), 3u) << label(c);
+    if (c.name != "brute") {
+      EXPECT_GE(seen.size(), 3u) << label(c);
+    }
   }
 }
 
@@ -182,7 +184,9 @@ TEST(BuildControl, AControlChangesNothingInTheStructure) {
     EXPECT_EQ(a.prim_references, b.prim_references) << label(c);
     EXPECT_EQ(a.memory_bytes, b.memory_bytes) << label(c);
     EXPECT_EQ(a.leaf_size_histogram, b.leaf_size_histogram) << label(c);
-    if (!std::isnan(a.sah_cost)) EXPECT_EQ(a.sah_cost, b.sah_cost) << label(c);
+    if (!std::isnan(a.sah_cost)) {
+      EXPECT_EQ(a.sah_cost, b.sah_cost) << label(c);
+    }
     size_t hits = 0;
     for (const Ray& ray : rays) {
       const Hit ha = plain.value()->intersect(ray), hb = controlled.value()->intersect(ray);
