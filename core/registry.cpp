@@ -46,21 +46,22 @@ Result<const StructureInfo*> find_structure(const std::string& name) {
 }
 
 Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
-                                                   const ParamSet& params, Kernel kernel) {
+                                                   const ParamSet& params, Kernel kernel, BuildControl* control) {
   std::unique_ptr<Structure> s = info.create(params);
   s->set_kernel(kernel);
-  auto built = s->build(scene, params);
+  auto built = s->build(scene, params, control);
   if (!built) return built.error();
   return s;
 }
 
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,
-                                                   const std::vector<std::string>& params, Kernel kernel) {
+                                                   const std::vector<std::string>& params, Kernel kernel,
+                                                   BuildControl* control) {
   auto info = find_structure(name);
   if (!info) return info.error();
   auto set = ParamSet::parse(info.value()->params, params, name);
   if (!set) return set.error();
-  return build_structure(*info.value(), scene, set.value(), kernel);
+  return build_structure(*info.value(), scene, set.value(), kernel, control);
 }
 
 }  // namespace accel

@@ -13,9 +13,11 @@ void BuildStats::add_leaf(size_t n) {
   ++leaf_size_histogram[std::min(n, kBuckets - 1)];
 }
 
-Status Structure::build(const Scene& scene, const ParamSet& params) {
+Status Structure::build(const Scene& scene, const ParamSet& params, BuildControl* control) {
   const auto start = std::chrono::steady_clock::now();
-  auto result = build_impl(scene, params);
+  report_progress(control, 0.0);
+  auto result = build_impl(scene, params, control);
+  if (result) report_progress(control, 1.0);
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "build_control.h"
 #include "geometry.h"
 #include "params.h"
 #include "scene.h"
@@ -59,8 +60,10 @@ class Structure {
   /// Registry name, e.g. "bvh".
   virtual std::string name() const = 0;
   /// Builds over `scene` (kept by reference: it must outlive the structure) with validated
-  /// parameters, and times it. The only error is an internal limit, reported as an Error.
-  Status build(const Scene& scene, const ParamSet& params);
+  /// parameters, and times it. Errors: an internal limit, or cancelled_error() when
+  /// `control` was cancelled (then the structure is left empty: queries miss, no nodes).
+  /// `control` (optional) receives the progress, ending at 1.0 on success.
+  Status build(const Scene& scene, const ParamSet& params, BuildControl* control = nullptr);
   /// Closest hit of `ray` (docs/hits.md rule). Fills per-query counters when `stats` is given.
   virtual Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const = 0;
   /// Same answer as intersect(), recording every traversal step.
@@ -79,8 +82,10 @@ class Structure {
   Kernel kernel() const { return kernel_; }
 
  protected:
-  /// The structure's own build, timed by build().
-  virtual Status build_impl(const Scene& scene, const ParamSet& params) = 0;
+  /// The structure's own build, timed by build(). It reports progress to `control` (may be
+  /// null), polls its cancel flag at coarse points and, when cancelled, clears itself to
+  /// the empty state and returns cancelled_error().
+  virtual Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) = 0;
   /// Everything of BuildStats except build_ms.
   virtual BuildStats compute_stats() const = 0;
 

@@ -116,8 +116,7 @@ void App::status_overlay() {
   if (building) {
     ImGui::TextColored(ui::kCurrentText, "building %s ... %.1f s (the old structure stays until it is ready)",
                        session_.requested_name().c_str(), session_.build_seconds());
-    ImGui::ProgressBar(std::fmod(static_cast<float>(session_.build_seconds()) * 0.7f, 1.0f),
-                       ImVec2(20.0f * em, 0.4f * em), "");
+    ImGui::ProgressBar(static_cast<float>(session_.build_fraction()), ImVec2(20.0f * em, 0.4f * em), "");
   }
   if (waiting_heatmap) {
     const glm::ivec2 size = heatmap_.computing_size();

@@ -46,7 +46,8 @@ std::string param_value(const std::vector<std::string>& params, const std::strin
   return fallback;
 }
 
-accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request) {
+accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
+                                            accel::BuildControl* control) {
   auto info = accel::find_structure(request.name);
   if (!info) return info.error();
   auto params = accel::ParamSet::parse(info.value()->params, request.params, request.name);
@@ -55,8 +56,10 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->scene = std::move(scene);
   built->request = request;
   built->params_text = params.value().to_string_all();
-  auto structure = accel::build_structure(*info.value(), *built->scene, params.value(), request.kernel);
+  auto structure = accel::build_structure(*info.value(), *built->scene, params.value(), request.kernel, control);
   if (!structure) return structure.error();
+  // Listing a big structure's nodes takes a while too: no point once superseded.
+  if (accel::build_cancelled(control)) return accel::cancelled_error();
   built->structure = std::move(structure.value());
   built->stats = built->structure->build_stats();
   built->geometry = structure_geometry(*built->structure, request.geometry);
@@ -65,6 +68,59 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->info = info.value();
   built->kind = traversal_kind(info.value()->traversal, built->traversal);
   return BuiltPtr(std::move(built));
+}
+
+BuildRunner::BuildRunner() : BuildRunner(BuildFn(build_structure_now)) {}
+
+BuildRunner::BuildRunner(BuildFn build) : build_(std::move(build)) {}
+
+BuildRunner::~BuildRunner() { wait(); }
+
+void BuildRunner::request(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
+                          bool synchronous) {
+  Pending pending{std::move(scene), request};
+  if (job_.busy() && !synchronous) {
+    // Only the newest request matters: stop the running build rather than finish it.
+    if (control_) control_->cancel();
+    next_ = std::move(pending);
+    return;
+  }
+  next_.reset();
+  start(std::move(pending), synchronous);
+}
+
+void BuildRunner::start(Pending pending, bool synchronous) {
+  control_ = std::make_shared<accel::BuildControl>();
+  job_.start(
+      [build = build_, control = control_, pending = std::move(pending)](const std::atomic<bool>&) {
+        return build(pending.scene, pending.request, control.get());
+      },
+      synchronous);
+}
+
+std::optional<accel::Result<BuiltPtr>> BuildRunner::poll() {
+  if (!job_.ready()) return std::nullopt;
+  accel::Result<BuiltPtr> result = job_.take();
+  // Cancelled means superseded: even a build that finished before it noticed is stale.
+  const bool superseded = control_ && control_->cancelled();
+  if (next_) {
+    Pending next = std::move(*next_);
+    next_.reset();
+    start(std::move(next), false);
+  }
+  if (superseded) return std::nullopt;
+  return result;
+}
+
+double BuildRunner::fraction() const {
+  if (!control_ || control_->cancelled()) return 0.0;
+  return control_->fraction();
+}
+
+void BuildRunner::wait() {
+  next_.reset();
+  if (control_) control_->cancel();
+  job_.wait();
 }
 
 // ---------------------------------------------------------------------------------------

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "build_control.h"
 #include "pseudo_code.h"
 #include "registry.h"
 #include "ray_gen.h"
@@ -109,8 +110,55 @@ struct BuiltStructure {
 using BuiltPtr = std::shared_ptr<const BuiltStructure>;
 
 /// Validates, builds and lists the nodes of a structure over `scene` (any thread).
-/// Errors name the structure or parameter (from the registry).
-accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request);
+/// Errors name the structure or parameter (from the registry). `control` (optional) gets
+/// the build's progress and can cancel it (then the error is accel::cancelled_error()).
+accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
+                                            accel::BuildControl* control = nullptr);
+
+/// The viewer's structure builds: one at a time in a background Job, each with its own
+/// BuildControl. A request while a build runs cancels that build and waits as the next one
+/// (one deep: a newer request replaces it); it starts as soon as the cancelled job returns,
+/// and the cancelled job's result is dropped without a word. GL-free, so it is unit-tested.
+class BuildRunner {
+ public:
+  /// How a build is run (tests pass a slow fake); the default is build_structure_now.
+  using BuildFn = std::function<accel::Result<BuiltPtr>(std::shared_ptr<const accel::Scene>, const StructureRequest&,
+                                                        accel::BuildControl*)>;
+  BuildRunner();
+  explicit BuildRunner(BuildFn build);
+  BuildRunner(const BuildRunner&) = delete;
+  BuildRunner& operator=(const BuildRunner&) = delete;
+  /// Cancels the running build and waits for it.
+  ~BuildRunner();
+
+  /// Builds `request` over `scene`: now when idle or `synchronous` (script mode: runs on
+  /// this thread, the result is ready for the next poll()), else after cancelling the
+  /// running build.
+  void request(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request, bool synchronous);
+  /// The outcome of a finished build that was not cancelled, or nothing; starts the waiting
+  /// request when a build has just returned.
+  std::optional<accel::Result<BuiltPtr>> poll();
+  /// True while a build runs or waits to start.
+  bool busy() const { return job_.busy() || next_.has_value(); }
+  /// Fraction of the running build done (0 while a cancelled one winds down).
+  double fraction() const;
+  /// Seconds the running build has taken.
+  double seconds() const { return job_.seconds(); }
+  /// Cancels the running build, forgets the waiting one, and waits for the thread.
+  void wait();
+
+ private:
+  struct Pending {
+    std::shared_ptr<const accel::Scene> scene;
+    StructureRequest request;
+  };
+  void start(Pending pending, bool synchronous);
+
+  BuildFn build_;
+  Job<accel::Result<BuiltPtr>> job_;
+  std::shared_ptr<accel::BuildControl> control_;  // of the running build; the job holds it too
+  std::optional<Pending> next_;                   // asked for while a build was running
+};
 
 /// Replaces `key`'s value in a key=value list (appends it when absent).
 std::vector<std::string> with_param(std::vector<std::string> params, const std::string& key, const std::string& value);

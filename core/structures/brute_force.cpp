@@ -2,9 +2,12 @@
 
 namespace accel {
 
-Status BruteForce::build_impl(const Scene& scene, const ParamSet&) {
-  scene_ = &scene;
+Status BruteForce::build_impl(const Scene& scene, const ParamSet&, BuildControl* control) {
+  // Nothing to build: only a cancel that came before the start is honoured.
+  scene_ = nullptr;
   stats_ = BuildStats{};
+  if (build_cancelled(control)) return cancelled_error();
+  scene_ = &scene;
   stats_.nodes = 1;
   stats_.prims = scene.valid_prims().size();
   stats_.prim_references = stats_.prims;

@@ -20,12 +20,13 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
     const TriangleTester tester(ray, kernel_);
     Hit closest = no_hit(ray);
     sink.visit(0, 0, ray.tmin, ray.tmax);
-    for (uint32_t prim : scene_->valid_prims()) test_triangle(*scene_, tester, prim, closest, sink);
+    if (scene_)  // null when unbuilt or cancelled: every ray misses
+      for (uint32_t prim : scene_->valid_prims()) test_triangle(*scene_, tester, prim, closest, sink);
     return finish_query(closest, sink);
   }
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

@@ -98,9 +98,30 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   }
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params) override {
-    store_binary(build_tree(scene, params));
+  /// Progress: the builders of bvh_builders.h report nothing, so the phases do -- 0 before
+  /// the binary tree is built, kTreeBuiltFraction after it, then the flattening and volume
+  /// fitting by nodes emitted (the sphere tree's fits are a real share of its build).
+  /// Cancel is checked before and after the tree build and per node while flattening.
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override {
+    if (build_cancelled(control)) return cancel_build();
+    BuildTree tree = build_tree(scene, params);
+    report_progress(control, kTreeBuiltFraction);
+    if (build_cancelled(control)) return cancel_build();
+    ProgressSpan span(control, kTreeBuiltFraction, 1.0);
+    if (!store_binary(tree, &span)) return cancel_build();
     return {};
+  }
+
+  /// The share of a hierarchy's build reported once the builder's binary tree exists.
+  static constexpr double kTreeBuiltFraction = 0.8;
+
+  /// Leaves the hierarchy empty (every ray misses) and returns cancelled_error().
+  Error cancel_build() {
+    nodes_.clear();
+    boxes_.clear();
+    depth_.clear();
+    prims_.clear();
+    return cancelled_error();
   }
 
   /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`
@@ -118,13 +139,19 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     return build_bvh_tree(scene, options_);
   }
 
-  /// Flattens the builder's tree into the binary node layout and fits the volumes.
-  void store_binary(const BuildTree& tree) {
+  /// Flattens the builder's tree into the binary node layout and fits the volumes,
+  /// reporting nodes emitted / nodes to `span`. False when cancelled (the nodes are then
+  /// incomplete: the caller clears them).
+  bool store_binary(const BuildTree& tree, ProgressSpan* span = nullptr) {
     prims_ = tree.prims;
+    stopped_ = false;
     if (!tree.empty()) {
       nodes_.reserve(tree.nodes.size());
+      span_ = span;
       flatten(tree, tree.root, 0);
+      span_ = nullptr;
     }
+    return !stopped_;
   }
 
   BuildStats compute_stats() const override {
@@ -164,7 +191,8 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   std::vector<uint32_t> prims_;
 
  private:
-  /// Depth-first flattening: the first child directly follows its parent.
+  /// Depth-first flattening: the first child directly follows its parent. Once stopped_
+  /// (cancelled), it unwinds without fitting.
   uint32_t flatten(const BuildTree& tree, uint32_t src, int depth) {
     const uint32_t dst = uint32_t(nodes_.size());
     const BuildNode& b = tree.nodes[src];
@@ -172,6 +200,10 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     boxes_.push_back(b.box);
     depth_.push_back(uint16_t(depth));
     ACCEL_CHECK(depth < kMaxBvhDepth);
+    if (stopped_ || (span_ && !span_->advance(double(dst) / double(tree.nodes.size())))) {
+      stopped_ = true;
+      return dst;
+    }
     if (b.count) {
       nodes_[dst].index = b.first;
       nodes_[dst].count = b.count;
@@ -180,6 +212,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     }
     flatten(tree, b.left, depth + 1);
     nodes_[dst].index = flatten(tree, b.right, depth + 1);
+    if (stopped_) return dst;
     nodes_[dst].volume = fit_inner(dst);
     return dst;
   }
@@ -198,6 +231,9 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     }
     return Derived::fit(*scene_, prims_.data() + lo, hi - lo, boxes_[dst]);
   }
+
+  ProgressSpan* span_ = nullptr;  // during store_binary() only
+  bool stopped_ = false;          // store_binary() was cancelled
 
   // ==========================================================================
   // [SECTION] Traversals

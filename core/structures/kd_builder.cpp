@@ -186,11 +186,15 @@ enum Side : uint8_t { kBoth = 0, kLeft = 1, kRight = 2 };
 
 class KdBuilder {
  public:
-  KdBuilder(const Scene& scene, const KdBuildOptions& options) : scene_(scene), o_(options) {}
+  /// Reports into [progress_from, 1] of `control` (a retry continues where the last stopped).
+  KdBuilder(const Scene& scene, const KdBuildOptions& options, BuildControl* control, double progress_from)
+      : scene_(scene), o_(options), control_(control), progress_(control, progress_from, 1.0) {}
   Result<KdTreeData> run();
+  /// The last fraction reported.
+  double progress_reached() const { return progress_.last(); }
 
  private:
-  void build_node(EventLists& events, const Aabb& box, int depth, int bad_refines);
+  void build_node(EventLists& events, const Aabb& box, int depth, int bad_refines, double share);
   double split_cost(const Aabb& box, const SplitChoice& s, size_t nl, size_t nr) const;
   void make_leaf(const EventLists& events, size_t n, int depth);
   int choose_axis(const Aabb& box, int depth) const;
@@ -210,7 +214,10 @@ class KdBuilder {
   size_t live_events_ = 0;         // events of all lists alive (the recursion's pending ones)
   EventLists scratch_new_[2];      // distribute(): events of re-clipped straddlers, per side
   std::vector<Event> scratch_only_[2];  // distribute(): events of one-sided triangles, per side
-  Status status_;                  // the first budget error; the build stops at it
+  Status status_;                  // the first budget error (or the cancel); the build stops at it
+  BuildControl* control_;
+  ProgressSpan progress_;
+  double done_ = 0.0;              // share of the build in finished leaves
 };
 
 /// Records the budget error (the first one): names the parameters that control the tree size.
@@ -439,8 +446,12 @@ double KdBuilder::split_cost(const Aabb& box, const SplitChoice& s, size_t nl, s
 //    more than leaf_size triangles, where no plane ever separates them: a split whose SAH cost
 //    is not below the leaf's (ci * N) is a "bad refine", and the third one on a path makes a
 //    leaf (pbrt-v4 KdTreeAggregate's badRefines rule). SAH stops at its first such split.
-void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int bad_refines) {
+void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int bad_refines, double share) {
   if (!status_) return;
+  if (build_cancelled(control_)) {
+    status_ = cancelled_error();
+    return;
+  }
   if (out_.nodes.size() >= o_.node_limit || out_.nodes.size() >= kKdMaxIndex) {
     over_budget("nodes", std::min<size_t>(o_.node_limit, kKdMaxIndex));
     return;
@@ -461,10 +472,12 @@ void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int b
     if (s.axis < 0) reason = o_.split == KdSplit::Sah ? &out_.leaf_reasons.no_gain : &out_.leaf_reasons.thin;
   }
   EventLists left, right;
+  size_t nl = 0, nr = 0;
   if (s.axis >= 0) {
     classify(events, s);
     distribute(events, s, box, &left, &right);
-    const size_t nl = prim_count(left), nr = prim_count(right);
+    nl = prim_count(left);
+    nr = prim_count(right);
     if (nl == n && nr == n) {
       s.axis = -1;
       reason = &out_.leaf_reasons.no_progress;
@@ -478,8 +491,11 @@ void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int b
     make_leaf(events, n, depth);
     live_events_ -= events.size();
     events = EventLists{};
+    done_ += share;
+    progress_.advance(done_);
     return;
   }
+  const double share_left = share * double(nl) / double(std::max<size_t>(1, nl + nr));
   live_events_ += left.size() + right.size() - events.size();
   events = EventLists{};
   if (live_events_ > o_.event_limit) {
@@ -488,7 +504,7 @@ void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int b
   }
   const size_t self = out_.nodes.size();
   out_.nodes.push_back(KdNode{});
-  build_node(left, kd_child_box(box, s.axis, s.pos, false), depth + 1, bad_refines);
+  build_node(left, kd_child_box(box, s.axis, s.pos, false), depth + 1, bad_refines, share_left);
   if (!status_) return;
   const size_t above = out_.nodes.size();
   if (above > kKdMaxIndex) {
@@ -496,7 +512,7 @@ void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int b
     return;
   }
   out_.nodes[self] = KdNode::make_inner(s.axis, s.pos, NodeId(above));
-  build_node(right, kd_child_box(box, s.axis, s.pos, true), depth + 1, bad_refines);
+  build_node(right, kd_child_box(box, s.axis, s.pos, true), depth + 1, bad_refines, share - share_left);
 }
 
 Result<KdTreeData> KdBuilder::run() {
@@ -518,10 +534,11 @@ Result<KdTreeData> KdBuilder::run() {
     out_.root_box.extend(scene_.triangle_bounds(prim));
     add_events(root, prim, scene_.triangle_bounds(prim));  // inside the root box: nothing to clip
   }
+  if (build_cancelled(control_)) return cancelled_error();
   for (auto& list : root.axis) std::sort(list.begin(), list.end(), event_less);
   live_events_ = root.size();
   if (live_events_ > o_.event_limit) return make_error("kdtree: scene too large for the build's event budget");
-  build_node(root, out_.root_box, 0, 0);
+  build_node(root, out_.root_box, 0, 0, 1.0);
   if (!status_) return status_.error();
   ACCEL_CHECK(out_.depth <= kKdMaxDepth);  // the traversal's stack holds kKdMaxDepth entries
   return std::move(out_);
@@ -529,8 +546,9 @@ Result<KdTreeData> KdBuilder::run() {
 
 }  // namespace
 
-Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options) {
-  if (options.max_depth > 0) return KdBuilder(scene, options).run();
+Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control) {
+  if (build_cancelled(control)) return cancelled_error();
+  if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0).run();
   // Automatic depth: keep the tree within a size proportional to the scene (at most 64
   // references per triangle, or 4M). Scenes that every plane cuts -- thousands of overlapping
   // coplanar triangles -- would otherwise grow to the absolute budget before failing; there
@@ -539,10 +557,13 @@ Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& optio
   const size_t n = scene.valid_prims().size();
   o.reference_limit = std::min(options.reference_limit, std::max<size_t>(size_t(1) << 22, 64 * n));
   o.node_limit = std::min(options.node_limit, 2 * o.reference_limit);
+  double reached = 0.0;
   for (int depth = kd_auto_max_depth(n);; depth = std::max(1, depth - 4)) {
     o.max_depth = depth;
-    Result<KdTreeData> tree = KdBuilder(scene, o).run();
-    if (tree || depth == 1) return tree;
+    KdBuilder builder(scene, o, control, reached);
+    Result<KdTreeData> tree = builder.run();
+    if (tree || depth == 1 || build_cancelled(control)) return tree;
+    reached = builder.progress_reached();
   }
 }
 

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "build_control.h"
 #include "math.h"
 #include "result.h"
 #include "scene.h"
@@ -132,8 +133,15 @@ struct KdTreeData {
 };
 
 /// Builds a kd-tree over `scene.valid_prims()`. Errors (naming the parameters to change)
-/// when the node, reference or event budget of `options` would be exceeded.
-Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options);
+/// when the node, reference or event budget of `options` would be exceeded, or
+/// cancelled_error() when `control` is cancelled (polled per node).
+///
+/// Progress to `control`: the share of the scene in finished leaves, the root holding share
+/// 1 and an inner node splitting its share between its children in proportion to the
+/// triangles each receives (straddlers count on both sides, so the shares stay a partition
+/// summing to 1). The automatic depth may retry with a lower limit; a retry continues from
+/// the fraction reached, over what is left, so the reports never go back.
+Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control = nullptr);
 
 /// Region of the below (`above` false: coordinates <= split) or above child of a node
 /// whose region is `box`, split at `split` along `axis`.

@@ -80,14 +80,15 @@ namespace {
 /// depth"), plus the stops of build_octree()'s contract that keep extreme settings bounded.
 class OctreeBuilder {
  public:
-  OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options) : scene_(scene), options_(options) {}
+  OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control)
+      : scene_(scene), options_(options), control_(control), progress_(control, 0.0, 1.0) {}
 
   Result<OctreeData> run() {
     Aabb bounds;
     for (uint32_t prim : scene_.valid_prims()) bounds.extend(scene_.triangle_bounds(prim));
     data_.root_box = octree_root_box(bounds);
     add_node(kNoNode, 0);
-    if (!build_node(0, data_.root_box, 0, scene_.valid_prims())) return error_;
+    if (!build_node(0, data_.root_box, 0, scene_.valid_prims(), 1.0)) return error_;
     return std::move(data_);
   }
 
@@ -106,12 +107,19 @@ class OctreeBuilder {
     return false;
   }
 
-  bool make_leaf(uint32_t id, const std::vector<uint32_t>& prims, size_t* reason) {
+  /// Makes node `id` a leaf holding `prims`; `share` of the build is then done.
+  bool make_leaf(uint32_t id, const std::vector<uint32_t>& prims, size_t* reason, double share) {
+    if (build_cancelled(control_)) {  // a stuck child is made a leaf without build_node()'s check
+      error_ = cancelled_error();
+      return false;
+    }
     if (data_.prim_ids.size() + prims.size() > options_.reference_limit)
       return fail("triangle references", options_.reference_limit);
     data_.nodes[id] = OctreeNode{uint32_t(data_.prim_ids.size()), uint32_t(prims.size())};
     data_.prim_ids.insert(data_.prim_ids.end(), prims.begin(), prims.end());
     ++*reason;
+    done_ += share;
+    progress_.advance(done_);
     return true;
   }
 
@@ -142,16 +150,21 @@ class OctreeBuilder {
     return exact;
   }
 
-  /// Fills node `id` (box `box`, at `depth`) with `prims`: a leaf, or an inner node whose
-  /// 8 children are built recursively (depth <= 40, so recursion is shallow).
-  bool build_node(uint32_t id, const Aabb& box, int depth, const std::vector<uint32_t>& prims) {
+  /// Fills node `id` (box `box`, at `depth`, `share` of the progress) with `prims`: a leaf,
+  /// or an inner node whose 8 children are built recursively (depth <= 40, so recursion is
+  /// shallow).
+  bool build_node(uint32_t id, const Aabb& box, int depth, const std::vector<uint32_t>& prims, double share) {
+    if (build_cancelled(control_)) {
+      error_ = cancelled_error();
+      return false;
+    }
     OctreeLeafReasons& why = data_.reasons;
-    if (prims.size() <= size_t(options_.max_prims)) return make_leaf(id, prims, &why.few_prims);
-    if (depth >= options_.max_depth) return make_leaf(id, prims, &why.max_depth);
+    if (prims.size() <= size_t(options_.max_prims)) return make_leaf(id, prims, &why.few_prims, share);
+    if (depth >= options_.max_depth) return make_leaf(id, prims, &why.max_depth, share);
     const Vec3 mid = 0.5f * box.min + 0.5f * box.max;
     for (int axis = 0; axis < 3; ++axis) {
       // At float resolution a half would equal the whole box: splitting cannot separate anything.
-      if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis]) return make_leaf(id, prims, &why.tiny_box);
+      if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis]) return make_leaf(id, prims, &why.tiny_box, share);
     }
 
     std::array<std::vector<uint32_t>, 8> children;
@@ -165,7 +178,7 @@ class OctreeBuilder {
     for (const auto& child : children) refs += child.size();
     // No gain: each child has a quarter of the node's surface area, so a ray through the
     // node passes 2 children on average and would test refs/4 triangles instead of n.
-    if (refs >= 4 * n) return make_leaf(id, prims, &why.no_gain);
+    if (refs >= 4 * n) return make_leaf(id, prims, &why.no_gain, share);
 
     if (data_.nodes.size() + 8 > options_.node_limit) return fail("nodes", options_.node_limit);
     const uint32_t first = uint32_t(data_.nodes.size());
@@ -191,8 +204,9 @@ class OctreeBuilder {
       const uint32_t child_id = first + octant;
       const Aabb child_box = octree_child_box(box, octant);
       const bool stuck = child.size() == n && (poor || bounds.contains(child_box));
-      const bool ok = stuck ? make_leaf(child_id, child, &why.inseparable)
-                            : build_node(child_id, child_box, depth + 1, child);
+      const double child_share = share * double(child.size()) / double(refs);
+      const bool ok = stuck ? make_leaf(child_id, child, &why.inseparable, child_share)
+                            : build_node(child_id, child_box, depth + 1, child, child_share);
       if (!ok) return false;
     }
     return true;
@@ -200,16 +214,19 @@ class OctreeBuilder {
 
   const Scene& scene_;
   const OctreeBuildOptions& options_;
+  BuildControl* control_;
+  ProgressSpan progress_;
+  double done_ = 0.0;  // share of the build in finished leaves
   OctreeData data_;
   Error error_;
 };
 
 }  // namespace
 
-Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options) {
+Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control) {
   ACCEL_CHECK(options.max_depth >= 0 && options.max_depth <= kOctreeMaxDepth);
   ACCEL_CHECK(options.max_prims >= 1);
-  return OctreeBuilder(scene, options).run();
+  return OctreeBuilder(scene, options, control).run();
 }
 
 // [SECTION] Structure
@@ -233,12 +250,12 @@ const ParamTable<OctreeOptions>& Octree::param_table() {
   return table;
 }
 
-Status Octree::build_impl(const Scene& scene, const ParamSet& params) {
+Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
   scene_ = &scene;
   const OctreeOptions all = param_table().apply(params);
   const OctreeBuildOptions& options = all.build;
   order_ = all.order;
-  auto built = build_octree(scene, options);
+  auto built = build_octree(scene, options, control);
   if (!built) {
     data_ = OctreeData{};
     stats_ = BuildStats{};

@@ -130,7 +130,15 @@ struct OctreeData {
 ///    and is refined until its triangles separate.
 /// Errors (naming max_depth and max_prims) when the node or reference limit of `options`
 /// would be exceeded; never allocates beyond them.
-Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options);
+///
+/// Progress to `control`: the share of the scene in finished leaves, where the root holds
+/// share 1 and an inner node splits its share among its 8 children in proportion to the
+/// triangle references each receives (a duplicated triangle counts once per child, so the
+/// shares stay a partition and the sum ends at exactly 1; counting triangles in leaves
+/// instead would pass N with duplicates). Cancel is polled per node; a cancelled build
+/// returns cancelled_error().
+Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options,
+                                BuildControl* control = nullptr);
 
 /// Everything the octree's parameters set: the build and the children's visiting order.
 struct OctreeOptions {
@@ -161,7 +169,7 @@ class Octree final : public StructureWithTraversal<Octree> {
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

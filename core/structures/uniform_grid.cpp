@@ -209,9 +209,10 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
   return fit_resolution(resolution_cbrt(extent, scene.valid_prims().size(), config.lambda));
 }
 
-Result<GridData> build_grid(const Scene& scene, const GridConfig& config) {
+Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control) {
   GridData g;
   const std::vector<uint32_t>& valid = scene.valid_prims();
+  if (build_cancelled(control)) return cancelled_error();
   if (valid.empty()) {
     g.cell_start = {0, 0};
     return g;
@@ -261,7 +262,19 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config) {
     else
       insert_bbox(g, scene, valid[k], fn);
   };
-  for (size_t k = 0; k < valid.size(); ++k) for_each_cell(k, false, [&](size_t c) { ++g.cell_start[c + 1]; });
+  report_progress(control, 0.1);
+  if (build_cancelled(control)) return cancelled_error();
+  // Both passes in batches: a cancel is seen within one batch, and the check costs nothing
+  // next to a batch's insertions.
+  constexpr size_t kBatch = 4096;
+  const double n = double(valid.size());
+  ProgressSpan counting(control, 0.1, 0.55);
+  for (size_t start = 0; start < valid.size(); start += kBatch) {
+    if (!counting.advance(double(start) / n)) return cancelled_error();
+    const size_t end = std::min(valid.size(), start + kBatch);
+    for (size_t k = start; k < end; ++k) for_each_cell(k, false, [&](size_t c) { ++g.cell_start[c + 1]; });
+  }
+  counting.finish();
   uint32_t run = 0;
   for (size_t c = 0; c < cells; ++c) {
     const uint32_t count = g.cell_start[c + 1];
@@ -269,8 +282,14 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config) {
     run += count;
   }
   g.prim_ids.resize(run);
-  for (size_t k = 0; k < valid.size(); ++k)
-    for_each_cell(k, true, [&](size_t c) { g.prim_ids[g.cell_start[c + 1]++] = valid[k]; });
+  ProgressSpan filling(control, 0.55, 1.0);
+  for (size_t start = 0; start < valid.size(); start += kBatch) {
+    if (!filling.advance(double(start) / n)) return cancelled_error();
+    const size_t end = std::min(valid.size(), start + kBatch);
+    for (size_t k = start; k < end; ++k)
+      for_each_cell(k, true, [&](size_t c) { g.prim_ids[g.cell_start[c + 1]++] = valid[k]; });
+  }
+  filling.finish();
   ACCEL_CHECK(g.cell_start[cells] == run);
   return g;
 }
@@ -300,14 +319,14 @@ const ParamTable<UniformGridOptions>& UniformGrid::param_table() {
   return table;
 }
 
-Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params) {
+Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
   scene_ = &scene;
   UniformGridOptions options = param_table().apply(params);
   GridConfig& config = options.build;
   config.explicit_res = params.is_set("res");  // a given res overrides the rule
   mailbox_ = options.mailbox;
 
-  auto built = build_grid(scene, config);
+  auto built = build_grid(scene, config, control);
   if (!built) {
     grid_ = GridData{};
     grid_.cell_start = {0, 0};

@@ -23,6 +23,7 @@
 #include <limits>
 #include <vector>
 
+#include "build_control.h"
 #include "structure.h"
 
 namespace accel {
@@ -83,9 +84,12 @@ struct GridResolution {
 /// over the budget is an error naming the parameter.
 Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, const GridConfig& config);
 
-/// Builds the grid over `scene.valid_prims()`. Errors (naming the parameter) only when an
-/// explicit res exceeds a memory budget.
-Result<GridData> build_grid(const Scene& scene, const GridConfig& config);
+/// Builds the grid over `scene.valid_prims()`. Errors (naming the parameter) when an
+/// explicit res exceeds a memory budget, or cancelled_error() when `control` is cancelled.
+/// Progress: 0.1 once the resolution fits the budget, then triangles inserted / N in each
+/// of the two insertion passes (counting to 0.55, filling to 1.0); cancel is polled per
+/// batch of triangles.
+Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control = nullptr);
 
 /// Conservative triangle/box overlap (Akenine-Moller 2001, "Fast 3D Triangle-Box Overlap
 /// Testing", 13 separating axes), in double, the box grown by `pad`: true whenever the
@@ -133,7 +137,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
   }
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

@@ -16,13 +16,20 @@ void WideBvh::clear() {
   prim_count_ = 0;
 }
 
-Status WideBvh::build_impl(const Scene& scene, const ParamSet& params) {
+Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
+  // Progress by phase, as the binary layouts (hierarchy.h): the builder reports nothing, so
+  // 0 before the binary tree, 0.8 after it, 1 once collapsed; cancel is checked between.
+  clear();
+  if (build_cancelled(control)) return cancelled_error();
   const HierarchyOptions options = hierarchy_options(params);
   options_ = options.build;
   // The 4-wide layout tests a leaf's triangles four at a time: the SAH builders know it.
   options_.prims_per_test = 4;
   order_ = options.traversal;
-  collapse(scene, build_bvh_tree(scene, options_));
+  const BuildTree tree = build_bvh_tree(scene, options_);
+  report_progress(control, 0.8);
+  if (build_cancelled(control)) return cancelled_error();
+  collapse(scene, tree);
   return {};
 }
 

@@ -72,19 +72,15 @@ void StructureSession::poll() {
 }
 
 void StructureSession::poll_build() {
-  if (!build_job_.ready()) return;
-  accel::Result<BuiltPtr> result = build_job_.take();
-  if (!result) {
-    build_error_ = result.error().message;
-  } else if (result.value()->scene == scene_) {
-    install(std::move(result.value()));
+  // Cancelled builds (superseded by a newer request) never come out of poll().
+  std::optional<accel::Result<BuiltPtr>> result = builds_.poll();
+  if (!result) return;
+  if (!*result) {
+    build_error_ = result->error().message;
+  } else if (result->value()->scene == scene_) {
+    install(std::move(result->value()));
   }
-  // else: built for a scene replaced meanwhile; its rebuild is queued.
-  if (queued_request_) {
-    const StructureRequest next = *queued_request_;
-    queued_request_.reset();
-    start_build(next);
-  }
+  // else: built for a scene replaced meanwhile; its rebuild is under way.
 }
 
 SessionEvents StructureSession::take_events() {
@@ -115,19 +111,9 @@ void StructureSession::set_kernel(accel::Kernel kernel) {
 
 void StructureSession::request(const StructureRequest& request) {
   requested_ = request;
-  if (build_job_.busy() && !synchronous_) {
-    // The running build cannot be interrupted; only the newest request matters next.
-    queued_request_ = request;
-    return;
-  }
-  start_build(request);
-}
-
-void StructureSession::start_build(const StructureRequest& request) {
+  // A newer request makes the last error stale too (it was about an older one).
   build_error_.clear();
-  auto scene = scene_;
-  build_job_.start([scene, request](const std::atomic<bool>&) { return build_structure_now(scene, request); },
-                   synchronous_);
+  builds_.request(scene_, request, synchronous_);
   if (synchronous_) poll_build();
 }
 
@@ -205,12 +191,13 @@ void StructureSession::structure_section() {
   // Every change rebuilds in the background; the old structure stays drawn meanwhile.
   if (editor_.parameter_widgets()) rebuild();
 
-  if (build_job_.busy()) {
-    // Indeterminate: the core reports no progress; the bar sweeps while the build runs.
-    const float phase = std::fmod(static_cast<float>(build_job_.seconds()) * 0.7f, 1.0f);
+  if (builds_.busy()) {
+    // Determinate: the builders report the fraction done through the BuildControl.
+    const double fraction = builds_.fraction();
     char overlay[96];
-    std::snprintf(overlay, sizeof overlay, "building %s ... %.1f s", requested_.name.c_str(), build_job_.seconds());
-    ImGui::ProgressBar(phase, ImVec2(-1.0f, 0.0f), overlay);
+    std::snprintf(overlay, sizeof overlay, "building %s ... %.0f%%, %.1f s", requested_.name.c_str(),
+                  100.0 * fraction, builds_.seconds());
+    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), overlay);
   }
   if (!build_error_.empty()) ui::error_text(build_error_, 19.0f * em);
   if (!built_) return;
@@ -255,7 +242,7 @@ void StructureSession::draw_bounds(Renderer& renderer) const {
   renderer.draw_lines(*bounds_lines_, style);
 }
 
-void StructureSession::wait() { build_job_.wait(); }
+void StructureSession::wait() { builds_.wait(); }
 
 void StructureSession::release_gl() { bounds_lines_.reset(); }
 

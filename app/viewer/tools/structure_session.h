@@ -1,7 +1,7 @@
 #pragma once
 // The structure session: the scene (loading, what the panel shows about it, presets), the
-// structure built over it (background build and its one-deep queue), and the parameter
-// editor. Owns the scene's GL mesh upload and its bounding-box lines.
+// structure built over it (background build through a BuildRunner: a change cancels the
+// running build, the newest request waits one deep), and the parameter editor. Owns the scene's GL mesh upload and its bounding-box lines.
 #include <memory>
 #include <optional>
 #include <string>
@@ -83,10 +83,12 @@ class StructureSession {
   accel::Status need_structure() const;
   /// The lecture presets.
   const std::vector<Preset>& presets() const { return presets_; }
-  /// True while a build runs.
-  bool building() const { return build_job_.busy(); }
+  /// True while a build runs (or waits for a cancelled one to return).
+  bool building() const { return builds_.busy(); }
   /// Seconds the running build has taken.
-  double build_seconds() const { return build_job_.seconds(); }
+  double build_seconds() const { return builds_.seconds(); }
+  /// Fraction of the running build done, from its BuildControl.
+  double build_fraction() const { return builds_.fraction(); }
   /// The name being built.
   const std::string& requested_name() const { return requested_.name; }
   /// "accelviz - SCENE - STRUCTURE".
@@ -111,7 +113,6 @@ class StructureSession {
  private:
   bool matches_scene() const { return built_ && built_->scene == scene_; }
   void request(const StructureRequest& request);
-  void start_build(const StructureRequest& request);
   void poll_build();
   void install(BuiltPtr built);
 
@@ -124,9 +125,8 @@ class StructureSession {
   ParamEditor editor_;
   bool empty_cells_ = false;
   BuiltPtr built_;
-  Job<accel::Result<BuiltPtr>> build_job_;
-  std::optional<StructureRequest> queued_request_;  // asked for while a build was running
-  StructureRequest requested_;                      // the latest request (shown as "building")
+  BuildRunner builds_;
+  StructureRequest requested_;  // the latest request (shown as "building")
   std::string build_error_;
   bool synchronous_ = false;
   SessionEvents events_;

@@ -1,0 +1,99 @@
+#pragma once
+// BuildControl: the channel between a running build and whoever started it -- progress out
+// (a fraction in [0, 1]), cancellation in. The viewer builds on a background thread and
+// reads the fraction from its UI thread, so both sides are atomics. Builders poll
+// cancelled() at coarse points (per node, per batch of triangles, between phases) and then
+// return cancelled_error(); the CLI, the bench and the tests pass no control at all.
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <utility>
+
+#include "result.h"
+
+namespace accel {
+
+/// Progress and cancellation of one build. Not copyable (the build holds a pointer to it);
+/// one control per build.
+class BuildControl {
+ public:
+  /// Called on the build thread with every reported fraction (tests record them).
+  using ProgressFn = std::function<void(double fraction)>;
+
+  BuildControl() = default;
+  /// A control that also calls `on_progress` after every report().
+  explicit BuildControl(ProgressFn on_progress) : on_progress_(std::move(on_progress)) {}
+  BuildControl(const BuildControl&) = delete;
+  BuildControl& operator=(const BuildControl&) = delete;
+
+  /// Asks the build to stop at its next check (any thread, any number of times).
+  void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
+  /// True once cancel() was called. Cheap (one relaxed load): builders may poll it per node.
+  bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+
+  /// Stores the fraction of the build done, clamped to [0, 1] (build thread). Builders
+  /// report a non-decreasing sequence ending at 1.0 on success; the control does not
+  /// enforce it, so the tests can check the builders do.
+  void report(double fraction) {
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    fraction_.store(fraction, std::memory_order_relaxed);
+    if (on_progress_) on_progress_(fraction);
+  }
+  /// The last reported fraction (0 before the first report; any thread).
+  double fraction() const { return fraction_.load(std::memory_order_relaxed); }
+
+ private:
+  std::atomic<bool> cancelled_{false};
+  std::atomic<double> fraction_{0.0};
+  ProgressFn on_progress_;
+};
+
+/// The error every cancelled build returns (front ends recognise it by the control, not
+/// the text).
+inline Error cancelled_error() { return make_error("build cancelled"); }
+
+/// Null-safe helpers: a build without a control neither reports nor stops.
+inline bool build_cancelled(const BuildControl* control) { return control && control->cancelled(); }
+/// Reports `fraction` when there is a control.
+inline void report_progress(BuildControl* control, double fraction) {
+  if (control) control->report(fraction);
+}
+
+/// Reports a builder's local progress (0..1, e.g. triangles done / N) mapped into the part
+/// [lo, hi] of the whole build, and only when it moved by at least 1/1024 of the whole:
+/// builders may call advance() per node or per triangle batch without flooding the callback
+/// or the atomic. A null control makes it free apart from the null test.
+class ProgressSpan {
+ public:
+  ProgressSpan(BuildControl* control, double lo, double hi) : control_(control), lo_(lo), hi_(hi), last_(lo) {}
+
+  /// Local progress `local` in [0, 1]; returns false when the build was cancelled.
+  bool advance(double local) {
+    if (!control_) return true;
+    const double f = lo_ + (hi_ - lo_) * std::clamp(local, 0.0, 1.0);
+    if (f >= last_ + kStep) {
+      last_ = f;
+      control_->report(f);
+    }
+    return !control_->cancelled();
+  }
+  /// Reports the end of the span (local progress 1) exactly.
+  void finish() {
+    if (control_ && last_ < hi_) {
+      last_ = hi_;
+      control_->report(hi_);
+    }
+  }
+  /// Whether the build was cancelled.
+  bool cancelled() const { return build_cancelled(control_); }
+  /// The last fraction reported through this span (lo before any report).
+  double last() const { return last_; }
+
+ private:
+  static constexpr double kStep = 1.0 / 1024.0;
+  BuildControl* control_;
+  double lo_, hi_, last_;
+};
+
+}  // namespace accel
