@@ -95,31 +95,54 @@ struct BinBox {
   __m128 lo, hi;
 };
 
-/// Per-axis bins of one node: boxes and counts, all three axes side by side.
+/// Per-axis bins of one node: boxes per axis, and the counts of bin b on the three axes in
+/// one row (lane 3 unused), so that the sweep handles the three axes as SSE lanes.
 struct BinSet {
   BinBox box[3][kMaxBins];
-  uint32_t count[3][kMaxBins];
+  alignas(16) uint32_t count[kMaxBins][4];
   void clear(int nb) {
     const BinBox empty{_mm_set1_ps(kInf), _mm_set1_ps(-kInf)};
-    for (int a = 0; a < 3; ++a) {
-      std::fill(box[a], box[a] + nb, empty);
-      std::fill(count[a], count[a] + nb, 0u);
-    }
+    for (int a = 0; a < 3; ++a) std::fill(box[a], box[a] + nb, empty);
+    for (int b = 0; b < nb; ++b) std::fill(count[b], count[b] + 4, 0u);
   }
   void add(int a, int b, __m128 lo, __m128 hi) {
     box[a][b].lo = _mm_min_ps(box[a][b].lo, lo);
     box[a][b].hi = _mm_max_ps(box[a][b].hi, hi);
-    ++count[a][b];
+    ++count[b][a];
   }
+  __m128i counts(int b) const { return _mm_load_si128(reinterpret_cast<const __m128i*>(count[b])); }
   void merge(const BinSet& o, int nb) {
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < nb; ++b) {
+    for (int b = 0; b < nb; ++b) {
+      for (int a = 0; a < 3; ++a) {
         box[a][b].lo = _mm_min_ps(box[a][b].lo, o.box[a][b].lo);
         box[a][b].hi = _mm_max_ps(box[a][b].hi, o.box[a][b].hi);
-        count[a][b] += o.count[a][b];
       }
+      _mm_store_si128(reinterpret_cast<__m128i*>(count[b]), _mm_add_epi32(counts(b), o.counts(b)));
+    }
   }
 };
+
+/// Three boxes being grown, one per axis: after a transpose, their areas are one SSE vector.
+struct AxisBoxes {
+  __m128 lo[3] = {_mm_set1_ps(kInf), _mm_set1_ps(kInf), _mm_set1_ps(kInf)};
+  __m128 hi[3] = {_mm_set1_ps(-kInf), _mm_set1_ps(-kInf), _mm_set1_ps(-kInf)};
+  void extend(const BinSet& bins, int b) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = _mm_min_ps(lo[a], bins.box[a][b].lo);
+      hi[a] = _mm_max_ps(hi[a], bins.box[a][b].hi);
+    }
+  }
+  /// Lane a: the area of box a, as Aabb::area() computes it (garbage for an empty box).
+  __m128 areas() const {
+    __m128 x = _mm_sub_ps(hi[0], lo[0]), y = _mm_sub_ps(hi[1], lo[1]), z = _mm_sub_ps(hi[2], lo[2]);
+    __m128 w = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(x, y, z, w);  // now x holds the x extents of the three boxes, etc.
+    const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, y), _mm_mul_ps(y, z)), _mm_mul_ps(z, x));
+    return _mm_mul_ps(_mm_set1_ps(2.0f), sum);
+  }
+};
+
+inline __m128 select(__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
 
 /// Maps a doubled centroid to its bin on each axis: floor((c - lo) * scale), clamped to
 /// [0, nb - 1] (in floats, because SSE2 has no integer min/max). Binning and partition both
@@ -194,6 +217,17 @@ class BinnedBuilder {
     return o_.ci * float((n + (1u << ppt_shift_) - 1) >> ppt_shift_);
   }
 
+  /// leaf_cost() of each lane's count.
+  __m128 leaf_costs(__m128i n) const {
+    if (ppt_shift_ < 0) {
+      alignas(16) uint32_t c[4];
+      _mm_store_si128(reinterpret_cast<__m128i*>(c), n);
+      return _mm_set_ps(0.0f, leaf_cost(c[2]), leaf_cost(c[1]), leaf_cost(c[0]));
+    }
+    const __m128i rounded = _mm_add_epi32(n, _mm_set1_epi32((1 << ppt_shift_) - 1));
+    return _mm_mul_ps(_mm_set1_ps(o_.ci), _mm_cvtepi32_ps(_mm_srl_epi32(rounded, _mm_cvtsi32_si128(ppt_shift_))));
+  }
+
   BinMap bin_map(const Range& r, int nb, bool* any_extent) const {
     alignas(16) float lo[4], hi[4], scale[4] = {0, 0, 0, 0};
     _mm_store_ps(lo, r.centroid.lo);
@@ -242,34 +276,55 @@ class BinnedBuilder {
     } else {
       bin_refs(r.begin, r.end, map, bins);
     }
-    alignas(16) float lo[4], hi[4];
-    _mm_store_ps(lo, r.centroid.lo);
-    _mm_store_ps(hi, r.centroid.hi);
+    return sweep(bins, nb, r, map);
+  }
+
+  /// SAH sweep over the bins (Wald 2007, section 3.2), the three axes side by side in SSE
+  /// lanes. Per lane it is the scalar sweep: the cost formula of sah_split_cost() in
+  /// bvh_builders.cpp in the same operation order, the first (lowest) plane kept on ties,
+  /// then the lowest axis among equal costs, as a loop over axes then planes would choose.
+  BinSplit sweep(const BinSet& bins, int nb, const Range& r, const BinMap& map) {
+    const __m128 axis_ok = _mm_cmpgt_ps(_mm_sub_ps(r.centroid.hi, r.centroid.lo), _mm_setzero_ps());
     const float parent_area = r.box.area();
-    const float inv = parent_area > 0.0f ? 1.0f / parent_area : 1.0f;
-    float* right_area = right_area_.data();
-    uint32_t* right_count = right_count_.data();
-    for (int a = 0; a < 3; ++a) {
-      if (!(hi[a] - lo[a] > 0.0f)) continue;
-      Box4 acc;
-      uint32_t cnt = 0;
-      for (int b = nb - 1; b > 0; --b) {
-        acc.extend(bins.box[a][b].lo, bins.box[a][b].hi);
-        cnt += bins.count[a][b];
-        right_area[b] = cnt ? acc.area() : 0.0f;
-        right_count[b] = cnt;
-      }
-      acc = Box4{};
-      cnt = 0;
-      for (int b = 1; b < nb; ++b) {  // plane between bin b - 1 and bin b
-        acc.extend(bins.box[a][b - 1].lo, bins.box[a][b - 1].hi);
-        cnt += bins.count[a][b - 1];
-        if (cnt == 0 || right_count[b] == 0) continue;
-        // The SAH cost as sah_split_cost() in bvh_builders.cpp computes it.
-        const float cost = o_.ct + (acc.area() * leaf_cost(cnt) + right_area[b] * leaf_cost(right_count[b])) * inv;
-        if (!best.valid || cost < best.cost) best = {true, a, b, cost};
-      }
+    const __m128 inv = _mm_set1_ps(parent_area > 0.0f ? 1.0f / parent_area : 1.0f);
+    const __m128 ct = _mm_set1_ps(o_.ct);
+    __m128* right_area = right_->area;
+    __m128i* right_count = right_->count;
+    AxisBoxes acc;
+    __m128i cnt = _mm_setzero_si128();
+    for (int b = nb - 1; b > 0; --b) {
+      acc.extend(bins, b);
+      cnt = _mm_add_epi32(cnt, bins.counts(b));
+      right_area[b] = acc.areas();
+      right_count[b] = cnt;
     }
+    acc = AxisBoxes{};
+    cnt = _mm_setzero_si128();
+    __m128 best_cost = _mm_set1_ps(kInf), best_valid = _mm_setzero_ps();
+    __m128i best_bin = _mm_setzero_si128();
+    for (int b = 1; b < nb; ++b) {  // plane between bin b - 1 and bin b
+      acc.extend(bins, b - 1);
+      cnt = _mm_add_epi32(cnt, bins.counts(b - 1));
+      const __m128 valid = _mm_and_ps(
+          axis_ok, _mm_castsi128_ps(_mm_and_si128(_mm_cmpgt_epi32(cnt, _mm_setzero_si128()),
+                                                  _mm_cmpgt_epi32(right_count[b], _mm_setzero_si128()))));
+      const __m128 cost =
+          _mm_add_ps(ct, _mm_mul_ps(_mm_add_ps(_mm_mul_ps(acc.areas(), leaf_costs(cnt)),
+                                               _mm_mul_ps(right_area[b], leaf_costs(right_count[b]))),
+                                    inv));
+      const __m128 take = _mm_and_ps(valid, _mm_or_ps(_mm_cmplt_ps(cost, best_cost), _mm_andnot_ps(best_valid, valid)));
+      best_cost = select(take, cost, best_cost);
+      best_bin = _mm_castps_si128(select(take, _mm_castsi128_ps(_mm_set1_epi32(b)), _mm_castsi128_ps(best_bin)));
+      best_valid = _mm_or_ps(best_valid, valid);
+    }
+    alignas(16) float costs[4];
+    alignas(16) int32_t bin[4], ok[4];
+    _mm_store_ps(costs, best_cost);
+    _mm_store_si128(reinterpret_cast<__m128i*>(bin), best_bin);
+    _mm_store_si128(reinterpret_cast<__m128i*>(ok), _mm_castps_si128(best_valid));
+    BinSplit best;
+    for (int a = 0; a < 3; ++a)
+      if (ok[a] && (!best.valid || costs[a] < best.cost)) best = {true, a, bin[a], costs[a]};
     if (best.valid) map_ = map;
     return best;
   }
@@ -352,8 +407,11 @@ class BinnedBuilder {
   // Scratch of find_split(), allocated once per builder (one per task), not per node, and
   // off the stack: a BinSet is 27 KB and the recursion may be 96 deep.
   std::unique_ptr<BinSet> bins_ = std::make_unique<BinSet>();
-  std::vector<float> right_area_ = std::vector<float>(kMaxBins);
-  std::vector<uint32_t> right_count_ = std::vector<uint32_t>(kMaxBins);
+  struct RightSweep {
+    __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
+    __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
+  };
+  std::unique_ptr<RightSweep> right_ = std::make_unique<RightSweep>();
 };
 
 /// A node of the upper tree (subtrees of at least kTaskThreshold references, built by
