@@ -3,11 +3,13 @@
 //   [SECTION] Shared top-down framework (leaf rule, fallback split)
 //   [SECTION] Median split
 //   [SECTION] SAH sweep (all three axes) and PCA sweep
-//   [SECTION] Binned SAH
+//   [SECTION] Binned SAH: see bvh_binned_builder.cpp
 //   [SECTION] Bottom-up: locally-ordered clustering
 //   [SECTION] Insertion (Goldsmith-Salmon)
 //   [SECTION] Collapse, depth limit and final layout for the bottom-up builders
 #include "structures/bvh_builders.h"
+
+#include "structures/bvh_binned_builder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -89,7 +91,8 @@ Split object_median_split(std::vector<PrimRef>& refs, size_t begin, size_t end, 
   return {true, mid, std::nanf("")};
 }
 
-/// Top-down recursion shared by the median, SAH, binned and PCA builders.
+/// Top-down recursion shared by the median, SAH and PCA builders (the binned SAH builder has
+/// its own, faster recursion in bvh_binned_builder.cpp).
 class TopDownBuilder {
  public:
   TopDownBuilder(const BvhBuildOptions& o, std::vector<PrimRef>& refs, BuildTree& out) : o_(o), refs_(refs), out_(out) {}
@@ -124,7 +127,6 @@ class TopDownBuilder {
   Split choose_split(size_t begin, size_t end, int depth, const Aabb& box) {
     switch (o_.builder) {
       case BvhBuilderKind::Median: return median_split(begin, end, depth);
-      case BvhBuilderKind::BinnedSah: return binned_split(begin, end, box);
       case BvhBuilderKind::PcaSah: return pca_split(begin, end, box);
       default: return sweep_split(begin, end, box);
     }
@@ -222,63 +224,6 @@ class TopDownBuilder {
     const Split s = sweep_order(order, begin, box.area());
     if (s.valid) apply_order(order, begin);
     return s;
-  }
-
-  // --------------------------------------------------------------------------
-  // [SECTION] Binned SAH (Wald 2007)
-  // --------------------------------------------------------------------------
-  Split binned_split(size_t begin, size_t end, const Aabb& box) {
-    const Aabb cb = centroid_bounds_of(refs_, begin, end);
-    const int bins = o_.bins;
-    struct Bin {
-      Aabb box;
-      size_t count = 0;
-    };
-    Split best;
-    int best_axis = -1, best_bin = 0;
-    const size_t nb = size_t(bins);
-    std::vector<Bin> bin(nb);
-    std::vector<float> right_area(nb);
-    std::vector<size_t> right_count(nb);
-    for (int axis = 0; axis < 3; ++axis) {
-      const float lo = cb.min[axis], extent = cb.max[axis] - lo;
-      if (!(extent > 0.0f)) continue;
-      const float scale = float(bins) / extent;
-      std::fill(bin.begin(), bin.end(), Bin{});
-      for (size_t i = begin; i < end; ++i) {
-        const int b = std::min(bins - 1, int((refs_[i].centroid[axis] - lo) * scale));
-        bin[size_t(b)].box.extend(refs_[i].box);
-        ++bin[size_t(b)].count;
-      }
-      Aabb acc;
-      size_t cnt = 0;
-      for (int b = bins - 1; b > 0; --b) {
-        acc.extend(bin[size_t(b)].box);
-        cnt += bin[size_t(b)].count;
-        right_area[size_t(b)] = acc.area();
-        right_count[size_t(b)] = cnt;
-      }
-      acc = Aabb{};
-      cnt = 0;
-      for (int b = 1; b < bins; ++b) {  // plane between bin b-1 and bin b
-        acc.extend(bin[size_t(b - 1)].box);
-        cnt += bin[size_t(b - 1)].count;
-        if (cnt == 0 || right_count[size_t(b)] == 0) continue;
-        const float cost = sah_split_cost(o_, box.area(), acc.area(), cnt, right_area[size_t(b)], right_count[size_t(b)]);
-        if (!best.valid || cost < best.cost) {
-          best = {true, 0, cost};
-          best_axis = axis;
-          best_bin = b;
-        }
-      }
-    }
-    if (!best.valid) return best;
-    const float lo = cb.min[best_axis], scale = float(bins) / (cb.max[best_axis] - lo);
-    auto it = std::partition(refs_.begin() + long(begin), refs_.begin() + long(end), [&](const PrimRef& r) {
-      return std::min(bins - 1, int((r.centroid[best_axis] - lo) * scale)) < best_bin;
-    });
-    best.mid = size_t(it - refs_.begin());
-    return best;
   }
 
   const BvhBuildOptions& o_;
@@ -615,6 +560,7 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o) {
 
 BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options) {
   switch (options.builder) {
+    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options);
     case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options);
     case BvhBuilderKind::Insertion: return build_insertion(scene, options);
     default: return build_top_down(scene, options);

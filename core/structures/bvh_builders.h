@@ -16,7 +16,7 @@ namespace accel {
 enum class BvhBuilderKind : uint8_t {
   Median,     ///< sort centres, split at the median (lecture: top-down, "median")
   Sah,        ///< full sweep over sorted centroids on all three axes (MacDonald & Booth 1990)
-  BinnedSah,  ///< binned SAH approximation (Wald 2007, "On fast construction of SAH-based BVHs")
+  BinnedSah,  ///< binned SAH approximation (Wald 2007, "On fast construction of SAH-based BVHs"), parallel: bvh_binned_builder.h
   PcaSah,     ///< sweep along the principal axis of the centroids (lecture: "PCA", then SAH plane sweep)
   BottomUp,   ///< agglomerative clustering, locally ordered (Meister & Bittner 2018, "PLOC")
   Insertion,  ///< incremental insertion by least surface-area cost (Goldsmith & Salmon 1987)

@@ -1,0 +1,523 @@
+// Fast binned SAH builder (Wald 2007, "On fast construction of SAH-based BVHs").
+//
+// What makes it fast, compared with the generic top-down framework in bvh_builders.cpp:
+//  - one flat array of 32-byte references (box min/max, triangle index), built once in
+//    parallel; the centroid is recomputed as min + max (twice the centre, which orders and
+//    bins exactly like the centre) instead of being stored;
+//  - one pass over a node's references bins all three axes at once (SSE2 for the box and
+//    bin arithmetic), with a bin count that shrinks for small nodes;
+//  - the partition is in place (two pointers) and returns the children's boxes and
+//    centroid bounds, so no node ever rescans its references to find its bounds;
+//  - no heap allocation per node: a serial subtree appends to one vector;
+//  - TBB tasks for subtrees of at least kTaskThreshold references, and binning over fixed
+//    slices for the largest nodes.
+//
+// Determinism: every decision depends only on the references of the node (bin bounds are
+// min/max and bin counts are integer sums, both exact in any order, and partial bins are
+// merged in slice order anyway), and nodes are renumbered in pre-order from the subtree
+// sizes at the end, so the tree is the same for any thread count.
+#include "structures/bvh_binned_builder.h"
+
+#include <emmintrin.h>  // SSE2: part of every x86-64 CPU (as in geometry.h)
+
+#include <algorithm>
+#include <bit>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include "check.h"
+
+namespace accel {
+namespace {
+
+constexpr int kMaxBins = 256;                  // upper bound of the `bins` parameter
+constexpr size_t kTaskThreshold = 4096;        // smaller subtrees are one serial task
+constexpr size_t kParallelBinThreshold = 1u << 16;  // larger nodes bin in parallel ...
+constexpr size_t kBinSlice = 1u << 14;         // ... over slices of this many references
+
+/// A triangle reference: its box, with the triangle index in the spare lane of `lo`.
+/// Two aligned SSE loads give the box (Wald 2007 uses the same compact layout).
+struct alignas(16) Ref {
+  float lo[3];
+  uint32_t prim;
+  float hi[3];
+  float pad;
+};
+static_assert(sizeof(Ref) == 32);
+
+/// Clears lane 3 (the triangle index of `lo`), which must never enter float arithmetic
+/// (as a float it is a denormal, which is slow, and meaningless).
+inline __m128 xyz_mask() { return _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1)); }
+inline __m128 load_lo(const Ref& r, __m128 mask) { return _mm_and_ps(_mm_load_ps(r.lo), mask); }
+inline __m128 load_hi(const Ref& r) { return _mm_load_ps(r.hi); }
+
+/// Box as two SSE registers; lane 3 is unused. Starts empty.
+struct Box4 {
+  __m128 lo = _mm_set1_ps(kInf);
+  __m128 hi = _mm_set1_ps(-kInf);
+  void extend(__m128 l, __m128 h) {
+    lo = _mm_min_ps(lo, l);
+    hi = _mm_max_ps(hi, h);
+  }
+  void extend(const Box4& b) { extend(b.lo, b.hi); }
+  /// Surface area, computed as Aabb::area() does (the box must not be empty).
+  float area() const {
+    alignas(16) float e[4];
+    _mm_store_ps(e, _mm_sub_ps(hi, lo));
+    return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+  }
+  Aabb aabb() const {
+    alignas(16) float l[4], h[4];
+    _mm_store_ps(l, lo);
+    _mm_store_ps(h, hi);
+    Aabb b;
+    b.min = Vec3(l[0], l[1], l[2]);
+    b.max = Vec3(h[0], h[1], h[2]);
+    return b;
+  }
+};
+
+/// A node's references refs[begin, end) with their bounds, as the parent's partition found them.
+struct Range {
+  size_t begin = 0, end = 0;
+  Box4 box;       ///< union of the triangle boxes (the node's box)
+  Box4 centroid;  ///< bounds of the doubled centroids lo + hi
+  int depth = 0;
+  size_t size() const { return end - begin; }
+};
+
+/// A bin's box; trivially constructible, so a BinSet is not initialised beyond the bins in use.
+struct BinBox {
+  __m128 lo, hi;
+};
+
+/// Per-axis bins of one node: boxes per axis, and the counts of bin b on the three axes in
+/// one row (lane 3 unused), so that the sweep handles the three axes as SSE lanes.
+struct BinSet {
+  BinBox box[3][kMaxBins];
+  alignas(16) uint32_t count[kMaxBins][4];
+  void clear(int nb) {
+    const BinBox empty{_mm_set1_ps(kInf), _mm_set1_ps(-kInf)};
+    for (int a = 0; a < 3; ++a) std::fill(box[a], box[a] + nb, empty);
+    for (int b = 0; b < nb; ++b) std::fill(count[b], count[b] + 4, 0u);
+  }
+  void add(int a, int b, __m128 lo, __m128 hi) {
+    box[a][b].lo = _mm_min_ps(box[a][b].lo, lo);
+    box[a][b].hi = _mm_max_ps(box[a][b].hi, hi);
+    ++count[b][a];
+  }
+  __m128i counts(int b) const { return _mm_load_si128(reinterpret_cast<const __m128i*>(count[b])); }
+  void merge(const BinSet& o, int nb) {
+    for (int b = 0; b < nb; ++b) {
+      for (int a = 0; a < 3; ++a) {
+        box[a][b].lo = _mm_min_ps(box[a][b].lo, o.box[a][b].lo);
+        box[a][b].hi = _mm_max_ps(box[a][b].hi, o.box[a][b].hi);
+      }
+      _mm_store_si128(reinterpret_cast<__m128i*>(count[b]), _mm_add_epi32(counts(b), o.counts(b)));
+    }
+  }
+};
+
+/// Three boxes being grown, one per axis: after a transpose, their areas are one SSE vector.
+struct AxisBoxes {
+  __m128 lo[3] = {_mm_set1_ps(kInf), _mm_set1_ps(kInf), _mm_set1_ps(kInf)};
+  __m128 hi[3] = {_mm_set1_ps(-kInf), _mm_set1_ps(-kInf), _mm_set1_ps(-kInf)};
+  void extend(const BinSet& bins, int b) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = _mm_min_ps(lo[a], bins.box[a][b].lo);
+      hi[a] = _mm_max_ps(hi[a], bins.box[a][b].hi);
+    }
+  }
+  /// Lane a: the area of box a, as Aabb::area() computes it (garbage for an empty box).
+  __m128 areas() const {
+    __m128 x = _mm_sub_ps(hi[0], lo[0]), y = _mm_sub_ps(hi[1], lo[1]), z = _mm_sub_ps(hi[2], lo[2]);
+    __m128 w = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(x, y, z, w);  // now x holds the x extents of the three boxes, etc.
+    const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, y), _mm_mul_ps(y, z)), _mm_mul_ps(z, x));
+    return _mm_mul_ps(_mm_set1_ps(2.0f), sum);
+  }
+};
+
+inline __m128 select(__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
+
+/// Maps a doubled centroid to its bin on each axis: floor((c - lo) * scale), clamped to
+/// [0, nb - 1] (in floats, because SSE2 has no integer min/max). Binning and partition both
+/// call this, so a reference is always classified the same way.
+struct BinMap {
+  __m128 lo, scale, top;
+  __m128i bins(__m128 c) const {
+    const __m128 f = _mm_min_ps(_mm_max_ps(_mm_mul_ps(_mm_sub_ps(c, lo), scale), _mm_setzero_ps()), top);
+    return _mm_cvttps_epi32(f);
+  }
+};
+
+/// The chosen plane: left are the references whose bin on `axis` is below `bin`.
+struct BinSplit {
+  bool valid = false;
+  int axis = -1, bin = 0;
+  float cost = 0.0f;
+};
+
+class BinnedBuilder {
+ public:
+  BinnedBuilder(const BvhBuildOptions& o, Ref* refs) : o_(o), refs_(refs) {
+    const uint32_t ppt = uint32_t(o.prims_per_test);
+    if (ppt > 0 && (ppt & (ppt - 1)) == 0) ppt_shift_ = std::countr_zero(ppt);
+  }
+
+  /// Serial build of the subtree `r`, appended to `nodes` in pre-order; returns its index.
+  uint32_t build_serial(const Range& r, std::vector<BuildNode>& nodes) {
+    const uint32_t index = uint32_t(nodes.size());
+    nodes.emplace_back();
+    nodes[index].box = r.box.aabb();
+    Range left, right;
+    if (!split_node(r, left, right)) {
+      nodes[index].first = uint32_t(r.begin);
+      nodes[index].count = uint32_t(r.size());
+      return index;
+    }
+    const uint32_t l = build_serial(left, nodes);
+    const uint32_t rr = build_serial(right, nodes);
+    nodes[index].left = l;
+    nodes[index].right = rr;
+    return index;
+  }
+
+  /// The leaf rule of the top-down framework in bvh_builders.cpp, then the binned split or
+  /// the object-median fallback. False when `r` becomes a leaf; else fills the children.
+  bool split_node(const Range& r, Range& left, Range& right) {
+    const size_t count = r.size();
+    BinSplit split;
+    if (count > 1) split = find_split(r);
+    const bool small = count <= size_t(o_.leaf_size);
+    if (count <= 1 || (small && (!split.valid || split.cost >= o_.leaf_cost(count))) ||
+        r.depth >= kMaxBvhDepth - 1) {
+      ACCEL_CHECK(count <= size_t(o_.leaf_size) || r.depth >= kMaxBvhDepth - 1);
+      return false;
+    }
+    if (!split.valid || !partition(r, split, left, right)) median_split(r, left, right);
+    left.depth = right.depth = r.depth + 1;
+    return true;
+  }
+
+ private:
+  /// Bin count for a node of n references: `bins` at most, fewer for small nodes, where a
+  /// plane per pair of references already covers every distinct split and the bins would
+  /// cost more to clear and sweep than the binning itself.
+  int bin_count(size_t n) const { return int(std::min<size_t>(size_t(std::min(o_.bins, kMaxBins)), 4 + n / 2)); }
+
+  /// o_.leaf_cost(n), with a shift instead of the integer division for the usual power-of-two
+  /// prims_per_test (the division was a tenth of the whole build in a profile).
+  float leaf_cost(uint32_t n) const {
+    if (ppt_shift_ < 0) return o_.leaf_cost(n);
+    return o_.ci * float((n + (1u << ppt_shift_) - 1) >> ppt_shift_);
+  }
+
+  /// leaf_cost() of each lane's count.
+  __m128 leaf_costs(__m128i n) const {
+    if (ppt_shift_ < 0) {
+      alignas(16) uint32_t c[4];
+      _mm_store_si128(reinterpret_cast<__m128i*>(c), n);
+      return _mm_set_ps(0.0f, leaf_cost(c[2]), leaf_cost(c[1]), leaf_cost(c[0]));
+    }
+    const __m128i rounded = _mm_add_epi32(n, _mm_set1_epi32((1 << ppt_shift_) - 1));
+    return _mm_mul_ps(_mm_set1_ps(o_.ci), _mm_cvtepi32_ps(_mm_srl_epi32(rounded, _mm_cvtsi32_si128(ppt_shift_))));
+  }
+
+  BinMap bin_map(const Range& r, int nb, bool* any_extent) const {
+    alignas(16) float lo[4], hi[4], scale[4] = {0, 0, 0, 0};
+    _mm_store_ps(lo, r.centroid.lo);
+    _mm_store_ps(hi, r.centroid.hi);
+    *any_extent = false;
+    for (int a = 0; a < 3; ++a) {
+      const float extent = hi[a] - lo[a];
+      if (extent > 0.0f) {
+        scale[a] = float(nb) / extent;
+        *any_extent = true;
+      }
+    }
+    return {r.centroid.lo, _mm_load_ps(scale), _mm_set1_ps(float(nb - 1))};
+  }
+
+  /// Bins refs[begin, end) on all three axes in one pass (Wald 2007, section 3.2).
+  void bin_refs(size_t begin, size_t end, const BinMap& map, BinSet& bins) const {
+    const __m128 mask = xyz_mask();
+    alignas(16) int32_t idx[4];
+    for (size_t i = begin; i < end; ++i) {
+      const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]);
+      _mm_store_si128(reinterpret_cast<__m128i*>(idx), map.bins(_mm_add_ps(lo, hi)));
+      for (int a = 0; a < 3; ++a) bins.add(a, idx[a], lo, hi);
+    }
+  }
+
+  /// The cheapest binned plane on any axis by the SAH; ties keep the lower axis and plane.
+  BinSplit find_split(const Range& r) {
+    const size_t n = r.size();
+    const int nb = bin_count(n);
+    bool any_extent = false;
+    const BinMap map = bin_map(r, nb, &any_extent);
+    BinSplit best;
+    if (!any_extent) return best;  // all centroids equal: the caller falls back to the median
+    BinSet& bins = *bins_;
+    bins.clear(nb);
+    if (n >= kParallelBinThreshold) {
+      // Fixed slices, merged in slice order: the bins do not depend on the scheduling.
+      const size_t slices = (n + kBinSlice - 1) / kBinSlice;
+      const std::unique_ptr<BinSet[]> partial(new BinSet[slices]);  // default-initialised: no 27 KB memset each
+      tbb::parallel_for(size_t(0), slices, [&](size_t s) {
+        partial[s].clear(nb);
+        bin_refs(r.begin + s * kBinSlice, std::min(r.end, r.begin + (s + 1) * kBinSlice), map, partial[s]);
+      });
+      for (size_t s = 0; s < slices; ++s) bins.merge(partial[s], nb);
+    } else {
+      bin_refs(r.begin, r.end, map, bins);
+    }
+    return sweep(bins, nb, r, map);
+  }
+
+  /// SAH sweep over the bins (Wald 2007, section 3.2), the three axes side by side in SSE
+  /// lanes. Per lane it is the scalar sweep: the cost formula of sah_split_cost() in
+  /// bvh_builders.cpp in the same operation order, the first (lowest) plane kept on ties,
+  /// then the lowest axis among equal costs, as a loop over axes then planes would choose.
+  BinSplit sweep(const BinSet& bins, int nb, const Range& r, const BinMap& map) {
+    const __m128 axis_ok = _mm_cmpgt_ps(_mm_sub_ps(r.centroid.hi, r.centroid.lo), _mm_setzero_ps());
+    const float parent_area = r.box.area();
+    const __m128 inv = _mm_set1_ps(parent_area > 0.0f ? 1.0f / parent_area : 1.0f);
+    const __m128 ct = _mm_set1_ps(o_.ct);
+    __m128* right_area = right_->area;
+    __m128i* right_count = right_->count;
+    AxisBoxes acc;
+    __m128i cnt = _mm_setzero_si128();
+    for (int b = nb - 1; b > 0; --b) {
+      acc.extend(bins, b);
+      cnt = _mm_add_epi32(cnt, bins.counts(b));
+      right_area[b] = acc.areas();
+      right_count[b] = cnt;
+    }
+    acc = AxisBoxes{};
+    cnt = _mm_setzero_si128();
+    __m128 best_cost = _mm_set1_ps(kInf), best_valid = _mm_setzero_ps();
+    __m128i best_bin = _mm_setzero_si128();
+    for (int b = 1; b < nb; ++b) {  // plane between bin b - 1 and bin b
+      acc.extend(bins, b - 1);
+      cnt = _mm_add_epi32(cnt, bins.counts(b - 1));
+      const __m128 valid = _mm_and_ps(
+          axis_ok, _mm_castsi128_ps(_mm_and_si128(_mm_cmpgt_epi32(cnt, _mm_setzero_si128()),
+                                                  _mm_cmpgt_epi32(right_count[b], _mm_setzero_si128()))));
+      const __m128 cost =
+          _mm_add_ps(ct, _mm_mul_ps(_mm_add_ps(_mm_mul_ps(acc.areas(), leaf_costs(cnt)),
+                                               _mm_mul_ps(right_area[b], leaf_costs(right_count[b]))),
+                                    inv));
+      const __m128 take = _mm_and_ps(valid, _mm_or_ps(_mm_cmplt_ps(cost, best_cost), _mm_andnot_ps(best_valid, valid)));
+      best_cost = select(take, cost, best_cost);
+      best_bin = _mm_castps_si128(select(take, _mm_castsi128_ps(_mm_set1_epi32(b)), _mm_castsi128_ps(best_bin)));
+      best_valid = _mm_or_ps(best_valid, valid);
+    }
+    alignas(16) float costs[4];
+    alignas(16) int32_t bin[4], ok[4];
+    _mm_store_ps(costs, best_cost);
+    _mm_store_si128(reinterpret_cast<__m128i*>(bin), best_bin);
+    _mm_store_si128(reinterpret_cast<__m128i*>(ok), _mm_castps_si128(best_valid));
+    BinSplit best;
+    for (int a = 0; a < 3; ++a)
+      if (ok[a] && (!best.valid || costs[a] < best.cost)) best = {true, a, bin[a], costs[a]};
+    if (best.valid) map_ = map;
+    return best;
+  }
+
+  /// In-place two-pointer partition by the chosen plane; accumulates the children's boxes
+  /// and centroid bounds on the way (Wald 2007: no second pass over the references).
+  /// False if a side came out empty (cannot happen for a plane the binning found).
+  bool partition(const Range& r, const BinSplit& split, Range& left, Range& right) {
+    const __m128 mask = xyz_mask();
+    alignas(16) int32_t idx[4];
+    auto goes_left = [&](const Ref& ref, __m128& lo, __m128& hi, __m128& c) {
+      lo = load_lo(ref, mask);
+      hi = load_hi(ref);
+      c = _mm_add_ps(lo, hi);
+      _mm_store_si128(reinterpret_cast<__m128i*>(idx), map_.bins(c));
+      return idx[split.axis] < split.bin;
+    };
+    left = Range{};
+    right = Range{};
+    size_t i = r.begin, j = r.end;
+    __m128 lo, hi, c;
+    while (true) {
+      while (i < j && goes_left(refs_[i], lo, hi, c)) {
+        left.box.extend(lo, hi);
+        left.centroid.extend(c, c);
+        ++i;
+      }
+      while (i < j && !goes_left(refs_[j - 1], lo, hi, c)) {
+        right.box.extend(lo, hi);
+        right.centroid.extend(c, c);
+        --j;
+      }
+      if (i >= j) break;
+      // refs_[i] goes right and refs_[j - 1] goes left (its values are in lo, hi, c).
+      left.box.extend(lo, hi);
+      left.centroid.extend(c, c);
+      std::swap(refs_[i], refs_[j - 1]);
+      const __m128 rlo = load_lo(refs_[j - 1], mask), rhi = load_hi(refs_[j - 1]);
+      right.box.extend(rlo, rhi);
+      const __m128 rc = _mm_add_ps(rlo, rhi);
+      right.centroid.extend(rc, rc);
+      ++i;
+      --j;
+    }
+    left.begin = r.begin;
+    left.end = right.begin = i;
+    right.end = r.end;
+    return left.size() > 0 && right.size() > 0;
+  }
+
+  /// Fallback: object median along the longest centroid axis, ties by triangle index, as
+  /// object_median_split() in bvh_builders.cpp (always valid for >= 2 references).
+  void median_split(const Range& r, Range& left, Range& right) {
+    const Aabb cb = r.centroid.aabb();
+    const int axis = cb.longest_axis();
+    const size_t mid = r.begin + r.size() / 2;
+    std::nth_element(refs_ + r.begin, refs_ + mid, refs_ + r.end, [axis](const Ref& a, const Ref& b) {
+      const float ca = a.lo[axis] + a.hi[axis], cb_ = b.lo[axis] + b.hi[axis];
+      return ca < cb_ || (ca == cb_ && a.prim < b.prim);
+    });
+    left = Range{};
+    right = Range{};
+    left.begin = r.begin;
+    left.end = right.begin = mid;
+    right.end = r.end;
+    const __m128 mask = xyz_mask();
+    for (Range* side : {&left, &right}) {
+      for (size_t i = side->begin; i < side->end; ++i) {
+        const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]), c = _mm_add_ps(lo, hi);
+        side->box.extend(lo, hi);
+        side->centroid.extend(c, c);
+      }
+    }
+  }
+
+  const BvhBuildOptions& o_;
+  Ref* refs_;
+  int ppt_shift_ = -1;  ///< log2(prims_per_test) when it is a power of two
+  BinMap map_{};  ///< bin map of the last successful find_split(), used by partition()
+  // Scratch of find_split(), allocated once per builder (one per task), not per node, and
+  // off the stack: a BinSet is 27 KB and the recursion may be 96 deep.
+  std::unique_ptr<BinSet> bins_ = std::make_unique<BinSet>();
+  struct RightSweep {
+    __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
+    __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
+  };
+  std::unique_ptr<RightSweep> right_ = std::make_unique<RightSweep>();
+};
+
+/// A node of the upper tree (subtrees of at least kTaskThreshold references, built by
+/// parallel tasks), or, without children, a serially built subtree in its own buffer.
+struct UpperNode {
+  BuildNode node;
+  std::unique_ptr<UpperNode> left, right;
+  std::vector<BuildNode> subtree;  ///< pre-order, local indices (when left == nullptr)
+  size_t size = 0;                 ///< nodes in this subtree
+};
+
+std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r) {
+  auto u = std::make_unique<UpperNode>();
+  BinnedBuilder builder(o, refs);
+  if (r.size() < kTaskThreshold) {
+    u->subtree.reserve(r.size());
+    builder.build_serial(r, u->subtree);
+    u->size = u->subtree.size();
+    return u;
+  }
+  u->node.box = r.box.aabb();
+  Range left, right;
+  if (!builder.split_node(r, left, right)) {  // only at the depth limit
+    u->node.first = uint32_t(r.begin);
+    u->node.count = uint32_t(r.size());
+    u->subtree.push_back(u->node);
+    u->size = 1;
+    return u;
+  }
+  tbb::parallel_invoke([&] { u->left = build_upper(o, refs, left); }, [&] { u->right = build_upper(o, refs, right); });
+  u->size = 1 + u->left->size + u->right->size;
+  return u;
+}
+
+/// Numbers the upper nodes in pre-order (left subtree first) from the subtree sizes and
+/// collects the serial subtrees with their global offsets.
+void place_upper(const UpperNode& u, uint32_t offset, std::vector<BuildNode>& nodes,
+                 std::vector<std::pair<const UpperNode*, uint32_t>>& buffers) {
+  if (!u.left) {
+    buffers.push_back({&u, offset});
+    return;
+  }
+  BuildNode& n = nodes[offset];
+  n = u.node;
+  n.left = offset + 1;
+  n.right = offset + 1 + uint32_t(u.left->size);
+  place_upper(*u.left, n.left, nodes, buffers);
+  place_upper(*u.right, n.right, nodes, buffers);
+}
+
+}  // namespace
+
+BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options) {
+  BuildTree tree;
+  const std::vector<uint32_t>& valid = scene.valid_prims();
+  const size_t n = valid.size();
+  if (n == 0) return tree;
+  std::vector<Ref> refs(n);
+  // References and root bounds in one parallel pass; min/max reduce exactly in any order.
+  Range root = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, n, 4096), Range{},
+      [&](const tbb::blocked_range<size_t>& br, Range acc) {
+        for (size_t i = br.begin(); i != br.end(); ++i) {
+          const uint32_t p = valid[i];
+          const Aabb& b = scene.triangle_bounds(p);
+          Ref& ref = refs[i];
+          ref = {{b.min.x, b.min.y, b.min.z}, p, {b.max.x, b.max.y, b.max.z}, 0.0f};
+          const __m128 lo = _mm_set_ps(0.0f, b.min.z, b.min.y, b.min.x);
+          const __m128 hi = _mm_set_ps(0.0f, b.max.z, b.max.y, b.max.x);
+          const __m128 c = _mm_add_ps(lo, hi);
+          acc.box.extend(lo, hi);
+          acc.centroid.extend(c, c);
+        }
+        return acc;
+      },
+      [](Range a, const Range& b) {
+        a.box.extend(b.box);
+        a.centroid.extend(b.centroid);
+        return a;
+      });
+  root.begin = 0;
+  root.end = n;
+  root.depth = 0;
+
+  const std::unique_ptr<UpperNode> upper = build_upper(options, refs.data(), root);
+  tree.nodes.resize(upper->size);
+  std::vector<std::pair<const UpperNode*, uint32_t>> buffers;
+  place_upper(*upper, 0, tree.nodes, buffers);
+  tbb::parallel_for(size_t(0), buffers.size(), [&](size_t k) {
+    const auto [u, offset] = buffers[k];
+    BuildNode* dst = tree.nodes.data() + offset;
+    for (const BuildNode& src : u->subtree) {
+      *dst = src;
+      if (!src.count) {
+        dst->left += offset;
+        dst->right += offset;
+      }
+      ++dst;
+    }
+  });
+  tree.root = 0;
+  tree.prims.resize(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& br) {
+    for (size_t i = br.begin(); i != br.end(); ++i) tree.prims[i] = refs[i].prim;
+  });
+  return tree;
+}
+
+}  // namespace accel
