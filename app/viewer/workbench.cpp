@@ -63,8 +63,7 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->structure = std::move(structure.value());
   built->stats = built->structure->build_stats();
   built->geometry = structure_geometry(*built->structure, request.geometry);
-  for (const accel::ParamSpec& spec : params.value().specs())
-    if (spec.name == "traversal") built->traversal = params.value().get_choice("traversal");
+  if (params.value().has("traversal")) built->traversal = params.value().get_choice("traversal");
   built->info = info.value();
   built->kind = traversal_kind(info.value()->traversal, built->traversal);
   return BuiltPtr(std::move(built));
