@@ -464,7 +464,8 @@ void place_upper(const UpperNode& u, uint32_t offset, std::vector<BuildNode>& no
 
 }  // namespace
 
-BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options) {
+BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress) {
+  (void)progress;  // TODO(#11): report leaves placed
   BuildTree tree;
   const std::vector<uint32_t>& valid = scene.valid_prims();
   const size_t n = valid.size();

@@ -558,9 +558,9 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o) {
 
 }  // namespace
 
-BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options) {
+BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress) {
   switch (options.builder) {
-    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options);
+    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options, progress);
     case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options);
     case BvhBuilderKind::Insertion: return build_insertion(scene, options);
     default: return build_top_down(scene, options);

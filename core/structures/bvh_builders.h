@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "build_control.h"
 #include "math.h"
 #include "params.h"
 #include "scene.h"
@@ -63,7 +64,10 @@ struct BuildTree {
 /// Runs the chosen builder over scene.valid_prims(). Guarantees: every valid triangle is in
 /// exactly one leaf, leaves hold at most `leaf_size` triangles, each box bounds its subtree,
 /// and the depth stays below kMaxBvhDepth.
-BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options);
+/// `progress` (optional) receives the fraction of triangles placed in leaves so far; it is
+/// called from one thread at a time. When its advance() returns false (cancelled), the
+/// builder returns as soon as it can with an incomplete tree, which the caller discards.
+BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress = nullptr);
 
 /// Depth bound of every builder's output (the traversal stacks are sized from it).
 inline constexpr int kMaxBvhDepth = 96;

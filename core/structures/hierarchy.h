@@ -104,8 +104,9 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// Cancel is checked before and after the tree build and per node while flattening.
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override {
     if (build_cancelled(control)) return cancel_build();
-    BuildTree tree = build_tree(scene, params);
-    report_progress(control, kTreeBuiltFraction);
+    ProgressSpan tree_span(control, 0.0, kTreeBuiltFraction);
+    BuildTree tree = build_tree(scene, params, 1, &tree_span);
+    tree_span.finish();
     if (build_cancelled(control)) return cancel_build();
     ProgressSpan span(control, kTreeBuiltFraction, 1.0);
     if (!store_binary(tree, &span)) return cancel_build();
@@ -126,7 +127,8 @@ class Hierarchy : public StructureWithTraversal<Derived> {
 
   /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`
   /// triangles per leaf test); the nodes stay empty until store_binary().
-  BuildTree build_tree(const Scene& scene, const ParamSet& params, int prims_per_test = 1) {
+  BuildTree build_tree(const Scene& scene, const ParamSet& params, int prims_per_test = 1,
+                       ProgressSpan* progress = nullptr) {
     scene_ = &scene;
     const HierarchyOptions options = hierarchy_options(params);
     options_ = options.build;
@@ -136,7 +138,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     boxes_.clear();
     depth_.clear();
     prims_.clear();
-    return build_bvh_tree(scene, options_);
+    return build_bvh_tree(scene, options_, progress);
   }
 
   /// Flattens the builder's tree into the binary node layout and fits the volumes,

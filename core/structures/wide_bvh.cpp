@@ -26,8 +26,9 @@ Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildCont
   // The 4-wide layout tests a leaf's triangles four at a time: the SAH builders know it.
   options_.prims_per_test = 4;
   order_ = options.traversal;
-  const BuildTree tree = build_bvh_tree(scene, options_);
-  report_progress(control, 0.8);
+  ProgressSpan tree_span(control, 0.0, 0.8);
+  const BuildTree tree = build_bvh_tree(scene, options_, &tree_span);
+  tree_span.finish();
   if (build_cancelled(control)) return cancelled_error();
   collapse(scene, tree);
   return {};
