@@ -21,8 +21,10 @@
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU (as in geometry.h)
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <memory>
+#include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -38,6 +40,7 @@ constexpr int kMaxBins = 256;                  // upper bound of the `bins` para
 constexpr size_t kTaskThreshold = 4096;        // smaller subtrees are one serial task
 constexpr size_t kParallelBinThreshold = 1u << 16;  // larger nodes bin in parallel ...
 constexpr size_t kBinSlice = 1u << 14;         // ... over slices of this many references
+constexpr size_t kDualBinThreshold = 64;       // larger ranges bin into two sets (bin_refs)
 
 /// A triangle reference: its box, with the triangle index in the spare lane of `lo`.
 /// Two aligned SSE loads give the box (Wald 2007 uses the same compact layout).
@@ -244,10 +247,29 @@ class BinnedBuilder {
   }
 
   /// Bins refs[begin, end) on all three axes in one pass (Wald 2007, section 3.2).
-  void bin_refs(size_t begin, size_t end, const BinMap& map, BinSet& bins) const {
+  /// Neighbouring references usually fall into the same bin, so binning into one set makes
+  /// every update wait for the previous one's store; large ranges therefore alternate
+  /// between `bins` and `spare` (merged at the end: min/max and counts are exact in any
+  /// order), which halves that chain.
+  void bin_refs(size_t begin, size_t end, const BinMap& map, int nb, BinSet& bins, BinSet& spare) const {
     const __m128 mask = xyz_mask();
-    alignas(16) int32_t idx[4];
-    for (size_t i = begin; i < end; ++i) {
+    alignas(16) int32_t idx[4], idx2[4];
+    size_t i = begin;
+    if (end - begin >= kDualBinThreshold) {
+      spare.clear(nb);
+      for (; i + 1 < end; i += 2) {
+        const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]);
+        const __m128 lo2 = load_lo(refs_[i + 1], mask), hi2 = load_hi(refs_[i + 1]);
+        _mm_store_si128(reinterpret_cast<__m128i*>(idx), map.bins(_mm_add_ps(lo, hi)));
+        _mm_store_si128(reinterpret_cast<__m128i*>(idx2), map.bins(_mm_add_ps(lo2, hi2)));
+        for (int a = 0; a < 3; ++a) {
+          bins.add(a, idx[a], lo, hi);
+          spare.add(a, idx2[a], lo2, hi2);
+        }
+      }
+      bins.merge(spare, nb);
+    }
+    for (; i < end; ++i) {
       const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]);
       _mm_store_si128(reinterpret_cast<__m128i*>(idx), map.bins(_mm_add_ps(lo, hi)));
       for (int a = 0; a < 3; ++a) bins.add(a, idx[a], lo, hi);
@@ -270,11 +292,12 @@ class BinnedBuilder {
       const std::unique_ptr<BinSet[]> partial(new BinSet[slices]);  // default-initialised: no 27 KB memset each
       tbb::parallel_for(size_t(0), slices, [&](size_t s) {
         partial[s].clear(nb);
-        bin_refs(r.begin + s * kBinSlice, std::min(r.end, r.begin + (s + 1) * kBinSlice), map, partial[s]);
+        BinSet spare;  // uninitialised: bin_refs clears what it uses
+        bin_refs(r.begin + s * kBinSlice, std::min(r.end, r.begin + (s + 1) * kBinSlice), map, nb, partial[s], spare);
       });
       for (size_t s = 0; s < slices; ++s) bins.merge(partial[s], nb);
     } else {
-      bin_refs(r.begin, r.end, map, bins);
+      bin_refs(r.begin, r.end, map, nb, bins, *spare_);
     }
     return sweep(bins, nb, r, map);
   }
@@ -331,44 +354,48 @@ class BinnedBuilder {
 
   /// In-place two-pointer partition by the chosen plane; accumulates the children's boxes
   /// and centroid bounds on the way (Wald 2007: no second pass over the references).
-  /// False if a side came out empty (cannot happen for a plane the binning found).
+  /// Only the split axis is classified, with the scalar form of BinMap::bins() (the same
+  /// float operations, so a reference goes to the side its bin says), and the four bounds
+  /// live in registers, not in the Ranges. False if a side came out empty (cannot happen
+  /// for a plane the binning found).
   bool partition(const Range& r, const BinSplit& split, Range& left, Range& right) {
     const __m128 mask = xyz_mask();
-    alignas(16) int32_t idx[4];
-    auto goes_left = [&](const Ref& ref, __m128& lo, __m128& hi, __m128& c) {
-      lo = load_lo(ref, mask);
-      hi = load_hi(ref);
-      c = _mm_add_ps(lo, hi);
-      _mm_store_si128(reinterpret_cast<__m128i*>(idx), map_.bins(c));
-      return idx[split.axis] < split.bin;
+    alignas(16) float map_lo[4], map_scale[4];
+    _mm_store_ps(map_lo, map_.lo);
+    _mm_store_ps(map_scale, map_.scale);
+    const int axis = split.axis;
+    const float lo_a = map_lo[axis], scale_a = map_scale[axis], top = _mm_cvtss_f32(map_.top);
+    const int split_bin = split.bin;
+    auto goes_left = [&](const Ref& ref) {
+      const float c = ref.lo[axis] + ref.hi[axis];
+      const float f = (c - lo_a) * scale_a;
+      const float clamped_low = f > 0.0f ? f : 0.0f;  // _mm_max_ps(f, 0), NaN included
+      return int(clamped_low < top ? clamped_low : top) < split_bin;  // _mm_min_ps, truncation
+
     };
+    Box4 lbox, lcen, rbox, rcen;
+    auto add = [mask](const Ref& ref, Box4& box, Box4& cen) {
+      const __m128 lo = load_lo(ref, mask), hi = load_hi(ref), c = _mm_add_ps(lo, hi);
+      box.extend(lo, hi);
+      cen.extend(c, c);
+    };
+    Ref* const refs = refs_;
+    size_t i = r.begin, j = r.end;
+    while (true) {
+      while (i < j && goes_left(refs[i])) add(refs[i++], lbox, lcen);
+      while (i < j && !goes_left(refs[j - 1])) add(refs[--j], rbox, rcen);
+      if (i >= j) break;
+      // refs[i] goes right and refs[j - 1] goes left.
+      std::swap(refs[i], refs[j - 1]);
+      add(refs[i++], lbox, lcen);
+      add(refs[--j], rbox, rcen);
+    }
     left = Range{};
     right = Range{};
-    size_t i = r.begin, j = r.end;
-    __m128 lo, hi, c;
-    while (true) {
-      while (i < j && goes_left(refs_[i], lo, hi, c)) {
-        left.box.extend(lo, hi);
-        left.centroid.extend(c, c);
-        ++i;
-      }
-      while (i < j && !goes_left(refs_[j - 1], lo, hi, c)) {
-        right.box.extend(lo, hi);
-        right.centroid.extend(c, c);
-        --j;
-      }
-      if (i >= j) break;
-      // refs_[i] goes right and refs_[j - 1] goes left (its values are in lo, hi, c).
-      left.box.extend(lo, hi);
-      left.centroid.extend(c, c);
-      std::swap(refs_[i], refs_[j - 1]);
-      const __m128 rlo = load_lo(refs_[j - 1], mask), rhi = load_hi(refs_[j - 1]);
-      right.box.extend(rlo, rhi);
-      const __m128 rc = _mm_add_ps(rlo, rhi);
-      right.centroid.extend(rc, rc);
-      ++i;
-      --j;
-    }
+    left.box = lbox;
+    left.centroid = lcen;
+    right.box = rbox;
+    right.centroid = rcen;
     left.begin = r.begin;
     left.end = right.begin = i;
     right.end = r.end;
@@ -407,6 +434,7 @@ class BinnedBuilder {
   // Scratch of find_split(), allocated once per builder (one per task), not per node, and
   // off the stack: a BinSet is 27 KB and the recursion may be 96 deep.
   std::unique_ptr<BinSet> bins_ = std::make_unique<BinSet>();
+  std::unique_ptr<BinSet> spare_ = std::make_unique<BinSet>();
   struct RightSweep {
     __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
     __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
@@ -423,13 +451,35 @@ struct UpperNode {
   size_t size = 0;                 ///< nodes in this subtree
 };
 
-std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r) {
+/// Progress and cancellation shared by the build's tasks. Tasks count the references they
+/// place; only the thread that started the build reports (ProgressSpan is single-threaded),
+/// every task checks for cancellation before it starts.
+struct BuildProgress {
+  ProgressSpan* span = nullptr;
+  size_t total = 0;
+  std::thread::id reporter = std::this_thread::get_id();
+  std::atomic<size_t> placed{0};
+  std::atomic<bool> stopped{false};
+
+  bool stop() const { return stopped.load(std::memory_order_relaxed); }
+  void placed_leaves(size_t refs) {
+    if (!span) return;
+    const size_t done = placed.fetch_add(refs, std::memory_order_relaxed) + refs;
+    const bool go_on = std::this_thread::get_id() == reporter ? span->advance(double(done) / double(total))
+                                                               : !span->cancelled();
+    if (!go_on) stopped.store(true, std::memory_order_relaxed);
+  }
+};
+
+std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r, BuildProgress& progress) {
   auto u = std::make_unique<UpperNode>();
+  if (progress.stop()) return u;  // cancelled: an empty subtree, discarded by the caller
   BinnedBuilder builder(o, refs);
   if (r.size() < kTaskThreshold) {
     u->subtree.reserve(r.size());
     builder.build_serial(r, u->subtree);
     u->size = u->subtree.size();
+    progress.placed_leaves(r.size());
     return u;
   }
   u->node.box = r.box.aabb();
@@ -439,9 +489,11 @@ std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, cons
     u->node.count = uint32_t(r.size());
     u->subtree.push_back(u->node);
     u->size = 1;
+    progress.placed_leaves(r.size());
     return u;
   }
-  tbb::parallel_invoke([&] { u->left = build_upper(o, refs, left); }, [&] { u->right = build_upper(o, refs, right); });
+  tbb::parallel_invoke([&] { u->left = build_upper(o, refs, left, progress); },
+                       [&] { u->right = build_upper(o, refs, right, progress); });
   u->size = 1 + u->left->size + u->right->size;
   return u;
 }
@@ -465,7 +517,6 @@ void place_upper(const UpperNode& u, uint32_t offset, std::vector<BuildNode>& no
 }  // namespace
 
 BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress) {
-  (void)progress;  // TODO(#11): report leaves placed
   BuildTree tree;
   const std::vector<uint32_t>& valid = scene.valid_prims();
   const size_t n = valid.size();
@@ -497,7 +548,11 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   root.end = n;
   root.depth = 0;
 
-  const std::unique_ptr<UpperNode> upper = build_upper(options, refs.data(), root);
+  BuildProgress shared_progress;
+  shared_progress.span = progress;
+  shared_progress.total = n;
+  const std::unique_ptr<UpperNode> upper = build_upper(options, refs.data(), root, shared_progress);
+  if (shared_progress.stop()) return tree;  // cancelled: the caller discards the tree
   tree.nodes.resize(upper->size);
   std::vector<std::pair<const UpperNode*, uint32_t>> buffers;
   place_upper(*upper, 0, tree.nodes, buffers);

@@ -98,16 +98,16 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   }
 
  protected:
-  /// Progress: the builders of bvh_builders.h report nothing, so the phases do -- 0 before
-  /// the binary tree is built, kTreeBuiltFraction after it, then the flattening and volume
-  /// fitting by nodes emitted (the sphere tree's fits are a real share of its build).
-  /// Cancel is checked before and after the tree build and per node while flattening.
+  /// Progress: the builder reports the triangles it has placed in leaves as [0,
+  /// kTreeBuiltFraction] (and stops when cancelled), then the flattening and volume fitting
+  /// report nodes emitted (the sphere tree's fits are a real share of its build). Cancel is
+  /// also checked before and after the tree build and per node while flattening.
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override {
     if (build_cancelled(control)) return cancel_build();
     ProgressSpan tree_span(control, 0.0, kTreeBuiltFraction);
     BuildTree tree = build_tree(scene, params, 1, &tree_span);
-    tree_span.finish();
     if (build_cancelled(control)) return cancel_build();
+    tree_span.finish();
     ProgressSpan span(control, kTreeBuiltFraction, 1.0);
     if (!store_binary(tree, &span)) return cancel_build();
     return {};

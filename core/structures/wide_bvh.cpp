@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include <tbb/parallel_for.h>
+
 #include "check.h"
 
 namespace accel {
@@ -17,8 +19,9 @@ void WideBvh::clear() {
 }
 
 Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
-  // Progress by phase, as the binary layouts (hierarchy.h): the builder reports nothing, so
-  // 0 before the binary tree, 0.8 after it, 1 once collapsed; cancel is checked between.
+  // Progress as in the binary layouts (hierarchy.h): the builder reports the triangles it
+  // has placed as [0, 0.8] and stops when cancelled; then the collapse (parallel, a small
+  // share of the build) ends at 1.
   clear();
   if (build_cancelled(control)) return cancelled_error();
   const HierarchyOptions options = hierarchy_options(params);
@@ -28,53 +31,46 @@ Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildCont
   order_ = options.traversal;
   ProgressSpan tree_span(control, 0.0, 0.8);
   const BuildTree tree = build_bvh_tree(scene, options_, &tree_span);
-  tree_span.finish();
   if (build_cancelled(control)) return cancelled_error();
+  tree_span.finish();
+  if (build_cancelled(control)) return cancelled_error();  // e.g. cancelled from the callback
   collapse(scene, tree);
   return {};
 }
 
-void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
-  clear();
-  if (tree.empty()) return;
-  prim_count_ = tree.prims.size();
-  entries_.reserve(tree.nodes.size());
-  emit(scene, tree, tree.root, 0);
-}
+// ----------------------------------------------------------------------------
+// Collapse, in parallel: the top of the binary tree is planned serially; every subtree
+// below it is emitted by its own task into its own WideLayout with local numbering, then
+// all are placed at their pre-order offsets and relocated in parallel. The result is the
+// serial emission's, for any thread count: each node's children depend only on its binary
+// subtree, and the offsets follow from the subtrees' sizes.
+// ----------------------------------------------------------------------------
+namespace {
 
-uint32_t WideBvh::add_blocks(const Scene& scene, const uint32_t* prims, uint32_t count) {
-  // Copies of the triangles in leaf order: a leaf is one contiguous read, four triangles per
-  // SSE test, instead of an index lookup and three scattered vertex loads per triangle.
-  const uint32_t first = uint32_t(blocks_.size());
-  for (uint32_t done = 0; done < count; done += 4) {
-    TriangleBlock block{};
-    for (uint32_t lane = 0; lane < 4; ++lane) {
-      const bool used = done + lane < count;
-      block.prim[lane] = used ? prims[done + lane] : TriangleBlock::kNoPrim;
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 p = used ? scene.vertex(prims[done + lane], k) : Vec3(0.0f);
-        for (int axis = 0; axis < 3; ++axis) block.v[3 * k + axis][lane] = p[axis];
-      }
-    }
-    blocks_.push_back(block);
+/// Binary subtrees of at least this many nodes are planned at the top; smaller ones (and
+/// leaves) are one task each.
+constexpr uint32_t kCollapseTaskNodes = 2048;
+
+/// The binary nodes below each node, itself included. Every builder numbers a node before
+/// its children, so one reverse pass suffices.
+std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
+  std::vector<uint32_t> size(tree.nodes.size(), 1);
+  for (size_t i = tree.nodes.size(); i-- > 0;) {
+    const BuildNode& n = tree.nodes[i];
+    if (n.count) continue;
+    ACCEL_CHECK(n.left > i && n.right > i);
+    size[i] += size[n.left] + size[n.right];
   }
-  return first;
+  return size;
 }
 
-NodeId WideBvh::emit(const Scene& scene, const BuildTree& tree, uint32_t src, int depth) {
-  ACCEL_CHECK(depth < kMaxBvhDepth);  // collapsing only makes the tree shallower
-  const NodeId id = NodeId(entries_.size());
+/// The children of wide node `src`: it opens its largest inner child in place (that
+/// child's two children take its slot, keeping tree order) until there are four children
+/// or only leaves are left. Returns how many (2..4).
+int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[4]) {
   const BuildNode& b = tree.nodes[src];
-  entries_.emplace_back();
-  boxes_.push_back(b.box);
-  depth_.push_back(uint16_t(depth));
-  if (b.count) {
-    entries_[id] = {add_blocks(scene, tree.prims.data() + b.first, b.count), b.count};
-    return id;
-  }
-  // Open the largest inner child in place (its two children take its slot, keeping tree
-  // order) until there are four children or only leaves are left.
-  uint32_t kids[4] = {b.left, b.right, 0, 0};
+  kids[0] = b.left;
+  kids[1] = b.right;
   int n = 2;
   while (n < 4) {
     int widest = -1;
@@ -93,29 +89,231 @@ NodeId WideBvh::emit(const Scene& scene, const BuildTree& tree, uint32_t src, in
     kids[widest + 1] = c.right;
     ++n;
   }
-  const uint32_t w = uint32_t(nodes_.size());
-  entries_[id] = {w, 0};
-  WideNode node;
-  for (int s = 0; s < 4; ++s) {
-    for (int axis = 0; axis < 3; ++axis) {
-      node.bounds[axis][s] = kInf;
-      node.bounds[3 + axis][s] = -kInf;
+  return n;
+}
+
+}  // namespace
+
+/// One emitted subtree, numbered from 0: the arrays of WideBvh for that subtree alone.
+struct WideBvh::Layout {
+  std::vector<WideNode> nodes;
+  std::vector<std::array<NodeId, 4>> child_ids;
+  std::vector<Entry> entries;
+  std::vector<Aabb> boxes;
+  std::vector<uint16_t> depth;
+  std::vector<TriangleBlock> blocks;
+
+  /// The subtree of binary node `src` at `depth`, in depth-first order; returns its node id.
+  NodeId emit(const Scene& scene, const BuildTree& tree, uint32_t src, int depth_of_src) {
+    ACCEL_CHECK(depth_of_src < kMaxBvhDepth);  // collapsing only makes the tree shallower
+    const NodeId id = NodeId(entries.size());
+    const BuildNode& b = tree.nodes[src];
+    entries.emplace_back();
+    boxes.push_back(b.box);
+    depth.push_back(uint16_t(depth_of_src));
+    if (b.count) {
+      entries[id] = {add_blocks(scene, tree.prims.data() + b.first, b.count), b.count};
+      return id;
     }
-    node.ref[s] = leaf_ref(0, 0);
-  }
-  nodes_.push_back(node);
-  child_ids_.push_back({kNoNode, kNoNode, kNoNode, kNoNode});
-  for (int s = 0; s < n; ++s) {
-    const NodeId child = emit(scene, tree, kids[s], depth + 1);  // may reallocate nodes_: index, not reference
-    const Aabb& box = tree.nodes[kids[s]].box;
-    for (int axis = 0; axis < 3; ++axis) {
-      nodes_[w].bounds[axis][s] = box.min[axis];
-      nodes_[w].bounds[3 + axis][s] = box.max[axis];
+    uint32_t kids[4];
+    const int n = wide_children(tree, src, kids);
+    const uint32_t w = uint32_t(nodes.size());
+    entries[id] = {w, 0};
+    nodes.push_back(empty_node());
+    child_ids.push_back({kNoNode, kNoNode, kNoNode, kNoNode});
+    for (int s = 0; s < n; ++s) {
+      const NodeId child = emit(scene, tree, kids[s], depth_of_src + 1);  // may reallocate: index, not reference
+      set_slot(nodes[w], s, tree.nodes[kids[s]].box, ref_of(child));
+      child_ids[w][s] = child;
     }
-    nodes_[w].ref[s] = ref_of(child);
-    child_ids_[w][s] = child;
+    return id;
   }
-  return id;
+
+  ChildRef ref_of(NodeId id) const {
+    return entries[id].leaf() ? leaf_ref(entries[id].index, entries[id].count) : entries[id].index;
+  }
+
+  /// A node whose four slots are unused (empty boxes, empty leaves).
+  static WideNode empty_node() {
+    WideNode node;
+    for (int s = 0; s < 4; ++s) {
+      for (int axis = 0; axis < 3; ++axis) {
+        node.bounds[axis][s] = kInf;
+        node.bounds[3 + axis][s] = -kInf;
+      }
+      node.ref[s] = leaf_ref(0, 0);
+    }
+    return node;
+  }
+  static void set_slot(WideNode& node, int s, const Aabb& box, ChildRef ref) {
+    for (int axis = 0; axis < 3; ++axis) {
+      node.bounds[axis][s] = box.min[axis];
+      node.bounds[3 + axis][s] = box.max[axis];
+    }
+    node.ref[s] = ref;
+  }
+
+  /// Appends a leaf's triangles as blocks of four; returns the first block. Copies of the
+  /// triangles in leaf order: a leaf is one contiguous read, four triangles per SSE test,
+  /// instead of an index lookup and three scattered vertex loads per triangle.
+  uint32_t add_blocks(const Scene& scene, const uint32_t* prims, uint32_t count) {
+    const uint32_t first = uint32_t(blocks.size());
+    for (uint32_t done = 0; done < count; done += 4) {
+      TriangleBlock& block = blocks.emplace_back();
+      for (uint32_t lane = 0; lane < 4; ++lane) {
+        const bool used = done + lane < count;
+        block.prim[lane] = used ? prims[done + lane] : TriangleBlock::kNoPrim;
+        for (int k = 0; k < 3; ++k) {
+          const Vec3 p = used ? scene.vertex(prims[done + lane], k) : Vec3(0.0f);
+          for (int axis = 0; axis < 3; ++axis) block.v[3 * k + axis][lane] = p[axis];
+        }
+      }
+    }
+    return first;
+  }
+};
+
+void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
+  clear();
+  if (tree.empty()) return;
+  prim_count_ = tree.prims.size();
+  const std::vector<uint32_t> size = binary_subtree_sizes(tree);
+
+  // Plan the top: wide nodes over binary subtrees of kCollapseTaskNodes or more. A child
+  // below that size (or a leaf) becomes a task, emitted into its own Layout.
+  struct TopNode {
+    uint32_t src;
+    int depth, n;
+    uint32_t kids[4];
+    int32_t child[4];  ///< >= 0: index into `top`; < 0: task -child - 1
+  };
+  struct Task {
+    uint32_t src;
+    int depth;
+  };
+  std::vector<TopNode> top;
+  std::vector<Task> tasks;
+  auto plan = [&](auto&& self, uint32_t src, int depth) -> int32_t {
+    const int32_t index = int32_t(top.size());
+    top.push_back({src, depth, 0, {}, {}});
+    TopNode node = top.back();
+    node.n = wide_children(tree, src, node.kids);
+    for (int s = 0; s < node.n; ++s) {
+      const uint32_t kid = node.kids[s];
+      if (!tree.nodes[kid].count && size[kid] >= kCollapseTaskNodes) {
+        node.child[s] = self(self, kid, depth + 1);
+      } else {
+        node.child[s] = -int32_t(tasks.size()) - 1;
+        tasks.push_back({kid, depth + 1});
+      }
+    }
+    top[size_t(index)] = node;
+    return index;
+  };
+  if (tree.nodes[tree.root].count || size[tree.root] < kCollapseTaskNodes) {
+    Layout whole;
+    whole.entries.reserve(size[tree.root]);
+    whole.emit(scene, tree, tree.root, 0);
+    nodes_ = std::move(whole.nodes);
+    child_ids_ = std::move(whole.child_ids);
+    entries_ = std::move(whole.entries);
+    boxes_ = std::move(whole.boxes);
+    depth_ = std::move(whole.depth);
+    blocks_ = std::move(whole.blocks);
+    return;
+  }
+  plan(plan, tree.root, 0);
+
+  std::vector<Layout> parts(tasks.size());
+  tbb::parallel_for(size_t(0), tasks.size(), [&](size_t t) {
+    parts[t].entries.reserve(size[tasks[t].src]);
+    parts[t].emit(scene, tree, tasks[t].src, tasks[t].depth);
+  });
+
+  // Pre-order offsets: a top node, then each child's subtree in slot order.
+  struct Offsets {
+    uint32_t entry = 0, node = 0, block = 0;
+  };
+  std::vector<Offsets> part_at(tasks.size());
+  std::vector<NodeId> top_id(top.size());
+  std::vector<uint32_t> top_wide(top.size());
+  Offsets next;
+  auto place = [&](auto&& self, int32_t t) -> void {
+    top_id[size_t(t)] = next.entry++;
+    top_wide[size_t(t)] = next.node++;
+    const TopNode& node = top[size_t(t)];
+    for (int s = 0; s < node.n; ++s) {
+      if (node.child[s] >= 0) {
+        self(self, node.child[s]);
+        continue;
+      }
+      const size_t k = size_t(-node.child[s] - 1);
+      part_at[k] = next;
+      next.entry += uint32_t(parts[k].entries.size());
+      next.node += uint32_t(parts[k].nodes.size());
+      next.block += uint32_t(parts[k].blocks.size());
+    }
+  };
+  place(place, 0);
+  entries_.resize(next.entry);
+  boxes_.resize(next.entry);
+  depth_.resize(next.entry);
+  nodes_.resize(next.node);
+  child_ids_.resize(next.node);
+  blocks_.resize(next.block);
+
+  // The top nodes, pointing at their children's global ids.
+  for (size_t t = 0; t < top.size(); ++t) {
+    const TopNode& node = top[t];
+    const NodeId id = top_id[t];
+    const uint32_t w = top_wide[t];
+    entries_[id] = {w, 0};
+    boxes_[id] = tree.nodes[node.src].box;
+    depth_[id] = uint16_t(node.depth);
+    nodes_[w] = Layout::empty_node();
+    child_ids_[w] = {kNoNode, kNoNode, kNoNode, kNoNode};
+    for (int s = 0; s < node.n; ++s) {
+      NodeId child;
+      if (node.child[s] >= 0) {
+        child = top_id[size_t(node.child[s])];
+      } else {
+        const size_t k = size_t(-node.child[s] - 1);
+        child = part_at[k].entry;  // the task's root is its local node 0
+      }
+      child_ids_[w][s] = child;
+      Layout::set_slot(nodes_[w], s, tree.nodes[node.kids[s]].box, 0);  // reference set once all are placed
+    }
+  }
+  // The tasks' subtrees, relocated: node ids by the entry offset, WideNode indices by the
+  // node offset, triangle blocks by the block offset.
+  tbb::parallel_for(size_t(0), parts.size(), [&](size_t k) {
+    const Layout& part = parts[k];
+    const Offsets at = part_at[k];
+    auto relocate = [&](ChildRef r) { return ref_is_leaf(r) ? leaf_ref(ref_first(r) + at.block, ref_count(r)) : r + at.node; };
+    for (size_t i = 0; i < part.entries.size(); ++i) {
+      const Entry e = part.entries[i];
+      entries_[at.entry + i] = {e.index + (e.leaf() ? at.block : at.node), e.count};
+      boxes_[at.entry + i] = part.boxes[i];
+      depth_[at.entry + i] = part.depth[i];
+    }
+    for (size_t w = 0; w < part.nodes.size(); ++w) {
+      WideNode node = part.nodes[w];
+      std::array<NodeId, 4> ids = part.child_ids[w];
+      for (int s = 0; s < 4; ++s) {
+        if (ids[s] == kNoNode) continue;
+        node.ref[s] = relocate(node.ref[s]);
+        ids[s] += at.entry;
+      }
+      nodes_[at.node + w] = node;
+      child_ids_[at.node + w] = ids;
+    }
+    std::copy(part.blocks.begin(), part.blocks.end(), blocks_.begin() + long(at.block));
+  });
+  // Now every entry is final: the top nodes' child references.
+  for (size_t t = 0; t < top.size(); ++t) {
+    const uint32_t w = top_wide[t];
+    for (int s = 0; s < top[t].n; ++s) nodes_[w].ref[s] = ref_of(child_ids_[w][s]);
+  }
 }
 
 void WideBvh::for_each_node(const std::function<void(const NodeView&)>& fn) const {

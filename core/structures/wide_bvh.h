@@ -132,7 +132,7 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   /// inner child (by surface area, the child most rays enter) until it has four.
   void collapse(const Scene& scene, const BuildTree& tree);
   void clear();
-  NodeId emit(const Scene& scene, const BuildTree& tree, uint32_t src, int depth);
+  struct Layout;  // a subtree being emitted by one task (wide_bvh.cpp)
 
   struct Pending {
     ChildRef ref;
@@ -195,8 +195,6 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   ChildRef ref_of(NodeId id) const {
     return entries_[id].leaf() ? leaf_ref(entries_[id].index, entries_[id].count) : entries_[id].index;
   }
-  /// Appends a leaf's triangles as blocks of four; returns the first block.
-  uint32_t add_blocks(const Scene& scene, const uint32_t* prims, uint32_t count);
 
   std::vector<WideNode> nodes_;
   std::vector<std::array<NodeId, 4>> child_ids_;  ///< by WideNode: the children's node ids, kNoNode if unused
