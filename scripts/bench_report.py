@@ -4,6 +4,10 @@ throughput per mesh and structure against Embree, build time per mesh and struct
 Embree's medium build, and errors per structure and kernel.
 
     scripts/bench_report.py A.json [B.json ...] [--out-json ALL.json] > report.md
+    scripts/bench_report.py --builds DEFAULT.json SWEEP.json > builds_report.md
+
+--builds (scripts/bench_builds.sh): the build table of DEFAULT.json's rows, then the bvh's
+SAH cost and build time by default (binned SAH) and with SWEEP.json's builder=sah rows.
 
 Rows of all files are merged; an Embree row is kept once per (scene, rays, quality): later
 files timed Embree again only to give their own rows a ratio from the same run. The merged
@@ -146,11 +150,50 @@ def error_table(rows):
     return out
 
 
+def sah_table(default_rows, sweep_rows):
+    """The bvh's default builder against the full SAH sweep, per mesh: SAH cost (lower is
+    better; same ct/ci) and build ms, each from its own bench run."""
+    def by_mesh(rows):
+        out = {}
+        for r in rows:
+            if r["structure"] == "bvh" and r.get("sah_cost") is not None:
+                out.setdefault(mesh(r["scene"]), r)
+        return out
+    default, sweep = by_mesh(default_rows), by_mesh(sweep_rows)
+    out = ["\nbvh SAH cost (width 4, ct=1, ci=1 per 4-triangle test, root area 1) and build ms: the default "
+           "builder (binned SAH, 64 bins) against the full sweep (builder=sah), and the cost ratio:\n",
+           "| mesh | binned SAH cost | sweep SAH cost | binned / sweep | binned build ms | sweep build ms |",
+           "|---|---:|---:|---:|---:|---:|"]
+    ratios = []
+    for name, d in default.items():
+        s = sweep.get(name)
+        if s is None:
+            continue
+        ratio = d["sah_cost"] / s["sah_cost"]
+        ratios.append(ratio)
+        out.append(f"| {name} | {d['sah_cost']:.4g} | {s['sah_cost']:.4g} | {ratio:.3f} | {d['build_ms']:.1f} | "
+                   f"{s['build_ms']:.1f} |")
+    if ratios:
+        within = sum(1 for r in ratios if r <= 1.02)
+        out.append(f"\nbinned / sweep SAH cost: geometric mean {geomean(ratios):.3f}, worst {max(ratios):.3f}; "
+                   f"within 2% on {within} of {len(ratios)} scenes.")
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("files", nargs="+")
     ap.add_argument("--out-json")
+    ap.add_argument("--builds", action="store_true", help="build report: DEFAULT.json SWEEP.json")
     a = ap.parse_args()
+    if a.builds:
+        if len(a.files) != 2:
+            ap.error("--builds takes DEFAULT.json SWEEP.json")
+        default_rows, sweep_rows = (merge([f]) for f in a.files)
+        lines = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} (`scripts/bench_builds.sh`)."]
+        lines += build_table(default_rows) + sah_table(default_rows, sweep_rows)
+        print("\n".join(lines))
+        return 0
     rows = merge(a.files)
     if a.out_json:
         tmp = a.out_json + ".tmp"

@@ -60,6 +60,9 @@ struct Row {
   /// Embree medium build ms / this row's build_ms (> 1: this row builds faster); empty
   /// without Embree.
   std::optional<double> embree_build_ratio;
+  /// The structure's SAH cost (BuildStats::sah_cost; ct/ci per its parameters), empty
+  /// when it reports none: to compare builders' quality next to their build times.
+  std::optional<double> sah_cost;
   bool is_embree = false;
 };
 
@@ -231,6 +234,7 @@ std::string json(const std::vector<Row>& rows) {
            ", \"rays\": " + json_quote(r.rays) + ", \"n_rays\": " + std::to_string(r.n_rays) +
            ", \"build_ms\": " + fmt(r.build_ms, "%.3f") + ", \"embree_build_ratio\": " +
            (r.embree_build_ratio ? fmt(*r.embree_build_ratio, "%.4f") : std::string("null")) +
+           ", \"sah_cost\": " + (r.sah_cost ? fmt(*r.sah_cost, "%.6g") : std::string("null")) +
            ", \"memory_bytes\": " + std::to_string(r.memory_bytes) +
            ", \"mrays_1t\": " + fmt(r.mrays_1t, "%.4f") + ", \"mrays_mt\": " + fmt(r.mrays_mt, "%.4f") +
            ", \"threads\": " + std::to_string(r.threads) + ", \"false_miss\": " + std::to_string(r.false_miss) +
@@ -367,6 +371,7 @@ int run_bench(const BenchOptions& o) {
                            rays.size());
         row.build_ms = stats.build_ms;
         row.embree_build_ratio = build_ratio(embree_medium_build_ms, stats.build_ms);
+        if (std::isfinite(stats.sah_cost)) row.sah_cost = stats.sah_cost;
         row.memory_bytes = stats.memory_bytes;
         row.threads = threads;
         row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {

@@ -24,7 +24,7 @@ ParamTable<HierarchyOptions> make_table(bool with_width) {
                   "median builder only: split axis always x, cycling x,y,z by depth, or the longest extent of the "
                   "centres")
           .integer("bins", [](O& o) -> auto& { return o.build.bins; }, 2, 256,
-                   "binned_sah only: number of bins per axis")
+                   "binned_sah only: bins per axis (a node of n triangles uses at most 4 + n/2)")
           .integer("leaf_size", [](O& o) -> auto& { return o.build.leaf_size; }, 1, 64,
                    "maximum number of triangles in a leaf")
           .number("ct", [](O& o) -> auto& { return o.build.ct; }, 0.001, 1000,
