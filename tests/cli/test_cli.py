@@ -189,6 +189,12 @@ def test_bench(cli, work):
         else:
             check(ratio is None, f"bench row {r['structure']}: embree_build_ratio {ratio!r} without Embree")
         check(r["build_ms"] >= 0, f"bench row {r['structure']}: build_ms {r['build_ms']}")
+        # SAH cost: a number for the hierarchies (to compare builders), null for Embree.
+        sah = r.get("sah_cost", "missing")
+        if r["structure"] in ("bvh", "spheretree"):
+            check(isinstance(sah, (int, float)) and sah > 0, f"bench row {r['structure']}: sah_cost {sah!r}")
+        elif r["structure"].startswith("embree-"):
+            check(sah is None, f"bench row {r['structure']}: sah_cost {sah!r}, expected null")
     for r in embree:
         check(r["build_ms"] > 0, f"bench row {r['scene']} {r['structure']}: Embree build_ms {r['build_ms']}")
         if r["structure"] == "embree-medium":
