@@ -625,23 +625,45 @@ struct alignas(32) BinaryNode {
 };
 static_assert(sizeof(BinaryNode) == 32);
 
-/// Subtree heights (leaf = 0), computed without recursion (trees may be chains).
-std::vector<uint32_t> subtree_heights(const std::vector<BinaryNode>& nodes, uint32_t root) {
-  std::vector<uint32_t> height(nodes.size(), 0);
+/// Per node of a binary tree: subtree height (leaf = 0), triangle count, SAH cost, and
+/// whether the subtree becomes one leaf (ci*n*A <= the subtree's cost, n <= leaf_size).
+struct SubtreeCosts {
+  std::vector<uint32_t> height, count;
+  std::vector<float> cost;
+  std::vector<uint8_t> collapse;
+};
+
+/// One post-order pass, without recursion (trees may be chains): everything the final
+/// layout needs, and the heights limit_depth() needs, so the tree is walked once.
+void compute_subtree_costs(const std::vector<BinaryNode>& nodes, uint32_t root, const BvhBuildOptions& o,
+                           SubtreeCosts& c) {
+  const size_t n = nodes.size();
+  c.height.assign(n, 0);
+  c.count.assign(n, 0);
+  c.cost.assign(n, 0.0f);
+  c.collapse.assign(n, 0);
   std::vector<std::pair<uint32_t, bool>> stack{{root, false}};
   while (!stack.empty()) {
     auto [i, expanded] = stack.back();
     stack.pop_back();
-    if (nodes[i].is_leaf()) continue;
-    if (!expanded) {
+    const BinaryNode& nd = nodes[i];
+    if (nd.is_leaf()) {
+      c.count[i] = 1;
+      c.cost[i] = o.leaf_cost(1) * nd.box.area();
+      c.collapse[i] = 1;
+    } else if (!expanded) {
       stack.push_back({i, true});
-      stack.push_back({nodes[i].left, false});
-      stack.push_back({nodes[i].right, false});
+      stack.push_back({nd.left, false});
+      stack.push_back({nd.right, false});
     } else {
-      height[i] = 1 + std::max(height[nodes[i].left], height[nodes[i].right]);
+      c.height[i] = 1 + std::max(c.height[nd.left], c.height[nd.right]);
+      c.count[i] = c.count[nd.left] + c.count[nd.right];
+      const float split_cost = o.ct * nd.box.area() + c.cost[nd.left] + c.cost[nd.right];
+      const float leaf_cost = o.leaf_cost(c.count[i]) * nd.box.area();
+      c.collapse[i] = c.count[i] <= uint32_t(o.leaf_size) && leaf_cost <= split_cost;
+      c.cost[i] = c.collapse[i] ? leaf_cost : split_cost;
     }
   }
-  return height;
 }
 
 /// Triangles below node i, in tree order, appended to `out`; `stack` is scratch.
@@ -682,14 +704,17 @@ uint32_t build_median_binary(const Scene& scene, std::vector<BinaryNode>& nodes,
   return uint32_t(nodes.size() - 1);
 }
 
+/// Depth bound of limit_depth(): trees up to 2 * kDepthCut high are left alone.
+constexpr uint32_t kDepthCut = 32;
+static_assert(2 * kDepthCut + 2 < uint32_t(kMaxBvhDepth));
+
 /// Bounds the depth: an adversarial order (e.g. identical triangles) can make insertion
 /// grow a chain. Every subtree hanging at depth kCut that is taller than kCut is rebuilt by
-/// median split, so no leaf is deeper than about kCut + log2(n) + 1.
-void limit_depth(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t root) {
-  constexpr uint32_t kCut = 32;
-  static_assert(2 * kCut + 2 < uint32_t(kMaxBvhDepth));
-  const std::vector<uint32_t> height = subtree_heights(nodes, root);
-  if (height[root] <= 2 * kCut) return;
+/// median split, so no leaf is deeper than about kCut + log2(n) + 1. `height` is the
+/// subtree heights of the tree as it is.
+void limit_depth(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t root,
+                 const std::vector<uint32_t>& height) {
+  constexpr uint32_t kCut = kDepthCut;
   std::vector<std::pair<uint32_t, uint32_t>> stack{{root, 0}};  // (node, depth)
   std::vector<uint32_t> prims, gather_stack;
   while (!stack.empty()) {
@@ -716,32 +741,15 @@ void limit_depth(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t ro
 /// (ci*n*A <= the subtree's cost), after bounding the depth.
 BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t root,
                                const BvhBuildOptions& o) {
-  limit_depth(scene, nodes, root);
-  const size_t n = nodes.size();
-  std::vector<uint32_t> count(n, 0);
-  std::vector<float> cost(n, 0.0f);
-  std::vector<uint8_t> collapse(n, 0);
-  std::vector<std::pair<uint32_t, bool>> stack{{root, false}};
-  while (!stack.empty()) {  // post-order: SAH cost of every subtree, bottom up
-    auto [i, expanded] = stack.back();
-    stack.pop_back();
-    const BinaryNode& nd = nodes[i];
-    if (nd.is_leaf()) {
-      count[i] = 1;
-      cost[i] = o.leaf_cost(1) * nd.box.area();
-      collapse[i] = 1;
-    } else if (!expanded) {
-      stack.push_back({i, true});
-      stack.push_back({nd.left, false});
-      stack.push_back({nd.right, false});
-    } else {
-      count[i] = count[nd.left] + count[nd.right];
-      const float split_cost = o.ct * nd.box.area() + cost[nd.left] + cost[nd.right];
-      const float leaf_cost = o.leaf_cost(count[i]) * nd.box.area();
-      collapse[i] = count[i] <= uint32_t(o.leaf_size) && leaf_cost <= split_cost;
-      cost[i] = collapse[i] ? leaf_cost : split_cost;
-    }
+  SubtreeCosts costs;
+  compute_subtree_costs(nodes, root, o, costs);
+  if (costs.height[root] > 2 * kDepthCut) {  // rare: only then is the tree walked twice
+    limit_depth(scene, nodes, root, costs.height);
+    compute_subtree_costs(nodes, root, o, costs);
   }
+  const size_t n = nodes.size();
+  const std::vector<uint32_t>& count = costs.count;
+  const std::vector<uint8_t>& collapse = costs.collapse;
   BuildTree tree;
   tree.nodes.reserve(n);
   tree.prims.reserve(count[root]);
@@ -911,6 +919,10 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
     if (progress && inserted % kProgressBatch == 0 && !progress->advance(double(inserted) / double(order.size())))
       return {};
     const uint32_t prim = order[inserted];
+    // The shuffled order reads the triangle boxes at random: fetch a few ahead.
+    constexpr size_t kAhead = 8;
+    if (inserted + kAhead < order.size())
+      _mm_prefetch(reinterpret_cast<const char*>(&scene.triangle_bounds(order[inserted + kAhead])), _MM_HINT_T0);
     const Aabb box = scene.triangle_bounds(prim);
     const uint32_t leaf = uint32_t(nodes.size());
     nodes.push_back(BinaryNode::leaf_of(box, prim));
