@@ -1,6 +1,6 @@
 // BVH builders. Index:
 //   [SECTION] Names
-//   [SECTION] Shared top-down framework (leaf rule, fallback split)
+//   [SECTION] Shared top-down framework (parallel recursion, leaf rule, fallback split, progress)
 //   [SECTION] Median split
 //   [SECTION] SAH sweep (all three axes) and PCA sweep
 //   [SECTION] Binned SAH: see bvh_binned_builder.cpp
