@@ -1,7 +1,12 @@
 // Tests for core/octree: every option against the reference (shared suite), hand-checked
 // traversal traces on tiny scenes, the build's stops and limits, and parameter validation.
-// Index: [SECTION] Helpers, Hand-checked traces, Robustness, Build stops and limits, Parameters.
+// Index: [SECTION] Helpers, Hand-checked traces, Robustness, Build stops and limits, Parameters,
+// Parallel build.
 #include <gtest/gtest.h>
+
+#include <tbb/task_arena.h>
+
+#include <functional>
 
 #include "batch.h"
 #include "structures/octree.h"
@@ -551,6 +556,203 @@ TEST(OctreeParams, ExtremesBuildAndAnswer) {
   ASSERT_TRUE(leaf);
   EXPECT_EQ(leaf->build_stats().nodes, 1u);
   EXPECT_EQ(leaf->build_stats().prim_references, scene.valid_prims().size());
+}
+
+
+// [SECTION] Parallel build
+
+/// build_octree() on `threads` TBB threads.
+Result<OctreeData> build_on_threads(const Scene& scene, const OctreeBuildOptions& options, int threads) {
+  tbb::task_arena arena(threads);
+  return arena.execute([&] { return build_octree(scene, options); });
+}
+
+void expect_identical(const OctreeData& a, const OctreeData& b, const std::string& what) {
+  EXPECT_EQ(a.root_box.min, b.root_box.min) << what;
+  EXPECT_EQ(a.root_box.max, b.root_box.max) << what;
+  ASSERT_EQ(a.nodes.size(), b.nodes.size()) << what;
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    ASSERT_EQ(a.nodes[i].first, b.nodes[i].first) << what << ": node " << i;
+    ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << what << ": node " << i;
+  }
+  EXPECT_EQ(a.prim_ids, b.prim_ids) << what;
+  EXPECT_EQ(a.parents, b.parents) << what;
+  EXPECT_EQ(a.depths, b.depths) << what;
+  EXPECT_EQ(a.reasons.few_prims, b.reasons.few_prims) << what;
+  EXPECT_EQ(a.reasons.max_depth, b.reasons.max_depth) << what;
+  EXPECT_EQ(a.reasons.no_gain, b.reasons.no_gain) << what;
+  EXPECT_EQ(a.reasons.inseparable, b.reasons.inseparable) << what;
+  EXPECT_EQ(a.reasons.tiny_box, b.reasons.tiny_box) << what;
+}
+
+/// triangle_overlaps_box() as first written (generic index loops), for the reference build:
+/// the written-out version must answer the same.
+bool generic_overlaps_box(const Vec3& a, const Vec3& b, const Vec3& c, const Aabb& box) {
+  const DVec3 centre = 0.5 * (DVec3(box.min) + DVec3(box.max));
+  const DVec3 v0 = DVec3(a) - centre, v1 = DVec3(b) - centre, v2 = DVec3(c) - centre;
+  const DVec3 reach = glm::max(glm::abs(v0), glm::max(glm::abs(v1), glm::abs(v2)));
+  const double far = std::max(reach.x, std::max(reach.y, reach.z));
+  const DVec3 h = 0.5 * (DVec3(box.max) - DVec3(box.min)) * (1.0 + 0x1p-20) + DVec3(far * 0x1p-40);
+  for (int axis = 0; axis < 3; ++axis) {
+    const double lo = std::min(v0[axis], std::min(v1[axis], v2[axis]));
+    const double hi = std::max(v0[axis], std::max(v1[axis], v2[axis]));
+    if (lo > h[axis] || hi < -h[axis]) return false;
+  }
+  const DVec3 edges[3] = {v1 - v0, v2 - v1, v0 - v2};
+  const DVec3* verts[3] = {&v0, &v1, &v2};
+  for (const DVec3& f : edges) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+      double lo = INFINITY, hi = -INFINITY;
+      for (const DVec3* v : verts) {
+        const double p = -f[j] * (*v)[i] + f[i] * (*v)[j];
+        lo = std::min(lo, p);
+        hi = std::max(hi, p);
+      }
+      const double r = h[i] * std::abs(f[j]) + h[j] * std::abs(f[i]);
+      if (lo > r || hi < -r) return false;
+    }
+  }
+  const DVec3 n = glm::cross(v1 - v0, v2 - v0);
+  const double d = glm::dot(n, v0);
+  const double r = h.x * std::abs(n.x) + h.y * std::abs(n.y) + h.z * std::abs(n.z);
+  return std::abs(d) <= r;
+}
+
+/// The build as it was before it went parallel (one recursion, the generic overlap test for
+/// every candidate child): the oracle for the parallel builder's numbering and for child_mask()'s
+/// shortcuts. Limits and progress left out.
+class ReferenceOctreeBuilder {
+ public:
+  ReferenceOctreeBuilder(const Scene& scene, const OctreeBuildOptions& options) : scene_(scene), options_(options) {}
+  OctreeData run() {
+    Aabb bounds;
+    for (uint32_t prim : scene_.valid_prims()) bounds.extend(scene_.triangle_bounds(prim));
+    data_.root_box = octree_root_box(bounds);
+    add(kNoNode, 0);
+    node(0, data_.root_box, 0, scene_.valid_prims());
+    return std::move(data_);
+  }
+
+ private:
+  void add(uint32_t parent, int depth) {
+    data_.nodes.push_back({});
+    data_.parents.push_back(parent);
+    data_.depths.push_back(uint8_t(depth));
+  }
+  void leaf(uint32_t id, const std::vector<uint32_t>& prims, size_t* reason) {
+    data_.nodes[id] = OctreeNode{uint32_t(data_.prim_ids.size()), uint32_t(prims.size())};
+    data_.prim_ids.insert(data_.prim_ids.end(), prims.begin(), prims.end());
+    ++*reason;
+  }
+  void node(uint32_t id, const Aabb& box, int depth, const std::vector<uint32_t>& prims) {
+    OctreeLeafReasons& why = data_.reasons;
+    if (prims.size() <= size_t(options_.max_prims)) return leaf(id, prims, &why.few_prims);
+    if (depth >= options_.max_depth) return leaf(id, prims, &why.max_depth);
+    const Vec3 mid = 0.5f * box.min + 0.5f * box.max;
+    for (int axis = 0; axis < 3; ++axis)
+      if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis]) return leaf(id, prims, &why.tiny_box);
+    std::array<std::vector<uint32_t>, 8> children;
+    for (uint32_t prim : prims) {
+      const Aabb& tb = scene_.triangle_bounds(prim);
+      for (unsigned octant = 0; octant < 8; ++octant) {
+        bool reaches = true;
+        for (int axis = 0; axis < 3; ++axis)
+          reaches &= (octant >> axis) & 1u ? tb.max[axis] >= mid[axis] : tb.min[axis] <= mid[axis];
+        if (reaches && options_.insert == OctreeInsert::Exact)
+          reaches = generic_overlaps_box(scene_.vertex(prim, 0), scene_.vertex(prim, 1), scene_.vertex(prim, 2),
+                                         octree_child_box(box, octant));
+        if (reaches) children[octant].push_back(prim);
+      }
+    }
+    const size_t n = prims.size();
+    size_t refs = 0;
+    for (const auto& child : children) refs += child.size();
+    if (refs >= 4 * n) return leaf(id, prims, &why.no_gain);
+    const uint32_t first = uint32_t(data_.nodes.size());
+    for (int k = 0; k < 8; ++k) add(id, depth + 1);
+    data_.nodes[id] = OctreeNode{first, OctreeNode::kInner};
+    const bool poor = refs >= 2 * n;
+    Aabb bounds;
+    for (uint32_t prim : prims) bounds.extend(scene_.triangle_bounds(prim));
+    for (unsigned octant = 0; octant < 8; ++octant) {
+      const Aabb child_box = octree_child_box(box, octant);
+      if (children[octant].size() == n && (poor || bounds.contains(child_box)))
+        leaf(first + octant, children[octant], &why.inseparable);
+      else
+        node(first + octant, child_box, depth + 1, children[octant]);
+    }
+  }
+
+  const Scene& scene_;
+  const OctreeBuildOptions& options_;
+  OctreeData data_;
+};
+
+/// Every build option, on scenes big enough for parallel children and parallel child masks
+/// (the stadium's root holds 20k+ triangles).
+std::vector<std::pair<std::string, OctreeBuildOptions>> parallel_cases() {
+  std::vector<std::pair<std::string, OctreeBuildOptions>> cases;
+  const auto add = [&](const std::string& name, const std::function<void(OctreeBuildOptions&)>& set) {
+    OctreeBuildOptions o;
+    set(o);
+    cases.emplace_back(name, o);
+  };
+  add("defaults (exact, 8, 16)", [](OctreeBuildOptions&) {});
+  add("insert=bbox", [](OctreeBuildOptions& o) { o.insert = OctreeInsert::Bbox; });
+  add("max_prims=1 max_depth=24", [](OctreeBuildOptions& o) { o.max_prims = 1, o.max_depth = 24; });
+  add("max_prims=1 insert=bbox", [](OctreeBuildOptions& o) { o.max_prims = 1, o.insert = OctreeInsert::Bbox; });
+  add("max_prims=64 max_depth=5", [](OctreeBuildOptions& o) { o.max_prims = 64, o.max_depth = 5; });
+  add("max_depth=1", [](OctreeBuildOptions& o) { o.max_depth = 1; });
+  return cases;
+}
+
+TEST(OctreeParallel, OneAndFourThreadsBuildTheSameTree) {
+  for (const char* name : {"stadium", "soup", "sphere"}) {
+    const Scene scene = make_procedural_scene(name).value();
+    for (const auto& [label, options] : parallel_cases()) {
+      const std::string what = std::string(name) + " " + label;
+      auto one = build_on_threads(scene, options, 1), four = build_on_threads(scene, options, 4);
+      ASSERT_TRUE(one && four) << what;
+      expect_identical(one.value(), four.value(), what);
+    }
+  }
+}
+
+TEST(OctreeParallel, TheTreeIsTheSerialBuildersTree) {
+  // The parallel builder's numbering, child_mask()'s vertex shortcuts and the written-out
+  // overlap test against the plain recursion with the generic test.
+  for (const char* name : {"stadium", "soup", "cornell"}) {
+    const Scene scene = make_procedural_scene(name).value();
+    for (const auto& [label, options] : parallel_cases()) {
+      const std::string what = std::string(name) + " " + label;
+      auto built = build_octree(scene, options);
+      ASSERT_TRUE(built) << what;
+      expect_identical(built.value(), ReferenceOctreeBuilder(scene, options).run(), what);
+    }
+  }
+  const std::string bunny = testing::shared_scene_path("bunny.obj");
+  if (auto scene = load_obj(bunny)) {
+    OctreeBuildOptions options;
+    expect_identical(build_octree(scene.value(), options).value(), ReferenceOctreeBuilder(scene.value(), options).run(),
+                     "bunny");
+  }
+}
+
+TEST(OctreeParallel, LimitErrorsDoNotDependOnTheThreadCount) {
+  const Scene scene = make_procedural_scene("stadium").value();
+  OctreeBuildOptions options;
+  options.max_prims = 1;
+  options.max_depth = 40;
+  for (const auto& [nodes, refs] : {std::pair<size_t, size_t>{3000, size_t(1) << 27}, {size_t(1) << 25, 30000},
+                                    {3000, 30000}}) {
+    options.node_limit = nodes;
+    options.reference_limit = refs;
+    auto one = build_on_threads(scene, options, 1), four = build_on_threads(scene, options, 4);
+    ASSERT_FALSE(one);
+    ASSERT_FALSE(four);
+    EXPECT_EQ(one.error().message, four.error().message);
+  }
 }
 
 }  // namespace

@@ -4,6 +4,10 @@
 // mailboxing; then parameter validation and statistics.
 #include <gtest/gtest.h>
 
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+
 #include "oracle.h"
 #include "random.h"
 #include "ray_gen.h"
@@ -531,6 +535,114 @@ TEST(GridTriangleBox, OverlapTestIsExactUpToThePad) {
   // Diagonal edge passing the corner (1,1) outside: only an edge-cross-axis separates.
   EXPECT_FALSE(triangle_box_overlap(lo, hi, {2.1f, 0, 0.5f}, {0, 2.1f, 0.5f}, {3, 3, 0.5f}, 0.0));
   EXPECT_TRUE(triangle_box_overlap(lo, hi, {1.9f, 0, 0.5f}, {0, 1.9f, 0.5f}, {3, 3, 0.5f}, 0.0));
+}
+
+
+// ---------------------------------------------------------------------------------------
+// Parallel build and the streamlined overlap test.
+
+/// The overlap test as first written: every axis through one generic projection, zero
+/// terms included. triangle_box_overlap() drops the zero terms; it must answer the same.
+bool generic_overlap(const DVec3& box_min, const DVec3& box_max, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                     double pad) {
+  const auto separated = [](const DVec3& axis, const DVec3 v[3], const DVec3& h) {
+    const double q0 = glm::dot(axis, v[0]), q1 = glm::dot(axis, v[1]), q2 = glm::dot(axis, v[2]);
+    const double r = h.x * std::abs(axis.x) + h.y * std::abs(axis.y) + h.z * std::abs(axis.z);
+    return std::min({q0, q1, q2}) > r || std::max({q0, q1, q2}) < -r;
+  };
+  const DVec3 c = 0.5 * (box_min + box_max);
+  const DVec3 h = 0.5 * (box_max - box_min) + DVec3(pad);
+  const DVec3 v[3] = {DVec3(p0) - c, DVec3(p1) - c, DVec3(p2) - c};
+  const DVec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  for (int a = 0; a < 3; ++a) {
+    DVec3 axis(0.0);
+    axis[a] = 1.0;
+    if (separated(axis, v, h)) return false;
+  }
+  if (separated(glm::cross(e[0], e[1]), v, h)) return false;
+  for (int a = 0; a < 3; ++a) {
+    DVec3 unit(0.0);
+    unit[a] = 1.0;
+    for (const DVec3& edge : e)
+      if (separated(glm::cross(unit, edge), v, h)) return false;
+  }
+  return true;
+}
+
+TEST(GridTriangleBox, StreamlinedTestAnswersAsTheGenericOne) {
+  // Random triangles around a box, many of them near-touching it: vertices snapped to its
+  // faces and edges, at several scales and pads, so the rounding-sensitive cases occur.
+  Rng rng(2024);
+  size_t overlaps = 0, total = 0;
+  for (int round = 0; round < 200000; ++round) {
+    const float scale = std::ldexp(1.0f, int(rng.next_u64() % 24) - 12);
+    const DVec3 lo = DVec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)) * double(scale);
+    const DVec3 hi = lo + DVec3(rng.uniform(0.01f, 1), rng.uniform(0.01f, 1), rng.uniform(0.01f, 1)) * double(scale);
+    Vec3 p[3];
+    for (Vec3& q : p) {
+      for (int a = 0; a < 3; ++a) {
+        const float t = rng.uniform(-2.0f, 3.0f);
+        const uint64_t snap = rng.next_u64() % 6;  // a sixth each on the low and the high face, else free
+        q[a] = snap == 0 ? float(lo[a]) : snap == 1 ? float(hi[a]) : float(lo[a] + t * (hi[a] - lo[a]));
+      }
+    }
+    const double pad = (rng.next_u64() & 1) ? 0.0 : std::ldexp(double(scale), -28);
+    const bool fast = triangle_box_overlap(lo, hi, p[0], p[1], p[2], pad);
+    ASSERT_EQ(fast, generic_overlap(lo, hi, p[0], p[1], p[2], pad)) << "round " << round;
+    overlaps += fast;
+    ++total;
+  }
+  // Both answers occur often (the comparison is not vacuous).
+  EXPECT_GT(overlaps, total / 10);
+  EXPECT_LT(overlaps, total - total / 10);
+}
+
+/// build_grid() on `threads` TBB threads.
+Result<GridData> build_on_threads(const Scene& scene, const GridConfig& config, int threads) {
+  tbb::task_arena arena(threads);
+  return arena.execute([&] { return build_grid(scene, config); });
+}
+
+TEST(GridParallel, OneAndFourThreadsBuildTheSameGrid) {
+  // Every option that changes the build: the rule, lambda, an explicit res, the insertion.
+  // The stadium (20k+ triangles: several parallel batches) and the soup.
+  std::vector<std::pair<std::string, GridConfig>> cases;
+  for (GridInsertion insertion : {GridInsertion::Exact, GridInsertion::Bbox}) {
+    const std::string ins = insertion == GridInsertion::Exact ? " exact" : " bbox";
+    GridConfig c;
+    c.insertion = insertion;
+    cases.emplace_back("cbrt lambda 2" + ins, c);
+    c.lambda = 5.0;
+    cases.emplace_back("cbrt lambda 5" + ins, c);
+    c.rule = GridResolutionRule::AvgSize;
+    c.lambda = 0.5;
+    cases.emplace_back("avgsize lambda 0.5" + ins, c);
+    c.explicit_res = true;
+    c.res = {40, 7, 90};
+    cases.emplace_back("res 40,7,90" + ins, c);
+  }
+  for (const char* name : {"stadium", "soup"}) {
+    const Scene scene = make_procedural_scene(name).value();
+    for (const auto& [label, config] : cases) {
+      // avgsize on the stadium asks for the whole 2^26-cell budget: seconds per build.
+      const bool avgsize = config.rule == GridResolutionRule::AvgSize && !config.explicit_res;
+      if (std::string(name) == "stadium" && avgsize) continue;
+      const std::string what = std::string(name) + " " + label;
+      auto one = build_on_threads(scene, config, 1), four = build_on_threads(scene, config, 4);
+      ASSERT_TRUE(one && four) << what;
+      const GridData &a = one.value(), &b = four.value();
+      EXPECT_EQ(a.res, b.res) << what;
+      EXPECT_EQ(a.cell_size, b.cell_size) << what;
+      EXPECT_EQ(a.pad, b.pad) << what;
+      EXPECT_EQ(a.clamped_to_budget, b.clamped_to_budget) << what;
+      EXPECT_EQ(a.cell_start, b.cell_start) << what;
+      EXPECT_EQ(a.prim_ids, b.prim_ids) << what;
+      // Each cell lists its triangles in ascending order, as the serial fill did.
+      for (size_t c = 0; c < a.cell_count(); ++c)
+        ASSERT_TRUE(std::is_sorted(a.prim_ids.begin() + a.cell_start[c], a.prim_ids.begin() + a.cell_start[c + 1]))
+            << what << ": cell " << c;
+    }
+  }
 }
 
 }  // namespace

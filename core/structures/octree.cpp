@@ -1,8 +1,14 @@
 #include "structures/octree.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <array>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <utility>
 
 namespace accel {
@@ -27,17 +33,49 @@ Aabb octree_root_box(const Aabb& bounds) {
   return box;
 }
 
+namespace {
+
+/// The start every overlap test below shares: the triangle relative to the box centre and
+/// the box's enlarged half size (see triangle_overlaps_box()). One function, so the partial
+/// test of OctreeBuilder::child_mask() computes the very same doubles as the full one.
+struct CentredTriangle {
+  DVec3 v0, v1, v2;  // vertices minus the box centre
+  DVec3 h;           // enlarged half size
+};
+
+ACCEL_FORCE_INLINE CentredTriangle centre_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Aabb& box) {
+  const DVec3 centre = 0.5 * (DVec3(box.min) + DVec3(box.max));
+  CentredTriangle t;
+  t.v0 = DVec3(a) - centre;
+  t.v1 = DVec3(b) - centre;
+  t.v2 = DVec3(c) - centre;
+  const DVec3 reach = glm::max(glm::abs(t.v0), glm::max(glm::abs(t.v1), glm::abs(t.v2)));
+  const double far = std::max(reach.x, std::max(reach.y, reach.z));
+  // Enlarged half size: double rounding of the products below is ~2^-52 of |v| and |h|, far
+  // below these margins, so a triangle touching the closed box is always kept.
+  t.h = 0.5 * (DVec3(box.max) - DVec3(box.min)) * (1.0 + 0x1p-20) + DVec3(far * 0x1p-40);
+  return t;
+}
+
+/// The triangle's plane against the box: the box's projected radius onto the normal. Only
+/// v0 is projected, so unlike the other 12 axes this one can reject a thin sliver whose
+/// other vertex lies in the box (the normal's rounding tilts the plane): child_mask() runs
+/// it where a vertex other than the first proves the rest.
+ACCEL_FORCE_INLINE bool plane_overlaps(const CentredTriangle& t) {
+  const DVec3 n = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+  const double d = glm::dot(n, t.v0);
+  const double r = t.h.x * std::abs(n.x) + t.h.y * std::abs(n.y) + t.h.z * std::abs(n.z);
+  return std::abs(d) <= r;
+}
+
+}  // namespace
+
 bool triangle_overlaps_box(const Vec3& a, const Vec3& b, const Vec3& c, const Aabb& box) {
   // Akenine-Moller 2001: the triangle and the box are disjoint iff one of 13 axes separates
   // them: the 3 box normals, the triangle normal and the 9 cross products of box normals
   // and triangle edges. Everything relative to the box centre, in double.
-  const DVec3 centre = 0.5 * (DVec3(box.min) + DVec3(box.max));
-  const DVec3 v0 = DVec3(a) - centre, v1 = DVec3(b) - centre, v2 = DVec3(c) - centre;
-  const DVec3 reach = glm::max(glm::abs(v0), glm::max(glm::abs(v1), glm::abs(v2)));
-  const double far = std::max(reach.x, std::max(reach.y, reach.z));
-  // Enlarged half size: double rounding of the products below is ~2^-52 of |v| and |h|, far
-  // below these margins, so a triangle touching the closed box is always kept.
-  const DVec3 h = 0.5 * (DVec3(box.max) - DVec3(box.min)) * (1.0 + 0x1p-20) + DVec3(far * 0x1p-40);
+  const CentredTriangle t = centre_triangle(a, b, c, box);
+  const DVec3 &v0 = t.v0, &v1 = t.v1, &v2 = t.v2, &h = t.h;
 
   // 1. Box normals: the triangle's bounding box against the box.
   for (int axis = 0; axis < 3; ++axis) {
@@ -45,146 +83,292 @@ bool triangle_overlaps_box(const Vec3& a, const Vec3& b, const Vec3& c, const Aa
     const double hi = std::max(v0[axis], std::max(v1[axis], v2[axis]));
     if (lo > h[axis] || hi < -h[axis]) return false;
   }
-  // 2. The 9 axes e_axis x edge. For axis x and edge f the axis is (0, -f.z, f.y); the
+  // 2. The 9 axes e_axis x edge f: (0, -f.z, f.y), (f.z, 0, -f.x), (-f.y, f.x, 0). The
   // projections of the three vertices take two distinct values, the box's radius is
-  // h.y*|f.z| + h.z*|f.y|.
-  const DVec3 edges[3] = {v1 - v0, v2 - v1, v0 - v2};
-  const DVec3* verts[3] = {&v0, &v1, &v2};
-  for (const DVec3& f : edges) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const int i = (axis + 1) % 3, j = (axis + 2) % 3;
-      // axis vector: component i = -f[j], component j = f[i]
-      double lo = INFINITY, hi = -INFINITY;
-      for (const DVec3* v : verts) {
-        const double p = -f[j] * (*v)[i] + f[i] * (*v)[j];
-        lo = std::min(lo, p);
-        hi = std::max(hi, p);
-      }
-      const double r = h[i] * std::abs(f[j]) + h[j] * std::abs(f[i]);
-      if (lo > r || hi < -r) return false;
-    }
+  // h.y*|f.z| + h.z*|f.y| (for e_x). Written out per axis (the compiler kept the generic
+  // index loop), the same products in the same order.
+  const auto apart = [](double p0, double p1, double p2, double r) {
+    return std::min(p0, std::min(p1, p2)) > r || std::max(p0, std::max(p1, p2)) < -r;
+  };
+  for (const DVec3& f : {v1 - v0, v2 - v1, v0 - v2}) {
+    if (apart(-f.z * v0.y + f.y * v0.z, -f.z * v1.y + f.y * v1.z, -f.z * v2.y + f.y * v2.z,
+              h.y * std::abs(f.z) + h.z * std::abs(f.y)))
+      return false;
+    if (apart(-f.x * v0.z + f.z * v0.x, -f.x * v1.z + f.z * v1.x, -f.x * v2.z + f.z * v2.x,
+              h.z * std::abs(f.x) + h.x * std::abs(f.z)))
+      return false;
+    if (apart(-f.y * v0.x + f.x * v0.y, -f.y * v1.x + f.x * v1.y, -f.y * v2.x + f.x * v2.y,
+              h.x * std::abs(f.y) + h.y * std::abs(f.x)))
+      return false;
   }
-  // 3. The triangle's plane against the box: the box's projected radius onto the normal.
-  const DVec3 n = glm::cross(v1 - v0, v2 - v0);
-  const double d = glm::dot(n, v0);
-  const double r = h.x * std::abs(n.x) + h.y * std::abs(n.y) + h.z * std::abs(n.z);
-  return std::abs(d) <= r;
+  // 3. The triangle's plane against the box.
+  return plane_overlaps(t);
 }
 
 // [SECTION] Builder
 
 namespace {
 
+/// Octants (bits of a mask) of the children of a node split at `mid` that the closed box
+/// [lo, hi] reaches: per axis the lower half when lo <= mid, the upper when hi >= mid.
+/// Closed intervals: a box touching the split plane reaches both sides.
+ACCEL_FORCE_INLINE unsigned octants_reached(const Vec3& lo, const Vec3& hi, const Vec3& mid) {
+  // Octants with bit `axis` clear (lower half) and set (upper half), per axis.
+  static constexpr unsigned kLower[3] = {0x55u, 0x33u, 0x0Fu}, kUpper[3] = {0xAAu, 0xCCu, 0xF0u};
+  unsigned mask = 0xFFu;
+  for (int axis = 0; axis < 3; ++axis)
+    mask &= (lo[axis] <= mid[axis] ? kLower[axis] : 0u) | (hi[axis] >= mid[axis] ? kUpper[axis] : 0u);
+  return mask;
+}
+
+/// The part of the tree one task builds: the nodes below its root (the root itself lives
+/// in the part of the task that split its parent), their leaves' triangles, viewer data.
+/// Node and triangle offsets are local; splice() moves them to where the serial build
+/// would have put them.
+struct OctreePart {
+  /// Parent entry of the children of the part's root, replaced by the root's id on splice.
+  static constexpr uint32_t kPartRoot = 0xFFFFFFFEu;
+  std::vector<OctreeNode> nodes;
+  std::vector<uint32_t> prim_ids;
+  std::vector<uint32_t> parents;
+  std::vector<uint8_t> depths;
+  OctreeLeafReasons reasons;
+};
+
+/// What child_mask() reads of a triangle, in one cache line: the scene keeps bounds,
+/// indices and positions in three arrays, three misses per triangle and level.
+struct alignas(64) OctreePrim {
+  Aabb bounds;
+  Vec3 v[3];
+};
+
+/// Reusable lists of the children's triangles, one per depth: a node's lists live while its
+/// children (one level deeper) are built. One per task, never shared between threads.
+struct OctreeScratch {
+  std::vector<uint32_t> refs[kOctreeMaxDepth + 1];
+  std::vector<uint8_t> masks[kOctreeMaxDepth + 1];
+};
+
 /// Top-down octree builder (lecture: "start with the bbox of the whole scene, subdivide a
 /// cell into 8 equal sub-cells; stopping criterion: the number of objects, and maximal
 /// depth"), plus the stops of build_octree()'s contract that keep extreme settings bounded.
+///
+/// Parallel (TBB): the children of a node with many triangles are built as 8 tasks, each
+/// into its own OctreePart, spliced in octant order afterwards. The serial build allocates
+/// a node's block of 8 children, then each child's subtree in turn, appending leaves'
+/// triangles as it goes, so child k's subtree is one contiguous run of nodes and of
+/// triangle ids after child k-1's: splicing the parts in order, with their offsets moved,
+/// reproduces the serial numbering exactly, whatever the thread count.
 class OctreeBuilder {
  public:
-  OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control)
-      : scene_(scene), options_(options), control_(control), progress_(control, 0.0, 1.0) {}
+  OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control, bool parallel)
+      : scene_(scene), options_(options), control_(control), parallel_(parallel), progress_(control, 0.0, 1.0),
+        owner_(std::this_thread::get_id()) {}
+
+  /// The failure a build stopped with (checked in this order of priority by build_octree()).
+  enum class Failure : int { None, Cancelled, Nodes, References };
 
   Result<OctreeData> run() {
+    OctreeData data;
     Aabb bounds;
     for (uint32_t prim : scene_.valid_prims()) bounds.extend(scene_.triangle_bounds(prim));
-    data_.root_box = octree_root_box(bounds);
-    add_node(kNoNode, 0);
-    if (!build_node(0, data_.root_box, 0, scene_.valid_prims(), 1.0)) return error_;
-    return std::move(data_);
+    prims_.resize(scene_.triangle_count());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, scene_.valid_prims().size(), 4096),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        for (size_t k = r.begin(); k < r.end(); ++k) {
+                          const uint32_t prim = scene_.valid_prims()[k];
+                          prims_[prim] = {scene_.triangle_bounds(prim),
+                                          {scene_.vertex(prim, 0), scene_.vertex(prim, 1), scene_.vertex(prim, 2)}};
+                        }
+                      });
+    data.root_box = octree_root_box(bounds);
+    OctreePart main;  // the whole tree: its root is node 0, not outside
+    add_node(main, kNoNode, 0);
+    nodes_total_ = 1;
+    OctreeScratch scratch;
+    const std::vector<uint32_t>& all = scene_.valid_prims();
+    OctreeNode root;
+    if (!build_node(main, 0, data.root_box, 0, all.data(), all.size(), 1.0, scratch, &root)) return error();
+    main.nodes[0] = root;
+    ACCEL_CHECK(main.nodes.size() % 8u == 1u);  // blocks of 8 after the root: octant = (id - 1) % 8
+    data.nodes = std::move(main.nodes);
+    data.prim_ids = std::move(main.prim_ids);
+    data.parents = std::move(main.parents);
+    data.depths = std::move(main.depths);
+    data.reasons = main.reasons;
+    return data;
   }
+
+  Failure failure() const { return Failure(failure_.load(std::memory_order_relaxed)); }
 
  private:
-  /// Appends a node (a leaf until made inner) and its viewer data.
-  void add_node(uint32_t parent, int depth) {
-    data_.nodes.push_back(OctreeNode{});
-    data_.parents.push_back(parent);
-    data_.depths.push_back(uint8_t(depth));
+  // Below this many triangles a node's children are built in its own task: their subtrees
+  // are too small to pay for a task and a part of their own.
+  static constexpr size_t kParallelChildren = 2048;
+  // From this many triangles a node's child masks are computed in parallel.
+  static constexpr size_t kParallelMasks = 16384;
+
+  Error error() const {
+    switch (failure()) {
+      case Failure::Nodes: return limit_error("nodes", options_.node_limit);
+      case Failure::References: return limit_error("triangle references", options_.reference_limit);
+      default: return cancelled_error();
+    }
   }
 
-  bool fail(const std::string& what, size_t limit) {
-    error_ = make_error("octree parameter 'max_depth' = " + std::to_string(options_.max_depth) +
-                        " (with max_prims = " + std::to_string(options_.max_prims) + "): would create more than " +
-                        std::to_string(limit) + " " + what + " (the build's memory limit); lower max_depth or raise max_prims");
+  Error limit_error(const std::string& what, size_t limit) const {
+    return make_error("octree parameter 'max_depth' = " + std::to_string(options_.max_depth) +
+                      " (with max_prims = " + std::to_string(options_.max_prims) + "): would create more than " +
+                      std::to_string(limit) + " " + what + " (the build's memory limit); lower max_depth or raise max_prims");
+  }
+
+  /// Records the first failure (any thread); every task stops at its next check.
+  bool fail(Failure why) {
+    int none = int(Failure::None);
+    failure_.compare_exchange_strong(none, int(why), std::memory_order_relaxed);
     return false;
   }
 
-  /// Makes node `id` a leaf holding `prims`; `share` of the build is then done.
-  bool make_leaf(uint32_t id, const std::vector<uint32_t>& prims, size_t* reason, double share) {
-    if (build_cancelled(control_)) {  // a stuck child is made a leaf without build_node()'s check
-      error_ = cancelled_error();
-      return false;
-    }
-    if (data_.prim_ids.size() + prims.size() > options_.reference_limit)
-      return fail("triangle references", options_.reference_limit);
-    data_.nodes[id] = OctreeNode{uint32_t(data_.prim_ids.size()), uint32_t(prims.size())};
-    data_.prim_ids.insert(data_.prim_ids.end(), prims.begin(), prims.end());
+  /// True when the build must stop: cancelled, or another task failed.
+  bool stopping() {
+    if (failure_.load(std::memory_order_relaxed) != int(Failure::None)) return true;
+    if (build_cancelled(control_)) return !fail(Failure::Cancelled);
+    return false;
+  }
+
+  /// Appends a node (a leaf until made inner) and its viewer data.
+  static void add_node(OctreePart& part, uint32_t parent, int depth) {
+    part.nodes.push_back(OctreeNode{});
+    part.parents.push_back(parent);
+    part.depths.push_back(uint8_t(depth));
+  }
+
+  /// Moves `child` (built by a task for the node `root_id` of `part`, whose value the task
+  /// returned as `root`) to the end of `part`; returns the root's value in `part`'s numbering.
+  static OctreeNode splice(OctreePart& part, uint32_t root_id, OctreePart&& child, OctreeNode root) {
+    const uint32_t node_base = uint32_t(part.nodes.size()), prim_base = uint32_t(part.prim_ids.size());
+    const auto relocate = [&](OctreeNode n) {
+      n.first += n.leaf() ? prim_base : node_base;
+      return n;
+    };
+    part.nodes.reserve(part.nodes.size() + child.nodes.size());
+    for (const OctreeNode& n : child.nodes) part.nodes.push_back(relocate(n));
+    part.parents.reserve(part.parents.size() + child.parents.size());
+    for (uint32_t p : child.parents) part.parents.push_back(p == OctreePart::kPartRoot ? root_id : p + node_base);
+    part.depths.insert(part.depths.end(), child.depths.begin(), child.depths.end());
+    part.prim_ids.insert(part.prim_ids.end(), child.prim_ids.begin(), child.prim_ids.end());
+    OctreeLeafReasons& r = part.reasons;
+    const OctreeLeafReasons& c = child.reasons;
+    r.few_prims += c.few_prims;
+    r.max_depth += c.max_depth;
+    r.no_gain += c.no_gain;
+    r.inseparable += c.inseparable;
+    r.tiny_box += c.tiny_box;
+    return relocate(root);
+  }
+
+  /// Makes a leaf holding `prims` (its value to *out); `share` of the build is then done.
+  bool make_leaf(OctreePart& part, const uint32_t* prims, size_t count, size_t* reason, double share,
+                 OctreeNode* out) {
+    if (stopping()) return false;  // a stuck child is made a leaf without build_node()'s check
+    // The limit over all tasks: an over-limit reservation fails the build without allocating.
+    if (refs_total_.fetch_add(count, std::memory_order_relaxed) + count > options_.reference_limit)
+      return fail(Failure::References);
+    *out = OctreeNode{uint32_t(part.prim_ids.size()), uint32_t(count)};
+    part.prim_ids.insert(part.prim_ids.end(), prims, prims + count);
     ++*reason;
-    done_ += share;
-    progress_.advance(done_);
+    // Progress in fixed point, so any thread may add its leaves and the sum never passes 1;
+    // only the thread that started the build reports (ProgressSpan is single-threaded).
+    const uint64_t done = done_.fetch_add(uint64_t(share * kShareUnit), std::memory_order_relaxed) +
+                          uint64_t(share * kShareUnit);
+    if (std::this_thread::get_id() == owner_) progress_.advance(double(done) / kShareUnit);
     return true;
   }
 
   /// Octants (bits of a mask) of the children of `box` the triangle is assigned to.
   unsigned child_mask(uint32_t prim, const Aabb& box, const Vec3& mid) const {
-    // Per axis, the halves the triangle's bounding box reaches (it overlaps the node's box,
-    // or, for exact insertion, its slightly enlarged box: then the flags still say which
-    // side). Closed intervals: a triangle touching the split plane goes to both sides.
-    const Aabb& tb = scene_.triangle_bounds(prim);
-    unsigned mask = 0xFFu;
-    for (int axis = 0; axis < 3; ++axis) {
-      const bool lower = tb.min[axis] <= mid[axis], upper = tb.max[axis] >= mid[axis];
-      unsigned keep = 0;
-      for (unsigned octant = 0; octant < 8; ++octant) {
-        const bool is_upper = (octant >> axis) & 1u;
-        if (is_upper ? upper : lower) keep |= 1u << octant;
-      }
-      mask &= keep;
-    }
+    // The halves the triangle's bounding box reaches (it overlaps the node's box, or, for
+    // exact insertion, its slightly enlarged box: then the flags still say which side).
+    const OctreePrim& record = prims_[prim];
+    const unsigned mask = octants_reached(record.bounds.min, record.bounds.max, mid);
     if (options_.insert == OctreeInsert::Bbox) return mask;
-    unsigned exact = 0;
-    for (unsigned octant = 0; octant < 8; ++octant) {
-      if (((mask >> octant) & 1u) &&
-          triangle_overlaps_box(scene_.vertex(prim, 0), scene_.vertex(prim, 1), scene_.vertex(prim, 2),
-                                octree_child_box(box, octant)))
-        exact |= 1u << octant;
+    const Vec3 &a = record.v[0], &b = record.v[1], &c = record.v[2];
+    // A child holding a vertex (closed boxes) passes 12 of triangle_overlaps_box()'s 13 axes
+    // whatever the rounding: the box axes and the 9 edge axes project all three vertices,
+    // and that vertex lies inside the box's projection with the margins to spare. The plane
+    // test projects only the first vertex: it passes alike where that one is inside, and
+    // must run where only another is (see plane_overlaps()). The other children take the
+    // full test.
+    const auto holding = [&](const Vec3& p) {
+      const bool inside = p.x >= box.min.x && p.x <= box.max.x && p.y >= box.min.y && p.y <= box.max.y &&
+                          p.z >= box.min.z && p.z <= box.max.z;
+      return inside ? octants_reached(p, p, mid) : 0u;
+    };
+    const unsigned certain = holding(a), holds_vertex = certain | holding(b) | holding(c);
+    unsigned exact = certain & mask;
+    for (unsigned rest = mask & ~certain; rest; rest &= rest - 1) {
+      const unsigned octant = unsigned(std::countr_zero(rest));
+      const Aabb child = octree_child_box(box, octant);
+      const bool overlaps = (holds_vertex >> octant) & 1u ? plane_overlaps(centre_triangle(a, b, c, child))
+                                                          : triangle_overlaps_box(a, b, c, child);
+      if (overlaps) exact |= 1u << octant;
     }
     return exact;
   }
 
-  /// Fills node `id` (box `box`, at `depth`, `share` of the progress) with `prims`: a leaf,
-  /// or an inner node whose 8 children are built recursively (depth <= 40, so recursion is
-  /// shallow).
-  bool build_node(uint32_t id, const Aabb& box, int depth, const std::vector<uint32_t>& prims, double share) {
-    if (build_cancelled(control_)) {
-      error_ = cancelled_error();
-      return false;
-    }
-    OctreeLeafReasons& why = data_.reasons;
-    if (prims.size() <= size_t(options_.max_prims)) return make_leaf(id, prims, &why.few_prims, share);
-    if (depth >= options_.max_depth) return make_leaf(id, prims, &why.max_depth, share);
+  /// Fills the node `self` of `part` (OctreePart::kPartRoot: the part's root; box `box`, at
+  /// `depth`, `share` of the progress) with the `count` triangles at `prims`: a leaf, or an
+  /// inner node whose 8 children are built recursively (depth <= 40, so recursion is
+  /// shallow). Its value goes to *out.
+  bool build_node(OctreePart& part, uint32_t self, const Aabb& box, int depth, const uint32_t* prims, size_t n,
+                  double share, OctreeScratch& scratch, OctreeNode* out) {
+    if (stopping()) return false;
+    OctreeLeafReasons& why = part.reasons;
+    if (n <= size_t(options_.max_prims)) return make_leaf(part, prims, n, &why.few_prims, share, out);
+    if (depth >= options_.max_depth) return make_leaf(part, prims, n, &why.max_depth, share, out);
     const Vec3 mid = 0.5f * box.min + 0.5f * box.max;
     for (int axis = 0; axis < 3; ++axis) {
       // At float resolution a half would equal the whole box: splitting cannot separate anything.
-      if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis]) return make_leaf(id, prims, &why.tiny_box, share);
+      if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis])
+        return make_leaf(part, prims, n, &why.tiny_box, share, out);
     }
 
-    std::array<std::vector<uint32_t>, 8> children;
-    for (uint32_t prim : prims) {
-      const unsigned mask = child_mask(prim, box, mid);
-      for (unsigned octant = 0; octant < 8; ++octant)
-        if ((mask >> octant) & 1u) children[octant].push_back(prim);
+    // The children's lists, in the node's order, one after the other in this depth's buffer.
+    std::vector<uint8_t>& masks = scratch.masks[depth];
+    masks.resize(n);
+    if (parallel_ && n >= kParallelMasks) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) masks[k] = uint8_t(child_mask(prims[k], box, mid));
+      });
+    } else {
+      // The records are read in the list's order, scattered over the scene: fetch ahead.
+      constexpr size_t kAhead = 8;
+      for (size_t k = 0; k < n; ++k) {
+        if (k + kAhead < n) __builtin_prefetch(&prims_[prims[k + kAhead]]);
+        masks[k] = uint8_t(child_mask(prims[k], box, mid));
+      }
     }
-    const size_t n = prims.size();
-    size_t refs = 0;
-    for (const auto& child : children) refs += child.size();
+    size_t sizes[8] = {};
+    for (size_t k = 0; k < n; ++k)
+      for (unsigned m = masks[k]; m; m &= m - 1) ++sizes[std::countr_zero(m)];
+    size_t starts[8], refs = 0;
+    for (unsigned octant = 0; octant < 8; ++octant) starts[octant] = refs, refs += sizes[octant];
     // No gain: each child has a quarter of the node's surface area, so a ray through the
     // node passes 2 children on average and would test refs/4 triangles instead of n.
-    if (refs >= 4 * n) return make_leaf(id, prims, &why.no_gain, share);
+    if (refs >= 4 * n) return make_leaf(part, prims, n, &why.no_gain, share, out);
+    std::vector<uint32_t>& lists = scratch.refs[depth];
+    lists.resize(refs);
+    {
+      size_t fill[8];
+      std::copy(starts, starts + 8, fill);
+      for (size_t k = 0; k < n; ++k)
+        for (unsigned m = masks[k]; m; m &= m - 1) lists[fill[std::countr_zero(m)]++] = prims[k];
+    }
 
-    if (data_.nodes.size() + 8 > options_.node_limit) return fail("nodes", options_.node_limit);
-    const uint32_t first = uint32_t(data_.nodes.size());
-    ACCEL_CHECK((first - 1u) % 8u == 0u);  // blocks of 8 after the root: octant = (id - 1) % 8
-    for (int k = 0; k < 8; ++k) add_node(id, depth + 1);
-    data_.nodes[id] = OctreeNode{first, OctreeNode::kInner};
+    if (nodes_total_.fetch_add(8, std::memory_order_relaxed) + 8 > options_.node_limit) return fail(Failure::Nodes);
+    const uint32_t first = uint32_t(part.nodes.size());
+    for (int k = 0; k < 8; ++k) add_node(part, self, depth + 1);
+    *out = OctreeNode{first, OctreeNode::kInner};
     // A child that keeps all n triangles is split again only while that can still separate
     // them: not after a poor split (references at least doubled: the triangles spread over
     // the children, as around a shared vertex or edge), and not when the triangles' bounds
@@ -193,32 +377,59 @@ class OctreeBuilder {
     // refined until the cells are small enough to separate its triangles.
     const bool poor = refs >= 2 * n;
     Aabb bounds;  // of the node's triangles, needed only when a child keeps them all
-    for (const auto& child : children) {
-      if (child.size() == n && !poor) {
-        for (uint32_t prim : prims) bounds.extend(scene_.triangle_bounds(prim));
+    for (unsigned octant = 0; octant < 8; ++octant) {
+      if (sizes[octant] == n && !poor) {
+        for (size_t k = 0; k < n; ++k) bounds.extend(prims_[prims[k]].bounds);
         break;
       }
     }
-    for (unsigned octant = 0; octant < 8; ++octant) {
-      std::vector<uint32_t> child = std::move(children[octant]);
-      const uint32_t child_id = first + octant;
+    // Child `octant` into `into`, whose node `id` it is; its value to *value.
+    const auto build_child = [&](unsigned octant, OctreePart& into, uint32_t id, OctreeScratch& scr,
+                                 OctreeNode* value) {
+      const uint32_t* child = lists.data() + starts[octant];
+      const size_t size = sizes[octant];
       const Aabb child_box = octree_child_box(box, octant);
-      const bool stuck = child.size() == n && (poor || bounds.contains(child_box));
-      const double child_share = share * double(child.size()) / double(refs);
-      const bool ok = stuck ? make_leaf(child_id, child, &why.inseparable, child_share)
-                            : build_node(child_id, child_box, depth + 1, child, child_share);
-      if (!ok) return false;
+      const bool stuck = size == n && (poor || bounds.contains(child_box));
+      const double child_share = share * double(size) / double(refs);
+      return stuck ? make_leaf(into, child, size, &into.reasons.inseparable, child_share, value)
+                   : build_node(into, id, child_box, depth + 1, child, size, child_share, scr, value);
+    };
+    if (!parallel_ || n < kParallelChildren) {
+      for (unsigned octant = 0; octant < 8; ++octant) {
+        OctreeNode value;
+        if (!build_child(octant, part, first + octant, scratch, &value)) return false;
+        part.nodes[first + octant] = value;
+      }
+      return true;
     }
+    std::array<OctreePart, 8> parts;
+    std::array<OctreeNode, 8> values;
+    std::atomic<bool> ok{true};
+    tbb::parallel_for(0u, 8u, [&](unsigned octant) {
+      OctreeScratch own;  // the lists of this depth belong to the waiting parent
+      if (!build_child(octant, parts[octant], OctreePart::kPartRoot, own, &values[octant]))
+        ok.store(false, std::memory_order_relaxed);
+    });
+    if (!ok.load(std::memory_order_relaxed)) return false;
+    for (unsigned octant = 0; octant < 8; ++octant)
+      part.nodes[first + octant] = splice(part, first + octant, std::move(parts[octant]), values[octant]);
     return true;
   }
+
+  // Progress unit: a share of 1 is 2^52 (shares are rounded down, so the sum stays <= 1).
+  static constexpr double kShareUnit = 0x1p52;
 
   const Scene& scene_;
   const OctreeBuildOptions& options_;
   BuildControl* control_;
-  ProgressSpan progress_;
-  double done_ = 0.0;  // share of the build in finished leaves
-  OctreeData data_;
-  Error error_;
+  const bool parallel_;
+  ProgressSpan progress_;  // the owner thread's only
+  const std::thread::id owner_;
+  std::vector<OctreePrim> prims_;        // by triangle id (valid ones only filled)
+  std::atomic<uint64_t> done_{0};        // share of the build in finished leaves, in kShareUnit
+  std::atomic<size_t> nodes_total_{0};   // nodes reserved by all tasks
+  std::atomic<size_t> refs_total_{0};    // triangle references reserved by all tasks
+  std::atomic<int> failure_{int(Failure::None)};
 };
 
 }  // namespace
@@ -226,7 +437,12 @@ class OctreeBuilder {
 Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control) {
   ACCEL_CHECK(options.max_depth >= 0 && options.max_depth <= kOctreeMaxDepth);
   ACCEL_CHECK(options.max_prims >= 1);
-  return OctreeBuilder(scene, options, control).run();
+  OctreeBuilder parallel(scene, options, control, true);
+  auto built = parallel.run();
+  if (built || parallel.failure() == OctreeBuilder::Failure::Cancelled) return built;
+  // Over a limit. Whether the build fails does not depend on the order (the totals only
+  // grow), but which limit is met first does: the serial build names it as it always did.
+  return OctreeBuilder(scene, options, control, false).run();
 }
 
 // [SECTION] Structure

@@ -136,7 +136,11 @@ struct OctreeData {
 /// triangle references each receives (a duplicated triangle counts once per child, so the
 /// shares stay a partition and the sum ends at exactly 1; counting triangles in leaves
 /// instead would pass N with duplicates). Cancel is polled per node; a cancelled build
-/// returns cancelled_error().
+/// returns cancelled_error(). Progress is reported from the calling thread only.
+///
+/// Runs on TBB's threads (the caller's task_arena): the children of a node holding many
+/// triangles are built as parallel tasks and spliced in octant order, so the tree (nodes,
+/// their order, the leaves' triangle lists) is the same for any thread count.
 Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options,
                                 BuildControl* control = nullptr);
 

@@ -1,7 +1,14 @@
 #include "structures/uniform_grid.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <atomic>
 #include <cstdio>
+#include <functional>
 #include <string>
+#include <thread>
 
 namespace accel {
 namespace {
@@ -114,46 +121,111 @@ void prim_cell_range(const GridData& g, const Aabb& b, int lo[3], int hi[3]) {
   }
 }
 
+/// A triangle's cell range, computed once and kept for both insertion passes (the index
+/// needs a division per bound). Cell indices are below kGridMaxRes, so 16 bits hold them.
+struct CellRange {
+  uint16_t lo[3], hi[3];
+  uint64_t cells() const {
+    return uint64_t(hi[0] - lo[0] + 1) * uint64_t(hi[1] - lo[1] + 1) * uint64_t(hi[2] - lo[2] + 1);
+  }
+};
+static_assert(kGridMaxRes <= 65536, "cell indices fit CellRange's 16 bits");
+
+CellRange cell_range(const GridData& g, const Aabb& b) {
+  int lo[3], hi[3];
+  prim_cell_range(g, b, lo, hi);
+  CellRange r;
+  for (int a = 0; a < 3; ++a) r.lo[a] = uint16_t(lo[a]), r.hi[a] = uint16_t(hi[a]);
+  return r;
+}
+
 /// insert=bbox: every cell of the prim's (padded) box range.
 template <class Fn>
-void insert_bbox(const GridData& g, const Scene& scene, uint32_t prim, Fn&& fn) {
-  int lo[3], hi[3];
-  prim_cell_range(g, scene.triangle_bounds(prim), lo, hi);
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) fn(size_t(x) + size_t(g.res[0]) * (size_t(y) + size_t(g.res[1]) * size_t(z)));
+void insert_bbox(const GridData& g, const CellRange& range, Fn&& fn) {
+  for (int z = range.lo[2]; z <= range.hi[2]; ++z)
+    for (int y = range.lo[1]; y <= range.hi[1]; ++y)
+      for (int x = range.lo[0]; x <= range.hi[0]; ++x)
+        fn(size_t(x) + size_t(g.res[0]) * (size_t(y) + size_t(g.res[1]) * size_t(z)));
 }
 
 /// insert=exact: the cells of the box range that the triangle itself overlaps
 /// (Akenine-Moller 2001), tested against the cell grown by the pad so no cell is lost.
-/// `memo` carries the answers for the first 64 candidate cells from the counting pass
-/// (memo_valid = false) to the filling pass (true), which then skips those tests.
+/// `memo` holds one bit per candidate cell of the range (in the loop's order): the counting
+/// pass (memo_valid = false) sets them, the filling pass (true) reads them, no test again.
 template <class Fn>
-void insert_exact(const GridData& g, const Scene& scene, uint32_t prim, uint64_t& memo, bool memo_valid, Fn&& fn) {
-  int lo[3], hi[3];
-  prim_cell_range(g, scene.triangle_bounds(prim), lo, hi);
-  const Vec3 &p0 = scene.vertex(prim, 0), &p1 = scene.vertex(prim, 1), &p2 = scene.vertex(prim, 2);
+void insert_exact(const GridData& g, const Scene& scene, uint32_t prim, const CellRange& range, uint64_t* memo,
+                  bool memo_valid, Fn&& fn) {
+  const int lo[3] = {range.lo[0], range.lo[1], range.lo[2]}, hi[3] = {range.hi[0], range.hi[1], range.hi[2]};
   // A triangle whose box range is a single cell, or a single row of cells, overlaps every
   // cell of it: it is connected and spans the row, and the row's other two extents hold
   // it whole. Only ranges two or three cells wide need the test.
-  const bool single = (lo[0] != hi[0]) + (lo[1] != hi[1]) + (lo[2] != hi[2]) <= 1;
-  if (!memo_valid) memo = 0;
-  int k = 0;
+  if ((lo[0] != hi[0]) + (lo[1] != hi[1]) + (lo[2] != hi[2]) <= 1) return insert_bbox(g, range, fn);
+  const size_t nx = size_t(g.res[0]), ny = size_t(g.res[1]);
+  size_t k = 0;
+  if (memo_valid) {
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x, ++k)
+          if ((memo[k >> 6] >> (k & 63)) & 1u) fn(size_t(x) + nx * (size_t(y) + ny * size_t(z)));
+    return;
+  }
+  const Vec3 &p0 = scene.vertex(prim, 0), &p1 = scene.vertex(prim, 1), &p2 = scene.vertex(prim, 2);
+  // The cells holding a vertex need no test either: the vertex is in the cell (up to the
+  // rounding of the index, ~2^-52 of the coordinates, far inside the pad), and the test
+  // projects all three vertices on every axis, so it always answers true there.
+  int vertex_cell[3][3];
+  const Vec3* verts[3] = {&p0, &p1, &p2};
+  for (int v = 0; v < 3; ++v)
+    for (int a = 0; a < 3; ++a) vertex_cell[v][a] = cell_index(g, a, double((*verts[v])[a]));
+  const auto holds_vertex = [&](int x, int y, int z) {
+    for (const auto& vc : vertex_cell)
+      if (vc[0] == x && vc[1] == y && vc[2] == z) return true;
+    return false;
+  };
+  for (size_t w = 0, words = (range.cells() + 63) / 64; w < words; ++w) memo[w] = 0;
   for (int z = lo[2]; z <= hi[2]; ++z)
     for (int y = lo[1]; y <= hi[1]; ++y)
       for (int x = lo[0]; x <= hi[0]; ++x, ++k) {
-        bool overlap = single;
-        if (!overlap && memo_valid && k < 64) {
-          overlap = (memo >> k) & 1u;
-        } else if (!overlap) {
+        bool overlap = holds_vertex(x, y, z);
+        if (!overlap) {
           const int idx[3] = {x, y, z};
           DVec3 cmin, cmax;
           cell_bounds(g, idx, &cmin, &cmax);
           overlap = triangle_box_overlap(cmin, cmax, p0, p1, p2, g.pad);
-          if (k < 64 && overlap) memo |= uint64_t(1) << k;
         }
-        if (overlap) fn(size_t(x) + size_t(g.res[0]) * (size_t(y) + size_t(g.res[1]) * size_t(z)));
+        if (overlap) {
+          memo[k >> 6] |= uint64_t(1) << (k & 63);
+          fn(size_t(x) + nx * (size_t(y) + ny * size_t(z)));
+        }
       }
+}
+
+/// Runs fn(k) for k in [0, n) in parallel, in batches: a cancel is seen within one batch,
+/// and the check costs nothing next to a batch's insertions. Progress (done / n) goes to
+/// `span` from the calling thread only (ProgressSpan is single-threaded), counted by all.
+/// Returns false when cancelled.
+template <class Fn>
+bool for_each_prim_batch(size_t n, ProgressSpan& span, Fn&& fn) {
+  constexpr size_t kBatch = 4096;
+  const std::thread::id owner = std::this_thread::get_id();
+  std::atomic<size_t> done{0};
+  std::atomic<bool> stop{false};
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, n, kBatch),
+      [&](const tbb::blocked_range<size_t>& r) {
+        if (stop.load(std::memory_order_relaxed)) return;
+        if (span.cancelled()) {
+          stop.store(true, std::memory_order_relaxed);
+          return;
+        }
+        for (size_t k = r.begin(); k < r.end(); ++k) fn(k);
+        const size_t now = done.fetch_add(r.size(), std::memory_order_relaxed) + r.size();
+        if (std::this_thread::get_id() == owner && !stop.load(std::memory_order_relaxed) &&
+            !span.advance(double(now) / double(n)))
+          stop.store(true, std::memory_order_relaxed);
+      },
+      tbb::simple_partitioner());  // batches of at most kBatch, also on one thread
+  return !stop.load(std::memory_order_relaxed) && !span.cancelled();
 }
 
 /// True when the projections of the triangle (vertices v relative to the box centre) and
@@ -176,18 +248,29 @@ bool triangle_box_overlap(const DVec3& box_min, const DVec3& box_max, const Vec3
   const DVec3 c = 0.5 * (box_min + box_max);
   const DVec3 h = 0.5 * (box_max - box_min) + DVec3(pad);
   const DVec3 v[3] = {DVec3(p0) - c, DVec3(p1) - c, DVec3(p2) - c};
+  // 1. Box normals: projections are the coordinates themselves.
+  for (int a = 0; a < 3; ++a)
+    if (std::min({v[0][a], v[1][a], v[2][a]}) > h[a] || std::max({v[0][a], v[1][a], v[2][a]}) < -h[a]) return false;
+  // 2. The triangle's plane.
   const DVec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
-  for (int a = 0; a < 3; ++a) {
-    DVec3 axis(0.0);
-    axis[a] = 1.0;
-    if (separated(axis, v, h)) return false;
-  }
   if (separated(glm::cross(e[0], e[1]), v, h)) return false;
-  for (int a = 0; a < 3; ++a) {
-    DVec3 unit(0.0);
-    unit[a] = 1.0;
-    for (const DVec3& edge : e)
-      if (separated(glm::cross(unit, edge), v, h)) return false;
+  // 3. The 9 axes unit_a x edge, written out: for unit x the axis is (0, -e.z, e.y), and
+  // separated() would compute 0*v.x - e.z*v.y + e.y*v.z and h.x*0 + h.y*|e.z| + h.z*|e.y|;
+  // dropping the zero terms (x + 0 = x exactly) leaves the same doubles, hence the same
+  // answers, with a third of the work.
+  const auto apart = [](double q0, double q1, double q2, double r) {
+    return std::min({q0, q1, q2}) > r || std::max({q0, q1, q2}) < -r;
+  };
+  for (const DVec3& f : e) {
+    if (apart(-f.z * v[0].y + f.y * v[0].z, -f.z * v[1].y + f.y * v[1].z, -f.z * v[2].y + f.y * v[2].z,
+              h.y * std::abs(f.z) + h.z * std::abs(f.y)))
+      return false;
+    if (apart(f.z * v[0].x + -f.x * v[0].z, f.z * v[1].x + -f.x * v[1].z, f.z * v[2].x + -f.x * v[2].z,
+              h.x * std::abs(f.z) + h.z * std::abs(f.x)))
+      return false;
+    if (apart(-f.y * v[0].x + f.x * v[0].y, -f.y * v[1].x + f.x * v[1].y, -f.y * v[2].x + f.x * v[2].y,
+              h.x * std::abs(f.y) + h.y * std::abs(f.x)))
+      return false;
   }
   return true;
 }
@@ -231,14 +314,20 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildC
   // Bound the work and memory before doing it: the box ranges give an upper bound on the
   // references of either insertion (and on the overlap tests of insert=exact). A rule's
   // resolution shrinks until it fits; an explicit res is refused.
+  std::vector<CellRange> ranges;
   for (;;) {
     for (int a = 0; a < 3; ++a) g.cell_size[a] = extent[a] / double(g.res[a]);
-    uint64_t candidates = 0;
-    for (uint32_t prim : valid) {
-      int lo[3], hi[3];
-      prim_cell_range(g, scene.triangle_bounds(prim), lo, hi);
-      candidates += uint64_t(hi[0] - lo[0] + 1) * uint64_t(hi[1] - lo[1] + 1) * uint64_t(hi[2] - lo[2] + 1);
-    }
+    ranges.resize(valid.size());
+    const uint64_t candidates = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, valid.size(), 16384), uint64_t(0),
+        [&](const tbb::blocked_range<size_t>& r, uint64_t sum) {
+          for (size_t k = r.begin(); k < r.end(); ++k) {
+            ranges[k] = cell_range(g, scene.triangle_bounds(valid[k]));
+            sum += ranges[k].cells();
+          }
+          return sum;
+        },
+        std::plus<>());
     if (candidates <= config.max_references) break;
     if (config.explicit_res || g.cell_count() == 1)
       return make_error(driving_param_text(config) + ": would create " + std::to_string(candidates) +
@@ -251,29 +340,32 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildC
   }
 
   // Counting sort into CSR: cell_start[c + 1] counts, then holds the start of c, then
-  // (after the fill) the end of c = the start of c + 1.
+  // (after the fill) the end of c = the start of c + 1. Both passes run over the triangles
+  // in parallel with atomic cell counters: the counts do not depend on the order, and the
+  // fill's order within a cell, which does, is restored by sorting each cell afterwards
+  // (valid_prims() ascends, so ascending ids are exactly the serial fill's order).
   const size_t cells = g.cell_count();
   g.cell_start.assign(cells + 1, 0);
   const bool exact = config.insertion == GridInsertion::Exact;
-  std::vector<uint64_t> memo(exact ? valid.size() : 0);
+  // The exact test's answers, one bit per candidate cell, each triangle's bits in words of
+  // its own (no two tasks write a word).
+  std::vector<size_t> memo_start(exact ? valid.size() + 1 : 0);
+  for (size_t k = 0; exact && k < valid.size(); ++k) memo_start[k + 1] = memo_start[k] + (ranges[k].cells() + 63) / 64;
+  std::vector<uint64_t> memo(exact ? memo_start.back() : 0);
   auto for_each_cell = [&](size_t k, bool second_pass, auto&& fn) {
     if (exact)
-      insert_exact(g, scene, valid[k], memo[k], second_pass, fn);
+      insert_exact(g, scene, valid[k], ranges[k], memo.data() + memo_start[k], second_pass, fn);
     else
-      insert_bbox(g, scene, valid[k], fn);
+      insert_bbox(g, ranges[k], fn);
+  };
+  const auto bump = [&](size_t c) {
+    return std::atomic_ref<uint32_t>(g.cell_start[c + 1]).fetch_add(1, std::memory_order_relaxed);
   };
   report_progress(control, 0.1);
   if (build_cancelled(control)) return cancelled_error();
-  // Both passes in batches: a cancel is seen within one batch, and the check costs nothing
-  // next to a batch's insertions.
-  constexpr size_t kBatch = 4096;
-  const double n = double(valid.size());
   ProgressSpan counting(control, 0.1, 0.55);
-  for (size_t start = 0; start < valid.size(); start += kBatch) {
-    if (!counting.advance(double(start) / n)) return cancelled_error();
-    const size_t end = std::min(valid.size(), start + kBatch);
-    for (size_t k = start; k < end; ++k) for_each_cell(k, false, [&](size_t c) { ++g.cell_start[c + 1]; });
-  }
+  if (!for_each_prim_batch(valid.size(), counting, [&](size_t k) { for_each_cell(k, false, bump); }))
+    return cancelled_error();
   counting.finish();
   uint32_t run = 0;
   for (size_t c = 0; c < cells; ++c) {
@@ -283,12 +375,15 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildC
   }
   g.prim_ids.resize(run);
   ProgressSpan filling(control, 0.55, 1.0);
-  for (size_t start = 0; start < valid.size(); start += kBatch) {
-    if (!filling.advance(double(start) / n)) return cancelled_error();
-    const size_t end = std::min(valid.size(), start + kBatch);
-    for (size_t k = start; k < end; ++k)
-      for_each_cell(k, true, [&](size_t c) { g.prim_ids[g.cell_start[c + 1]++] = valid[k]; });
-  }
+  if (!for_each_prim_batch(valid.size(), filling,
+                           [&](size_t k) { for_each_cell(k, true, [&](size_t c) { g.prim_ids[bump(c)] = valid[k]; }); }))
+    return cancelled_error();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c < r.end(); ++c) {
+      const auto begin = g.prim_ids.begin() + g.cell_start[c], end = g.prim_ids.begin() + g.cell_start[c + 1];
+      if (!std::is_sorted(begin, end)) std::sort(begin, end);
+    }
+  });
   filling.finish();
   ACCEL_CHECK(g.cell_start[cells] == run);
   return g;

@@ -87,8 +87,9 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
 /// Builds the grid over `scene.valid_prims()`. Errors (naming the parameter) when an
 /// explicit res exceeds a memory budget, or cancelled_error() when `control` is cancelled.
 /// Progress: 0.1 once the resolution fits the budget, then triangles inserted / N in each
-/// of the two insertion passes (counting to 0.55, filling to 1.0); cancel is polled per
-/// batch of triangles.
+/// of the two insertion passes (counting to 0.55, filling to 1.0), from the calling thread;
+/// cancel is polled per batch of triangles. Both passes run on TBB's threads (the caller's
+/// task_arena); the grid is the same for any thread count.
 Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control = nullptr);
 
 /// Conservative triangle/box overlap (Akenine-Moller 2001, "Fast 3D Triangle-Box Overlap
