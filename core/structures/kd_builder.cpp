@@ -269,6 +269,42 @@ constexpr size_t kTaskMinPrims = 2048;
 /// Child lists longer than this many events are trimmed to their size (see distribute()).
 constexpr size_t kShrinkMin = size_t(1) << 16;
 
+/// The sweep's counts at one distinct event position (Wald & Havran's N_L, N_R, N_P): the
+/// triangles starting or lying before it, ending or lying after it, lying in it.
+struct PlaneCounts {
+  float pos;  // the first event's position (its bits, -0 or +0, become the split's)
+  uint32_t left, right, planar;
+};
+
+/// The counts at every distinct position of the sorted `events` of a node of `n` triangles,
+/// into `planes` (grown as needed); returns how many. Without a branch per event: positions
+/// shared by a few events (mesh vertices) make "same position as the next?" random, so every
+/// event writes the running counts and only the last one of a position advances the output.
+size_t count_planes(const std::vector<Event>& events, size_t n, std::vector<PlaneCounts>& planes) {
+  const size_t count = events.size();
+  if (planes.size() < count) planes.resize(count);
+  if (count == 0) return 0;
+  const Event* ev = events.data();
+  PlaneCounts* out = planes.data();
+  uint32_t before = 0, starts_planars = 0, ends_planars = 0, planars = 0;  // before = of earlier positions
+  float first = ev[0].pos;
+  size_t g = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t type = ev[i].type();
+    starts_planars += type != kEnd;
+    ends_planars += type != kStart;
+    planars += type == kPlanar;
+    out[g] = {first, before, uint32_t(n) - ends_planars, planars};
+    const float next = i + 1 < count ? ev[i + 1].pos : first;
+    const bool last = i + 1 == count || !(next == ev[i].pos);
+    g += last;
+    before = last ? starts_planars : before;
+    planars = last ? 0 : planars;
+    first = last ? next : first;
+  }
+  return g;
+}
+
 /// What one thread needs to split nodes. The per-triangle arrays are indexed by triangle id
 /// and written for a node's triangles before they are read. A task uses its thread's
 /// workspace only between points where it never waits for other tasks, so a task stolen
@@ -278,6 +314,7 @@ struct Workspace {
   std::vector<float> lo, hi;   // per triangle id: extent along the median axis
   std::vector<float> centres;  // split_median(): the clipped box centres
   std::vector<uint32_t> straddlers;  // distribute(): triangles on both sides
+  std::vector<PlaneCounts> planes;   // split_sah(): the counts of one axis
   EventLists fresh[2];         // distribute(): events of re-clipped straddlers, per side
   EventPool pool;
 };
@@ -348,7 +385,7 @@ class KdBuilder {
   int choose_axis(const Aabb& box, int depth) const;
   SplitChoice split_middle(const Aabb& box, int depth) const;
   SplitChoice split_median(Workspace& ws, const EventLists& events, const Aabb& box, int depth, size_t n) const;
-  SplitChoice split_sah(const EventLists& events, const Aabb& box, size_t n) const;
+  SplitChoice split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const;
   void classify(Workspace& ws, const EventLists& events, const SplitChoice& s) const;
   void distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box, Decision& d) const;
   void report_leaf(double share);
@@ -470,7 +507,7 @@ SplitChoice KdBuilder::split_median(Workspace& ws, const EventLists& events, con
 // region are candidates; a plane on its boundary only to cut off the triangles lying in it.
 // Returns "leaf" when no plane beats the leaf cost ci * N (Wald & Havran's automatic
 // termination).
-SplitChoice KdBuilder::split_sah(const EventLists& events, const Aabb& box, size_t n) const {
+SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const {
   SplitChoice best;
   const DVec3 e = DVec3(box.max) - DVec3(box.min);
   const double area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
@@ -485,22 +522,10 @@ SplitChoice KdBuilder::split_sah(const EventLists& events, const Aabb& box, size
     if (!(box.max[axis] > box.min[axis])) continue;
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     const double cross = e[a1] * e[a2], around = e[a1] + e[a2];
-    const Event* ev = events.axis[axis].data();
-    const size_t count = events.axis[axis].size();
-    size_t nl = 0, nr = n;
-    for (size_t i = 0; i < count;) {
-      // The events at one position: ends, then planars, then starts (the list's order),
-      // counted without a branch per type (the types of neighbours are random).
-      const float p = ev[i].pos;
-      size_t ends = 0, planars = 0, starts = 0;
-      do {
-        const uint32_t type = ev[i].type();
-        ends += type == kEnd;
-        planars += type == kPlanar;
-        starts += type == kStart;
-        ++i;
-      } while (i < count && ev[i].pos == p);
-      nr -= planars + ends;
+    const size_t planes = count_planes(events.axis[axis], n, ws.planes);
+    for (size_t g = 0; g < planes; ++g) {
+      const float p = ws.planes[g].pos;
+      const size_t nl = ws.planes[g].left, nr = ws.planes[g].right, planars = ws.planes[g].planar;
       const double dl = double(p) - double(box.min[axis]), dr = double(box.max[axis]) - double(p);
       const double pl = 2.0 * (cross + dl * around) * inv_area, pr = 2.0 * (cross + dr * around) * inv_area;
       if (p > box.min[axis] && p < box.max[axis]) {
@@ -523,7 +548,6 @@ SplitChoice KdBuilder::split_sah(const EventLists& events, const Aabb& box, size
           best = {axis, p, at_min};
         }
       }
-      nl += starts + planars;
     }
   }
   return best;
@@ -584,6 +608,13 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
     straddling += first & (sd == kBoth);
   }
   for (size_t i = 0; i < straddling; ++i) {
+    // The straddlers' triangles are scattered over the scene: fetch ahead what the clip reads.
+    if (i + 8 < straddling) {
+      __builtin_prefetch(&scene_.triangle_bounds(straddlers[i + 8]));
+      __builtin_prefetch(&scene_.triangles()[straddlers[i + 8]]);
+    }
+    if (i + 4 < straddling)
+      for (int k = 0; k < 3; ++k) __builtin_prefetch(&scene_.vertex(straddlers[i + 4], k));
     const uint32_t prim = straddlers[i];
     Aabb b;
     if (o_.clip) {
@@ -700,7 +731,7 @@ void KdBuilder::decide(Workspace& ws, const NodeTask& t, Decision& d) const {
   switch (o_.split) {
     case KdSplit::Middle: d.s = split_middle(t.box, t.depth); break;
     case KdSplit::Median: d.s = split_median(ws, t.events, t.box, t.depth, n); break;
-    case KdSplit::Sah: d.s = split_sah(t.events, t.box, n); break;
+    case KdSplit::Sah: d.s = split_sah(ws, t.events, t.box, n); break;
   }
   if (d.s.axis < 0) {
     d.reason = o_.split == KdSplit::Sah ? &KdLeafReasons::no_gain : &KdLeafReasons::thin;
