@@ -1,10 +1,13 @@
 // kd-tree: every option against the double-precision reference (structure suite), hand-checked
 // traces of the near/far traversal on tiny scenes, rays lying in split planes, parameter
-// validation and the build budget.
+// validation, the build budget, and builds that do not depend on the thread count.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <sstream>
+
+#include <tbb/task_arena.h>
 
 #include "batch.h"
 #include "structures/kd_tree.h"
@@ -472,6 +475,72 @@ TEST(KdTreeBuild, StatsAreConsistent) {
   }
   EXPECT_EQ(kd_auto_max_depth(69451), 29);  // round(8 + 1.3 * 16.08)
   EXPECT_EQ(kd_auto_max_depth(1), 8);
+}
+
+/// Everything a build produces, compared exactly (float bits included).
+void expect_same_tree(const KdTreeData& a, const KdTreeData& b, const std::string& what) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size()) << what;
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    ASSERT_EQ(a.nodes[i].payload, b.nodes[i].payload) << what << ": node " << i;
+    ASSERT_EQ(a.nodes[i].bits, b.nodes[i].bits) << what << ": node " << i;
+  }
+  EXPECT_EQ(a.prim_ids, b.prim_ids) << what;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.root_box.min[k]), std::bit_cast<uint32_t>(b.root_box.min[k])) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.root_box.max[k]), std::bit_cast<uint32_t>(b.root_box.max[k])) << what;
+  }
+  EXPECT_EQ(a.max_depth_limit, b.max_depth_limit) << what;
+  EXPECT_EQ(a.depth, b.depth) << what;
+  const KdLeafReasons &ra = a.leaf_reasons, &rb = b.leaf_reasons;
+  EXPECT_EQ(std::vector<size_t>({ra.few_prims, ra.max_depth, ra.no_gain, ra.no_progress, ra.bad_refines, ra.thin}),
+            std::vector<size_t>({rb.few_prims, rb.max_depth, rb.no_gain, rb.no_progress, rb.bad_refines, rb.thin}))
+      << what;
+}
+
+TEST(KdTreeBuild, SameTreeOnOneAndFourThreads) {
+  // The stadium's tens of thousands of triangles take the parallel path (subtree tasks from
+  // 2048 triangles down), several levels deep.
+  const Scene scene = make_procedural_scene("stadium").value();
+  ASSERT_GT(scene.valid_prims().size(), 8u * 2048u);
+  std::vector<std::pair<std::string, KdBuildOptions>> configs;
+  for (KdSplit split : {KdSplit::Sah, KdSplit::Middle, KdSplit::Median}) {
+    for (bool clip : {true, false}) {
+      KdBuildOptions o;
+      o.split = split;
+      o.clip = clip;
+      configs.push_back({std::string(kd_split_name(split)) + (clip ? " clip=on" : " clip=off"), o});
+    }
+  }
+  KdBuildOptions round_robin;
+  round_robin.split = KdSplit::Median;
+  round_robin.axis = KdAxis::RoundRobin;
+  round_robin.max_depth = 24;
+  configs.push_back({"median axis=round_robin max_depth=24", round_robin});
+  for (const auto& [what, o] : configs) {
+    tbb::task_arena one(1), four(4);
+    auto serial = one.execute([&] { return build_kd_tree(scene, o); });
+    auto parallel = four.execute([&] { return build_kd_tree(scene, o); });
+    ASSERT_TRUE(serial && parallel) << what;
+    EXPECT_GT(serial.value().nodes.size(), 1000u) << what;
+    expect_same_tree(serial.value(), parallel.value(), what);
+  }
+}
+
+TEST(KdTreeBuild, BudgetErrorsDoNotDependOnTheThreadCount) {
+  // A parallel build stops at the first budget a task finds exceeded; the error returned is
+  // the one the serial order meets first.
+  const Scene scene = make_procedural_scene("stadium").value();
+  KdBuildOptions o;
+  o.split = KdSplit::Middle;
+  o.max_depth = 40;
+  o.node_limit = 20000;
+  o.reference_limit = 30000;
+  tbb::task_arena one(1), four(4);
+  auto serial = one.execute([&] { return build_kd_tree(scene, o); });
+  auto parallel = four.execute([&] { return build_kd_tree(scene, o); });
+  ASSERT_FALSE(serial);
+  ASSERT_FALSE(parallel);
+  EXPECT_EQ(serial.error().message, parallel.error().message);
 }
 
 TEST(KdTreeParams, OutOfRangeValuesAreRejectedByName) {

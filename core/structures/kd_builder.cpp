@@ -1,18 +1,30 @@
 // kd-tree build: clipping triangles to boxes (perfect splits), the sorted event lists, the
-// middle, median and SAH split choices, distribution and recursion (see kd_builder.h).
+// middle, median and SAH split choices, distribution, and the recursion, parallel over
+// subtrees (see kd_builder.h).
 //
 // Index
 //   [SECTION] Depth limit and names
 //   [SECTION] Clipping triangles to boxes
 //   [SECTION] Events
+//   [SECTION] Builder: state and output
 //   [SECTION] Builder: split choice (middle, median, sah)
-//   [SECTION] Builder: distribution and recursion
+//   [SECTION] Builder: distribution
+//   [SECTION] Builder: recursion and tasks
+//   [SECTION] Builder: stitching and the whole build
 #include "structures/kd_builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "check.h"
 
@@ -79,23 +91,34 @@ bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aa
     m = std::max({m, std::abs(double(tri.min[k])), std::abs(double(tri.max[k])), std::abs(double(box.min[k])),
                   std::abs(double(box.max[k]))});
   }
-  const double delta = std::ldexp(std::max(m, 1e-30), -30);
+  const double delta = std::max(m, 1e-30) * 0x1p-30;  // exact, as ldexp(., -30)
 
-  // A triangle clipped by 6 planes has at most 3 + 6 vertices.
-  DVec3 poly[10], next[10];
+  // A triangle clipped by 6 planes has at most 3 + 6 vertices. A plane that every vertex lies
+  // inside would copy the polygon unchanged, so it is skipped (most planes of a straddler's
+  // clip: only the split plane and the region's faces it crosses cut it).
+  DVec3 buf[2][10];
+  DVec3* poly = buf[0];
+  DVec3* next = buf[1];
   int n = 3;
   for (int k = 0; k < 3; ++k) poly[k] = DVec3(scene.vertex(prim, k));
-  for (int axis = 0; axis < 3 && n > 0; ++axis) {
-    for (int side = 0; side < 2 && n > 0; ++side) {
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side < 2; ++side) {
       const double plane = side == 0 ? double(box.min[axis]) - delta : double(box.max[axis]) + delta;
-      auto inside = [&](const DVec3& p) { return side == 0 ? p[axis] >= plane : p[axis] <= plane; };
+      bool in[10];
+      int inside = 0;
+      for (int i = 0; i < n; ++i) {
+        in[i] = side == 0 ? poly[i][axis] >= plane : poly[i][axis] <= plane;
+        inside += in[i];
+      }
+      if (inside == n) continue;
+      if (inside == 0) return false;  // the enlarged box misses the triangle
       int m_out = 0;
       for (int i = 0; i < n; ++i) {
+        const int j = i + 1 == n ? 0 : i + 1;
         const DVec3& a = poly[i];
-        const DVec3& b = poly[(i + 1) % n];
-        const bool in_a = inside(a), in_b = inside(b);
-        if (in_a) next[m_out++] = a;
-        if (in_a != in_b) {
+        const DVec3& b = poly[j];
+        if (in[i]) next[m_out++] = a;
+        if (in[i] != in[j]) {
           const double s = (plane - a[axis]) / (b[axis] - a[axis]);
           DVec3 q = a + s * (b - a);
           q[axis] = plane;
@@ -103,10 +126,9 @@ bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aa
         }
       }
       n = m_out;
-      std::copy(next, next + n, poly);
+      std::swap(poly, next);
     }
   }
-  if (n == 0) return false;
   DVec3 lo = poly[0], hi = poly[0];
   for (int i = 1; i < n; ++i) {
     lo = glm::min(lo, poly[i]);
@@ -136,6 +158,11 @@ enum EventType : uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
 struct Event {
   float pos;
   uint32_t prim_type;  // prim << 2 | type
+
+  /// Leaves both fields unset: resizing a list that a filter then overwrites costs nothing
+  /// (a defaulted constructor would be zero-filled by vector::resize first).
+  Event() {}
+  Event(float p, uint32_t pt) : pos(p), prim_type(pt) {}
   uint32_t prim() const { return prim_type >> 2; }
   uint32_t type() const { return prim_type & 3u; }
 };
@@ -144,6 +171,14 @@ static_assert(sizeof(Event) == 8);
 bool event_less(const Event& a, const Event& b) {
   return a.pos < b.pos || (a.pos == b.pos && a.type() < b.type());
 }
+
+/// event_less as a type, so std::sort inlines it. The order std::sort leaves equivalent
+/// events in (ties of position and type) is part of the result -- the first event of a
+/// position gives the split its bits, -0 or +0 -- so every list is sorted by the same
+/// std::sort on the same input order as ever.
+struct EventLess {
+  bool operator()(const Event& a, const Event& b) const { return event_less(a, b); }
+};
 
 /// The events of one node: per axis, sorted by event_less.
 struct EventLists {
@@ -156,23 +191,65 @@ struct EventLists {
 void add_events(EventLists& lists, uint32_t prim, const Aabb& b) {
   for (int k = 0; k < 3; ++k) {
     if (b.min[k] == b.max[k]) {
-      lists.axis[k].push_back({b.min[k], prim << 2 | kPlanar});
+      lists.axis[k].emplace_back(b.min[k], prim << 2 | kPlanar);
     } else {
-      lists.axis[k].push_back({b.min[k], prim << 2 | kStart});
-      lists.axis[k].push_back({b.max[k], prim << 2 | kEnd});
+      lists.axis[k].emplace_back(b.min[k], prim << 2 | kStart);
+      lists.axis[k].emplace_back(b.max[k], prim << 2 | kEnd);
     }
   }
 }
 
-/// Number of triangles in a node: every triangle has one start or planar event per axis.
-size_t prim_count(const EventLists& lists) {
-  size_t n = 0;
-  for (const Event& e : lists.axis[0]) n += e.type() != kEnd;
-  return n;
+/// Spare event lists of one thread, handed to the children of the next nodes: most nodes are
+/// small, and a malloc and free per list and node cost more than sweeping them. Lists longer
+/// than kMaxPooled events are freed instead, which bounds what a pool holds.
+class EventPool {
+ public:
+  /// An empty list, with the capacity of a spare one when there is one.
+  std::vector<Event> take() {
+    if (spare_.empty()) return {};
+    std::vector<Event> list = std::move(spare_.back());
+    spare_.pop_back();
+    return list;
+  }
+  /// Takes `list` back (leaving it empty).
+  void give(std::vector<Event>& list) {
+    if (list.capacity() > 0 && list.capacity() <= kMaxPooled && spare_.size() < kMaxSpare) {
+      list.clear();
+      spare_.push_back(std::move(list));
+    }
+    list = std::vector<Event>();
+  }
+  void give(EventLists& lists) {
+    for (std::vector<Event>& list : lists.axis) give(list);
+  }
+
+ private:
+  static constexpr size_t kMaxPooled = size_t(1) << 13;  // 64 KiB
+  static constexpr size_t kMaxSpare = 256;  // well above the ~3 * (depth + 3) lists alive at once
+  std::vector<std::vector<Event>> spare_;
+};
+
+/// Merges the sorted `fresh` events into `list`, whose first `kept` entries are sorted and
+/// whose size is at least kept + fresh.size(); leaves exactly the merged kept + fresh. The
+/// same sequence as std::merge(kept, fresh) -- on ties the kept event first -- written from
+/// the back, so it needs no second buffer and stops when `fresh` is used up.
+void merge_fresh(std::vector<Event>& list, size_t kept, const std::vector<Event>& fresh) {
+  size_t i = kept, j = fresh.size(), out = kept + fresh.size();
+  ACCEL_DCHECK(list.size() >= out);
+  Event* dst = list.data();
+  while (j > 0 && i > 0) {  // without a branch on the comparison (random)
+    const Event f = fresh[j - 1], k = dst[i - 1];
+    const bool take_kept = (f.pos < k.pos) | ((f.pos == k.pos) & (f.type() < k.type()));  // event_less(f, k)
+    dst[--out] = take_kept ? k : f;
+    i -= take_kept;
+    j -= !take_kept;
+  }
+  while (j > 0) dst[--out] = fresh[--j];
+  list.resize(kept + fresh.size());
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Builder: split choice (middle, median, sah)
+// [SECTION] Builder: state and output
 //-----------------------------------------------------------------------------
 
 /// Where to split a node; axis < 0 = make a leaf.
@@ -184,45 +261,180 @@ struct SplitChoice {
 
 enum Side : uint8_t { kBoth = 0, kLeft = 1, kRight = 2 };
 
+/// Nodes of at least this many triangles have their two children built as tasks of their
+/// own; smaller ones build their whole subtree serially (a few hundred microseconds of work,
+/// far above the cost of a task).
+constexpr size_t kTaskMinPrims = 2048;
+
+/// Child lists longer than this many events are trimmed to their size (see distribute()).
+constexpr size_t kShrinkMin = size_t(1) << 16;
+
+/// The sweep's counts at one distinct event position (Wald & Havran's N_L, N_R, N_P): the
+/// triangles starting or lying before it, ending or lying after it, lying in it.
+struct PlaneCounts {
+  float pos;  // the first event's position (its bits, -0 or +0, become the split's)
+  uint32_t left, right, planar;
+};
+
+/// The counts at every distinct position of the sorted `events` of a node of `n` triangles,
+/// into `planes` (grown as needed); returns how many. Without a branch per event: positions
+/// shared by a few events (mesh vertices) make "same position as the next?" random, so every
+/// event writes the running counts and only the last one of a position advances the output.
+size_t count_planes(const std::vector<Event>& events, size_t n, std::vector<PlaneCounts>& planes) {
+  const size_t count = events.size();
+  if (planes.size() < count) planes.resize(count);
+  if (count == 0) return 0;
+  const Event* ev = events.data();
+  PlaneCounts* out = planes.data();
+  uint32_t before = 0, starts_planars = 0, ends_planars = 0, planars = 0;  // before = of earlier positions
+  float first = ev[0].pos;
+  size_t g = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t type = ev[i].type();
+    starts_planars += type != kEnd;
+    ends_planars += type != kStart;
+    planars += type == kPlanar;
+    out[g] = {first, before, uint32_t(n) - ends_planars, planars};
+    const float next = i + 1 < count ? ev[i + 1].pos : first;
+    const bool last = i + 1 == count || !(next == ev[i].pos);
+    g += last;
+    before = last ? starts_planars : before;
+    planars = last ? 0 : planars;
+    first = last ? next : first;
+  }
+  return g;
+}
+
+/// What one thread needs to split nodes. The per-triangle arrays are indexed by triangle id
+/// and written for a node's triangles before they are read. A task uses its thread's
+/// workspace only between points where it never waits for other tasks, so a task stolen
+/// while it waits never finds the workspace half used.
+struct Workspace {
+  std::vector<uint8_t> side;   // per triangle id: Side in the node being split
+  std::vector<float> lo, hi;   // per triangle id: extent along the median axis
+  std::vector<float> centres;  // split_median(): the clipped box centres
+  std::vector<uint32_t> straddlers;  // distribute(): triangles on both sides
+  std::vector<PlaneCounts> planes;   // split_sah(): the counts of one axis
+  EventLists fresh[2];         // distribute(): events of re-clipped straddlers, per side
+  EventPool pool;
+};
+
+/// A node to build: its events (consumed), what the guards, the budget and the progress
+/// need to know about its path.
+struct NodeTask {
+  EventLists events;
+  size_t n = 0;         // triangles (one start or planar event each per axis)
+  Aabb box;             // region
+  int depth = 0;
+  int bad_refines = 0;  // middle/median: splits on the path that did not pay by SAH
+  double share = 0.0;   // share of the progress its leaves complete
+  size_t pending = 0;   // events the serial build would hold meanwhile: the above lists on the path
+};
+
+/// The part of the tree one task builds, in pre-order: node 0 is the task's node, above
+/// children and leaf offsets are relative to the part's own arrays until stitch() moves it
+/// into place. A node whose children were tasks of their own holds only itself, with the
+/// children's parts in `below` and `above`.
+struct Subtree {
+  std::vector<KdNode> nodes;
+  std::vector<uint32_t> prim_ids;
+  KdLeafReasons leaf_reasons;
+  int depth = 0;  // deepest leaf
+  std::unique_ptr<Subtree> below, above;
+  size_t node_count = 0, prim_count = 0;    // stitch(): of the part with its children's parts
+  size_t node_offset = 0, prim_offset = 0;  // stitch(): where the part goes in KdTreeData
+};
+
+/// One node's outcome: the split and the children's events, or the reason it is a leaf.
+struct Decision {
+  SplitChoice s;
+  size_t KdLeafReasons::*reason = nullptr;  // the leaf's counter when s.axis < 0
+  EventLists left, right;
+  size_t nl = 0, nr = 0;  // triangles of each child
+  int bad_refines = 0;    // of the children's paths
+};
+
 class KdBuilder {
  public:
-  /// Reports into [progress_from, 1] of `control` (a retry continues where the last stopped).
-  KdBuilder(const Scene& scene, const KdBuildOptions& options, BuildControl* control, double progress_from)
-      : scene_(scene), o_(options), control_(control), progress_(control, progress_from, 1.0) {}
+  /// Reports into [progress_from, 1] of `control` (a retry continues where the last
+  /// stopped). `parallel` = build subtrees as TBB tasks (the result is the same either way).
+  /// `exact_errors` = a failed build returns the very error the serial order meets first.
+  KdBuilder(const Scene& scene, const KdBuildOptions& options, BuildControl* control, double progress_from,
+            bool parallel, bool exact_errors)
+      : scene_(scene),
+        o_(options),
+        control_(control),
+        progress_(control, progress_from, 1.0),
+        parallel_(parallel),
+        exact_errors_(exact_errors) {}
   Result<KdTreeData> run();
   /// The last fraction reported.
   double progress_reached() const { return progress_.last(); }
 
  private:
-  void build_node(EventLists& events, const Aabb& box, int depth, int bad_refines, double share);
+  Workspace& workspace();
+  bool enter_node();
+  void decide(Workspace& ws, const NodeTask& t, Decision& d) const;
+  bool accept_split(Workspace& ws, NodeTask& t, const Decision& d);
+  NodeTask child_task(NodeTask& t, Decision& d, bool above) const;
+  void build_serial(Workspace& ws, Subtree& out, NodeTask& t);
+  std::unique_ptr<Subtree> build_task(NodeTask t);
+  void make_leaf(Workspace& ws, Subtree& out, NodeTask& t, size_t KdLeafReasons::*reason);
+  void stitch(Subtree& root);
   double split_cost(const Aabb& box, const SplitChoice& s, size_t nl, size_t nr) const;
-  void make_leaf(const EventLists& events, size_t n, int depth);
   int choose_axis(const Aabb& box, int depth) const;
   SplitChoice split_middle(const Aabb& box, int depth) const;
-  SplitChoice split_median(const EventLists& events, const Aabb& box, int depth, size_t n);
-  SplitChoice split_sah(const EventLists& events, const Aabb& box, size_t n) const;
-  void classify(const EventLists& events, const SplitChoice& s);
-  void distribute(const EventLists& events, const SplitChoice& s, const Aabb& box, EventLists* left,
-                  EventLists* right);
+  SplitChoice split_median(Workspace& ws, const EventLists& events, const Aabb& box, int depth, size_t n) const;
+  SplitChoice split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const;
+  void classify(Workspace& ws, const EventLists& events, const SplitChoice& s) const;
+  void distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box, Decision& d) const;
+  void report_leaf(double share);
   void over_budget(const char* what, size_t limit);
+  void fail(Error error);
+  bool failed() const { return failed_.load(std::memory_order_relaxed); }
 
   const Scene& scene_;
   KdBuildOptions o_;
-  KdTreeData out_;
-  std::vector<uint8_t> side_;      // per triangle id: Side in the node being split
-  std::vector<float> lo_, hi_;     // per triangle id: extent along the median axis
-  size_t live_events_ = 0;         // events of all lists alive (the recursion's pending ones)
-  EventLists scratch_new_[2];      // distribute(): events of re-clipped straddlers, per side
-  std::vector<Event> scratch_only_[2];  // distribute(): events of one-sided triangles, per side
-  Status status_;                  // the first budget error (or the cancel); the build stops at it
   BuildControl* control_;
-  ProgressSpan progress_;
-  double done_ = 0.0;              // share of the build in finished leaves
+  ProgressSpan progress_;  // touched by the reporting thread only
+  const bool parallel_, exact_errors_;
+  KdTreeData out_;
+  size_t node_cap_ = 0;  // nodes allowed: node_limit, and what KdNode's 30 bits hold
+  tbb::enumerable_thread_specific<Workspace> workspaces_;
+  // Totals over all tasks. A task reserves its node (and a leaf its references) before
+  // making it, so a total above the budget is seen by some task whatever the interleaving:
+  // the build fails exactly when the serial one does.
+  std::atomic<size_t> nodes_{0}, references_{0};
+  std::atomic<double> done_{0.0};  // share of the build in finished leaves
+  std::thread::id reporter_;       // the thread that runs the build: the one that reports progress
+  std::atomic<bool> failed_{false};
+  std::mutex error_mutex_;
+  Status status_;  // the first error recorded (budget or cancel); the build stops at it
 };
 
-/// Records the budget error (the first one): names the parameters that control the tree size.
+/// This thread's workspace, its per-triangle arrays sized on first use.
+Workspace& KdBuilder::workspace() {
+  Workspace& ws = workspaces_.local();
+  if (ws.side.size() != scene_.triangle_count()) {
+    ws.side.assign(scene_.triangle_count(), kBoth);
+    if (o_.split == KdSplit::Median) {
+      ws.lo.assign(scene_.triangle_count(), 0.0f);
+      ws.hi.assign(scene_.triangle_count(), 0.0f);
+    }
+  }
+  return ws;
+}
+
+/// Records the first error and makes every task stop at its next node.
+void KdBuilder::fail(Error error) {
+  std::lock_guard<std::mutex> lock(error_mutex_);
+  if (failed_.load(std::memory_order_relaxed)) return;
+  status_ = std::move(error);
+  failed_.store(true, std::memory_order_relaxed);
+}
+
+/// Records the budget error: names the parameters that control the tree size.
 void KdBuilder::over_budget(const char* what, size_t limit) {
-  if (!status_) return;
   char depth[48];
   if (o_.max_depth > 0)
     std::snprintf(depth, sizeof depth, "%d", o_.max_depth);
@@ -233,8 +445,21 @@ void KdBuilder::over_budget(const char* what, size_t limit) {
                 "kdtree parameter 'max_depth' = %s (leaf_size = %d, split = %s): the tree would need more than "
                 "%zu %s (limit); lower max_depth, raise leaf_size, or use split=sah",
                 depth, o_.leaf_size, kd_split_name(o_.split), limit, what);
-  status_ = make_error(buf);
+  fail(make_error(buf));
 }
+
+/// A finished leaf's share of the progress. Shares are summed by every task, reported only
+/// by the thread that started the build (ProgressSpan is not thread-safe); its own reads of
+/// the growing sum never go back.
+void KdBuilder::report_leaf(double share) {
+  if (!control_) return;
+  const double done = done_.fetch_add(share, std::memory_order_relaxed) + share;
+  if (std::this_thread::get_id() == reporter_) progress_.advance(done);
+}
+
+//-----------------------------------------------------------------------------
+// [SECTION] Builder: split choice (middle, median, sah)
+//-----------------------------------------------------------------------------
 
 int KdBuilder::choose_axis(const Aabb& box, int depth) const {
   const Vec3 e = box.max - box.min;
@@ -256,16 +481,18 @@ SplitChoice KdBuilder::split_middle(const Aabb& box, int depth) const {
 // Median of the centres of the triangles' clipped extents (inside the region, unlike the
 // triangles' own centroids, so the plane lies inside too). Falls back to the middle when
 // the median is on the region's boundary (e.g. most triangles touch it).
-SplitChoice KdBuilder::split_median(const EventLists& events, const Aabb& box, int depth, size_t n) {
+SplitChoice KdBuilder::split_median(Workspace& ws, const EventLists& events, const Aabb& box, int depth,
+                                    size_t n) const {
   const int axis = choose_axis(box, depth);
-  std::vector<float> centres;
+  std::vector<float>& centres = ws.centres;
+  centres.clear();
   centres.reserve(n);
   for (const Event& e : events.axis[axis]) {
-    if (e.type() != kEnd) lo_[e.prim()] = e.pos;
-    if (e.type() != kStart) hi_[e.prim()] = e.pos;
+    if (e.type() != kEnd) ws.lo[e.prim()] = e.pos;
+    if (e.type() != kStart) ws.hi[e.prim()] = e.pos;
   }
   for (const Event& e : events.axis[axis])
-    if (e.type() != kEnd) centres.push_back(0.5f * lo_[e.prim()] + 0.5f * hi_[e.prim()]);
+    if (e.type() != kEnd) centres.push_back(0.5f * ws.lo[e.prim()] + 0.5f * ws.hi[e.prim()]);
   auto mid = centres.begin() + ptrdiff_t(centres.size() / 2);
   std::nth_element(centres.begin(), mid, centres.end());
   const float pos = *mid;
@@ -280,7 +507,7 @@ SplitChoice KdBuilder::split_median(const EventLists& events, const Aabb& box, i
 // region are candidates; a plane on its boundary only to cut off the triangles lying in it.
 // Returns "leaf" when no plane beats the leaf cost ci * N (Wald & Havran's automatic
 // termination).
-SplitChoice KdBuilder::split_sah(const EventLists& events, const Aabb& box, size_t n) const {
+SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const {
   SplitChoice best;
   const DVec3 e = DVec3(box.max) - DVec3(box.min);
   const double area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
@@ -295,19 +522,16 @@ SplitChoice KdBuilder::split_sah(const EventLists& events, const Aabb& box, size
     if (!(box.max[axis] > box.min[axis])) continue;
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     const double cross = e[a1] * e[a2], around = e[a1] + e[a2];
-    const std::vector<Event>& ev = events.axis[axis];
-    size_t nl = 0, nr = n;
-    for (size_t i = 0; i < ev.size();) {
-      const float p = ev[i].pos;
-      size_t ends = 0, planars = 0, starts = 0;
-      while (i < ev.size() && ev[i].pos == p && ev[i].type() == kEnd) ++ends, ++i;
-      while (i < ev.size() && ev[i].pos == p && ev[i].type() == kPlanar) ++planars, ++i;
-      while (i < ev.size() && ev[i].pos == p && ev[i].type() == kStart) ++starts, ++i;
-      nr -= planars + ends;
+    const size_t planes = count_planes(events.axis[axis], n, ws.planes);
+    for (size_t g = 0; g < planes; ++g) {
+      const float p = ws.planes[g].pos;
+      const size_t nl = ws.planes[g].left, nr = ws.planes[g].right, planars = ws.planes[g].planar;
       const double dl = double(p) - double(box.min[axis]), dr = double(box.max[axis]) - double(p);
       const double pl = 2.0 * (cross + dl * around) * inv_area, pr = 2.0 * (cross + dr * around) * inv_area;
       if (p > box.min[axis] && p < box.max[axis]) {
-        const double c_left = cost(pl, pr, nl + planars, nr), c_right = cost(pl, pr, nl, nr + planars);
+        // Without planars both sides cost the same (and planar_left stays true).
+        const double c_left = cost(pl, pr, nl + planars, nr);
+        const double c_right = planars > 0 ? cost(pl, pr, nl, nr + planars) : c_left;
         const double c = std::min(c_left, c_right);
         if (c < best_cost) {
           best_cost = c;
@@ -324,37 +548,30 @@ SplitChoice KdBuilder::split_sah(const EventLists& events, const Aabb& box, size
           best = {axis, p, at_min};
         }
       }
-      nl += starts + planars;
     }
   }
   return best;
 }
 
 //-----------------------------------------------------------------------------
-// [SECTION] Builder: distribution and recursion
+// [SECTION] Builder: distribution
 //-----------------------------------------------------------------------------
 
 // Sides by the split axis' events, consistent with the sweep's counts: extent ending at or
 // before the plane -> left; starting at or after it -> right; lying in it -> the chosen
-// side; crossing it -> both.
-void KdBuilder::classify(const EventLists& events, const SplitChoice& s) {
-  const std::vector<Event>& ev = events.axis[s.axis];
-  for (const Event& e : ev)
-    if (e.type() != kEnd) side_[e.prim()] = kBoth;
-  for (const Event& e : ev) {
+// side; crossing it -> both. One pass: a triangle's start precedes its end in the sorted
+// list (a start and an end only for a non-flat extent), so the end can overrule the start.
+void KdBuilder::classify(Workspace& ws, const EventLists& events, const SplitChoice& s) const {
+  uint8_t* side = ws.side.data();
+  for (const Event& e : events.axis[s.axis]) {
     const uint32_t prim = e.prim();
     switch (e.type()) {
+      case kStart: side[prim] = e.pos >= s.pos ? kRight : kBoth; break;
       case kEnd:
-        if (e.pos <= s.pos) side_[prim] = kLeft;
-        break;
-      case kStart:
-        if (e.pos >= s.pos) side_[prim] = kRight;
+        if (e.pos <= s.pos) side[prim] = kLeft;
         break;
       default:  // planar
-        if (e.pos < s.pos || (e.pos == s.pos && s.planar_left))
-          side_[prim] = kLeft;
-        else
-          side_[prim] = kRight;
+        side[prim] = e.pos < s.pos || (e.pos == s.pos && s.planar_left) ? kLeft : kRight;
         break;
     }
   }
@@ -363,23 +580,46 @@ void KdBuilder::classify(const EventLists& events, const SplitChoice& s) {
 // Wald & Havran 2006 sec. 5.2: the events of one-sided triangles are filtered into the
 // child lists (staying sorted); the straddling triangles are clipped to each child's region
 // (perfect splits) or cut to it (clip=off), their new events sorted -- only these, O(s log s)
-// -- and merged in. This keeps every list sorted without a sort per node: O(N log N).
-void KdBuilder::distribute(const EventLists& events, const SplitChoice& s, const Aabb& box, EventLists* left,
-                           EventLists* right) {
-  EventLists& new_left = scratch_new_[0];
-  EventLists& new_right = scratch_new_[1];
+// -- and merged in. This keeps every list sorted without a sort per node: O(N log N). The
+// filter writes each event to both children and advances the side it belongs to, without a
+// branch to mispredict; the merge works in place from the back (merge_fresh()).
+void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box,
+                           Decision& d) const {
+  EventLists& new_left = ws.fresh[0];
+  EventLists& new_right = ws.fresh[1];
   for (int k = 0; k < 3; ++k) {
     new_left.axis[k].clear();
     new_right.axis[k].clear();
   }
+  const uint8_t* side = ws.side.data();
   const Aabb box_l = kd_child_box(box, s.axis, s.pos, false), box_r = kd_child_box(box, s.axis, s.pos, true);
+  // The triangles by their one start or planar event on axis 0: counted per side, the
+  // straddlers listed (in the list's order, as their fresh events are sorted from it).
+  std::vector<uint32_t>& straddlers = ws.straddlers;
+  if (straddlers.size() < events.axis[0].size()) straddlers.resize(events.axis[0].size());
+  size_t nl = 0, nr = 0, straddling = 0;
   for (const Event& e : events.axis[0]) {
-    if (e.type() == kEnd || side_[e.prim()] != kBoth) continue;
     const uint32_t prim = e.prim();
+    const bool first = e.type() != kEnd;
+    const uint8_t sd = side[prim];
+    nl += first & (sd == kLeft);
+    nr += first & (sd == kRight);
+    straddlers[straddling] = prim;
+    straddling += first & (sd == kBoth);
+  }
+  for (size_t i = 0; i < straddling; ++i) {
+    // The straddlers' triangles are scattered over the scene: fetch ahead what the clip reads.
+    if (i + 8 < straddling) {
+      __builtin_prefetch(&scene_.triangle_bounds(straddlers[i + 8]));
+      __builtin_prefetch(&scene_.triangles()[straddlers[i + 8]]);
+    }
+    if (i + 4 < straddling)
+      for (int k = 0; k < 3; ++k) __builtin_prefetch(&scene_.vertex(straddlers[i + 4], k));
+    const uint32_t prim = straddlers[i];
     Aabb b;
     if (o_.clip) {
-      if (clip_triangle_bounds(scene_, prim, box_l, &b)) add_events(new_left, prim, b);
-      if (clip_triangle_bounds(scene_, prim, box_r, &b)) add_events(new_right, prim, b);
+      if (clip_triangle_bounds(scene_, prim, box_l, &b)) add_events(new_left, prim, b), ++nl;
+      if (clip_triangle_bounds(scene_, prim, box_r, &b)) add_events(new_right, prim, b), ++nr;
     } else {
       const Aabb& tri = scene_.triangle_bounds(prim);
       for (const Aabb* child : {&box_l, &box_r}) {
@@ -387,39 +627,60 @@ void KdBuilder::distribute(const EventLists& events, const SplitChoice& s, const
         b.max = glm::min(tri.max, child->max);
         add_events(child == &box_l ? new_left : new_right, prim, b);
       }
+      ++nl, ++nr;
     }
   }
+  d.nl = nl;
+  d.nr = nr;
   for (int k = 0; k < 3; ++k) {
-    std::vector<Event>& only_left = scratch_only_[0];
-    std::vector<Event>& only_right = scratch_only_[1];
-    only_left.clear();
-    only_right.clear();
-    for (const Event& e : events.axis[k]) {
-      const uint8_t side = side_[e.prim()];
-      if (side == kLeft) only_left.push_back(e);
-      else if (side == kRight) only_right.push_back(e);
+    const std::vector<Event>& src = events.axis[k];
+    std::vector<Event>& fresh_l = new_left.axis[k];
+    std::vector<Event>& fresh_r = new_right.axis[k];
+    std::sort(fresh_l.begin(), fresh_l.end(), EventLess{});
+    std::sort(fresh_r.begin(), fresh_r.end(), EventLess{});
+    std::vector<Event>& left = d.left.axis[k];
+    std::vector<Event>& right = d.right.axis[k];
+    left = ws.pool.take();
+    right = ws.pool.take();
+    left.resize(src.size() + fresh_l.size());
+    right.resize(src.size() + fresh_r.size());
+    Event* l = left.data();
+    Event* r = right.data();
+    size_t kept_l = 0, kept_r = 0;
+    for (const Event& e : src) {
+      const uint8_t sd = side[e.prim()];
+      l[kept_l] = e;
+      r[kept_r] = e;
+      kept_l += sd == kLeft;
+      kept_r += sd == kRight;
     }
-    auto combine = [](const std::vector<Event>& only, std::vector<Event>& fresh, std::vector<Event>* out) {
-      std::sort(fresh.begin(), fresh.end(), event_less);
-      out->resize(only.size() + fresh.size());
-      std::merge(only.begin(), only.end(), fresh.begin(), fresh.end(), out->begin(), event_less);
-    };
-    combine(only_left, new_left.axis[k], &left->axis[k]);
-    combine(only_right, new_right.axis[k], &right->axis[k]);
+    merge_fresh(left, kept_l, fresh_l);
+    merge_fresh(right, kept_r, fresh_r);
+    // Long lists were sized for every event going to each side; give back what the other
+    // side took (a copy of the kept part), as the above list waits through the below subtree.
+    for (std::vector<Event>* list : {&left, &right})
+      if (list->capacity() > kShrinkMin && list->size() < list->capacity() / 4 * 3) list->shrink_to_fit();
   }
 }
 
-void KdBuilder::make_leaf(const EventLists& events, size_t n, int depth) {
-  if (out_.prim_ids.size() + n > o_.reference_limit) {
+//-----------------------------------------------------------------------------
+// [SECTION] Builder: recursion and tasks
+//-----------------------------------------------------------------------------
+
+void KdBuilder::make_leaf(Workspace& ws, Subtree& out, NodeTask& t, size_t KdLeafReasons::*reason) {
+  ++(out.leaf_reasons.*reason);
+  if (references_.fetch_add(t.n, std::memory_order_relaxed) + t.n > o_.reference_limit) {
     over_budget("triangle references", o_.reference_limit);
     return;
   }
-  const size_t offset = out_.prim_ids.size();
-  for (const Event& e : events.axis[0])
-    if (e.type() != kEnd) out_.prim_ids.push_back(e.prim());
-  std::sort(out_.prim_ids.begin() + ptrdiff_t(offset), out_.prim_ids.end());  // ascending: stable ties, tidy views
-  out_.nodes.push_back(KdNode::make_leaf(uint32_t(offset), uint32_t(n)));
-  out_.depth = std::max(out_.depth, depth);
+  const size_t offset = out.prim_ids.size();
+  for (const Event& e : t.events.axis[0])
+    if (e.type() != kEnd) out.prim_ids.push_back(e.prim());
+  std::sort(out.prim_ids.begin() + ptrdiff_t(offset), out.prim_ids.end());  // ascending: stable ties, tidy views
+  out.nodes.push_back(KdNode::make_leaf(uint32_t(offset), uint32_t(t.n)));
+  out.depth = std::max(out.depth, t.depth);
+  ws.pool.give(t.events);
+  report_leaf(t.share);
 }
 
 /// SAH cost of splitting `box` at `s` with nl / nr triangles on the sides (the formula of
@@ -433,11 +694,21 @@ double KdBuilder::split_cost(const Aabb& box, const SplitChoice& s, size_t nl, s
   return (nl == 0 || nr == 0) ? c * (1.0 - o_.empty_bonus) : c;
 }
 
-// Depth-first, writing nodes in pre-order: the below child follows its parent, the above
-// child's index is patched in once the below subtree is done (pbrt's layout). `events` is
-// consumed: freed before the recursion, so only the pending above lists of the current path
-// stay alive, which bounds the build's memory.
-//
+/// The checks at every node: an earlier failure, a cancel, the node budget (reserving the
+/// node: the serial build's test "nodes made >= limit" before making one).
+bool KdBuilder::enter_node() {
+  if (failed()) return false;
+  if (build_cancelled(control_)) {
+    fail(cancelled_error());
+    return false;
+  }
+  if (nodes_.fetch_add(1, std::memory_order_relaxed) >= node_cap_) {
+    over_budget("nodes", node_cap_);
+    return false;
+  }
+  return true;
+}
+
 // Guards against explosion (a kd-tree duplicates straddling triangles, so a split that
 // separates nothing only multiplies references):
 //  * a split that sends every triangle to both sides makes a leaf instead (identical or
@@ -446,73 +717,187 @@ double KdBuilder::split_cost(const Aabb& box, const SplitChoice& s, size_t nl, s
 //    more than leaf_size triangles, where no plane ever separates them: a split whose SAH cost
 //    is not below the leaf's (ci * N) is a "bad refine", and the third one on a path makes a
 //    leaf (pbrt-v4 KdTreeAggregate's badRefines rule). SAH stops at its first such split.
-void KdBuilder::build_node(EventLists& events, const Aabb& box, int depth, int bad_refines, double share) {
-  if (!status_) return;
-  if (build_cancelled(control_)) {
-    status_ = cancelled_error();
-    return;
-  }
-  if (out_.nodes.size() >= o_.node_limit || out_.nodes.size() >= kKdMaxIndex) {
-    over_budget("nodes", std::min<size_t>(o_.node_limit, kKdMaxIndex));
-    return;
-  }
-  const size_t n = prim_count(events);
-  SplitChoice s;
-  size_t* reason = nullptr;
+void KdBuilder::decide(Workspace& ws, const NodeTask& t, Decision& d) const {
+  const size_t n = t.n;
+  d.bad_refines = t.bad_refines;
   if (n <= size_t(o_.leaf_size)) {
-    reason = &out_.leaf_reasons.few_prims;
-  } else if (depth >= out_.max_depth_limit) {
-    reason = &out_.leaf_reasons.max_depth;
-  } else {
-    switch (o_.split) {
-      case KdSplit::Middle: s = split_middle(box, depth); break;
-      case KdSplit::Median: s = split_median(events, box, depth, n); break;
-      case KdSplit::Sah: s = split_sah(events, box, n); break;
-    }
-    if (s.axis < 0) reason = o_.split == KdSplit::Sah ? &out_.leaf_reasons.no_gain : &out_.leaf_reasons.thin;
-  }
-  EventLists left, right;
-  size_t nl = 0, nr = 0;
-  if (s.axis >= 0) {
-    classify(events, s);
-    distribute(events, s, box, &left, &right);
-    nl = prim_count(left);
-    nr = prim_count(right);
-    if (nl == n && nr == n) {
-      s.axis = -1;
-      reason = &out_.leaf_reasons.no_progress;
-    } else if (o_.split != KdSplit::Sah && split_cost(box, s, nl, nr) >= o_.ci * double(n) && ++bad_refines >= 3) {
-      s.axis = -1;
-      reason = &out_.leaf_reasons.bad_refines;
-    }
-  }
-  if (s.axis < 0) {
-    ++*reason;
-    make_leaf(events, n, depth);
-    live_events_ -= events.size();
-    events = EventLists{};
-    done_ += share;
-    progress_.advance(done_);
+    d.reason = &KdLeafReasons::few_prims;
     return;
   }
-  const double share_left = share * double(nl) / double(std::max<size_t>(1, nl + nr));
-  live_events_ += left.size() + right.size() - events.size();
-  events = EventLists{};
-  if (live_events_ > o_.event_limit) {
+  if (t.depth >= out_.max_depth_limit) {
+    d.reason = &KdLeafReasons::max_depth;
+    return;
+  }
+  switch (o_.split) {
+    case KdSplit::Middle: d.s = split_middle(t.box, t.depth); break;
+    case KdSplit::Median: d.s = split_median(ws, t.events, t.box, t.depth, n); break;
+    case KdSplit::Sah: d.s = split_sah(ws, t.events, t.box, n); break;
+  }
+  if (d.s.axis < 0) {
+    d.reason = o_.split == KdSplit::Sah ? &KdLeafReasons::no_gain : &KdLeafReasons::thin;
+    return;
+  }
+  classify(ws, t.events, d.s);
+  distribute(ws, t.events, d.s, t.box, d);
+  if (d.nl == n && d.nr == n) {
+    d.s.axis = -1;
+    d.reason = &KdLeafReasons::no_progress;
+  } else if (o_.split != KdSplit::Sah && split_cost(t.box, d.s, d.nl, d.nr) >= o_.ci * double(n) &&
+             ++d.bad_refines >= 3) {
+    d.s.axis = -1;
+    d.reason = &KdLeafReasons::bad_refines;
+  }
+  if (d.s.axis < 0) {
+    ws.pool.give(d.left);
+    ws.pool.give(d.right);
+  }
+}
+
+/// Frees the node's events and checks the event budget the serial build keeps: the lists it
+/// would hold now are the above lists pending on the path plus the two children's.
+bool KdBuilder::accept_split(Workspace& ws, NodeTask& t, const Decision& d) {
+  ws.pool.give(t.events);
+  if (t.pending + d.left.size() + d.right.size() > o_.event_limit) {
     over_budget("build events", o_.event_limit);
+    return false;
+  }
+  return true;
+}
+
+/// The below (`above` false) or above child of `t` split by `d`: takes that child's events.
+/// An inner node splits its progress share between its children in proportion to the
+/// triangles each receives.
+NodeTask KdBuilder::child_task(NodeTask& t, Decision& d, bool above) const {
+  const double share_left = t.share * double(d.nl) / double(std::max<size_t>(1, d.nl + d.nr));
+  NodeTask c;
+  c.n = above ? d.nr : d.nl;
+  c.box = kd_child_box(t.box, d.s.axis, d.s.pos, above);
+  c.depth = t.depth + 1;
+  c.bad_refines = d.bad_refines;
+  c.share = above ? t.share - share_left : share_left;
+  c.pending = above ? t.pending : t.pending + d.right.size();  // the below child runs first (take it first)
+  c.events = std::move(above ? d.right : d.left);
+  return c;
+}
+
+// Depth-first, writing nodes in pre-order: the below child follows its parent, the above
+// child's index is patched in once the below subtree is done (pbrt's layout). The node's
+// events are freed before the recursion, so only the pending above lists of the current path
+// stay alive, which bounds the build's memory.
+void KdBuilder::build_serial(Workspace& ws, Subtree& out, NodeTask& t) {
+  if (!enter_node()) return;
+  Decision d;
+  decide(ws, t, d);
+  if (d.s.axis < 0) {
+    make_leaf(ws, out, t, d.reason);
     return;
   }
-  const size_t self = out_.nodes.size();
-  out_.nodes.push_back(KdNode{});
-  build_node(left, kd_child_box(box, s.axis, s.pos, false), depth + 1, bad_refines, share_left);
-  if (!status_) return;
-  const size_t above = out_.nodes.size();
-  if (above > kKdMaxIndex) {
-    over_budget("nodes", kKdMaxIndex);
+  if (!accept_split(ws, t, d)) return;
+  NodeTask left = child_task(t, d, false);
+  NodeTask right = child_task(t, d, true);
+  const size_t self = out.nodes.size();
+  out.nodes.push_back(KdNode{});
+  build_serial(ws, out, left);
+  if (failed()) return;
+  out.nodes[self] = KdNode::make_inner(d.s.axis, d.s.pos, NodeId(out.nodes.size()));
+  build_serial(ws, out, right);
+}
+
+// A node of at least kTaskMinPrims triangles is a part of its own and builds its children as
+// two tasks; a smaller one builds its subtree serially. Which nodes are tasks depends on the
+// scene alone, and stitch() numbers the parts in pre-order, so the tree does not depend on
+// the thread count (nor on whether there is a task at all).
+std::unique_ptr<Subtree> KdBuilder::build_task(NodeTask t) {
+  auto out = std::make_unique<Subtree>();
+  Workspace& ws = workspace();
+  if (!parallel_ || t.n < kTaskMinPrims) {
+    build_serial(ws, *out, t);
+    return out;
+  }
+  if (!enter_node()) return out;
+  Decision d;
+  decide(ws, t, d);
+  if (d.s.axis < 0) {
+    make_leaf(ws, *out, t, d.reason);
+    return out;
+  }
+  if (!accept_split(ws, t, d)) return out;
+  NodeTask left = child_task(t, d, false);
+  NodeTask right = child_task(t, d, true);
+  out->nodes.push_back(KdNode::make_inner(d.s.axis, d.s.pos, 0));  // stitch() points it at `above`
+  // `ws` is not touched from here on: tasks this thread steals while it waits use it.
+  tbb::parallel_invoke([&] { out->below = build_task(std::move(left)); },
+                       [&] { out->above = build_task(std::move(right)); });
+  return out;
+}
+
+//-----------------------------------------------------------------------------
+// [SECTION] Builder: stitching and the whole build
+//-----------------------------------------------------------------------------
+
+namespace stitching {
+
+/// Sizes of every part with its children's parts, bottom-up.
+void count(Subtree& part) {
+  part.node_count = part.nodes.size();
+  part.prim_count = part.prim_ids.size();
+  if (!part.below) return;
+  count(*part.below);
+  count(*part.above);
+  part.node_count += part.below->node_count + part.above->node_count;
+  part.prim_count += part.below->prim_count + part.above->prim_count;
+}
+
+/// Pre-order offsets, top-down: a split part's below child follows it, its above child
+/// follows the below child's parts. The split node's above index is made relative to the
+/// part like every other, so moving a part is one rule for all its nodes.
+void place(Subtree& part, size_t node_offset, size_t prim_offset, std::vector<Subtree*>& parts) {
+  part.node_offset = node_offset;
+  part.prim_offset = prim_offset;
+  parts.push_back(&part);
+  if (!part.below) return;
+  const KdNode split = part.nodes[0];
+  part.nodes[0] = KdNode::make_inner(split.axis(), split.split(), NodeId(1 + part.below->node_count));
+  place(*part.below, node_offset + 1, prim_offset, parts);
+  place(*part.above, node_offset + 1 + part.below->node_count, prim_offset + part.below->prim_count, parts);
+}
+
+}  // namespace stitching
+
+// Moves the parts into out_ in pre-order: inner nodes' above indices shift by the part's
+// node offset, leaves' triangle offsets by its triangle offset (both fit: the totals are
+// within the budgets checked per node).
+void KdBuilder::stitch(Subtree& root) {
+  std::vector<Subtree*> parts;
+  stitching::count(root);
+  stitching::place(root, 0, 0, parts);
+  for (const Subtree* part : parts) {
+    for (size_t KdLeafReasons::*r : {&KdLeafReasons::few_prims, &KdLeafReasons::max_depth, &KdLeafReasons::no_gain,
+                                     &KdLeafReasons::no_progress, &KdLeafReasons::bad_refines, &KdLeafReasons::thin})
+      out_.leaf_reasons.*r += part->leaf_reasons.*r;
+    out_.depth = std::max(out_.depth, part->depth);
+  }
+  if (parts.size() == 1) {  // a serial build: already in place
+    out_.nodes = std::move(root.nodes);
+    out_.prim_ids = std::move(root.prim_ids);
     return;
   }
-  out_.nodes[self] = KdNode::make_inner(s.axis, s.pos, NodeId(above));
-  build_node(right, kd_child_box(box, s.axis, s.pos, true), depth + 1, bad_refines, share - share_left);
+  out_.nodes.resize(root.node_count);
+  out_.prim_ids.resize(root.prim_count);
+  tbb::parallel_for(size_t(0), parts.size(), [&](size_t i) {
+    const Subtree& part = *parts[i];
+    const uint32_t node_shift = uint32_t(part.node_offset) << 2, prim_shift = uint32_t(part.prim_offset);
+    KdNode* nodes = out_.nodes.data() + part.node_offset;
+    for (size_t k = 0; k < part.nodes.size(); ++k) {
+      KdNode node = part.nodes[k];
+      if (node.leaf())
+        node.payload += prim_shift;
+      else
+        node.bits += node_shift;
+      nodes[k] = node;
+    }
+    std::copy(part.prim_ids.begin(), part.prim_ids.end(), out_.prim_ids.begin() + ptrdiff_t(part.prim_offset));
+  });
 }
 
 Result<KdTreeData> KdBuilder::run() {
@@ -524,22 +909,32 @@ Result<KdTreeData> KdBuilder::run() {
     return std::move(out_);
   }
   if (scene_.triangle_count() > kKdMaxIndex) return make_error("kdtree: scene has too many triangles (limit 2^30)");
-  side_.assign(scene_.triangle_count(), kBoth);
-  if (o_.split == KdSplit::Median) {
-    lo_.assign(scene_.triangle_count(), 0.0f);
-    hi_.assign(scene_.triangle_count(), 0.0f);
-  }
-  EventLists root;
+  node_cap_ = std::min<size_t>(o_.node_limit, kKdMaxIndex);
+  reporter_ = std::this_thread::get_id();
+  NodeTask root;
+  for (std::vector<Event>& list : root.events.axis) list.reserve(2 * prims.size());
   for (uint32_t prim : prims) {
     out_.root_box.extend(scene_.triangle_bounds(prim));
-    add_events(root, prim, scene_.triangle_bounds(prim));  // inside the root box: nothing to clip
+    add_events(root.events, prim, scene_.triangle_bounds(prim));  // inside the root box: nothing to clip
   }
   if (build_cancelled(control_)) return cancelled_error();
-  for (auto& list : root.axis) std::sort(list.begin(), list.end(), event_less);
-  live_events_ = root.size();
-  if (live_events_ > o_.event_limit) return make_error("kdtree: scene too large for the build's event budget");
-  build_node(root, out_.root_box, 0, 0, 1.0);
-  if (!status_) return status_.error();
+  auto sort_axis = [&root](int k) { std::sort(root.events.axis[k].begin(), root.events.axis[k].end(), EventLess{}); };
+  tbb::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
+  if (root.events.size() > o_.event_limit) return make_error("kdtree: scene too large for the build's event budget");
+  root.n = prims.size();
+  root.box = out_.root_box;
+  root.share = 1.0;
+  std::unique_ptr<Subtree> tree = build_task(std::move(root));
+  if (failed()) {
+    // Parallel tasks stop at the first budget any of them finds exceeded, which need not be
+    // the one the serial order meets first; when the message is returned, that one is found
+    // by building serially (only failed builds pay for it).
+    const bool had_tasks = parallel_ && prims.size() >= kTaskMinPrims;
+    if (had_tasks && exact_errors_ && !build_cancelled(control_))
+      return KdBuilder(scene_, o_, control_, progress_.last(), false, true).run();
+    return status_.error();
+  }
+  stitch(*tree);
   ACCEL_CHECK(out_.depth <= kKdMaxDepth);  // the traversal's stack holds kKdMaxDepth entries
   return std::move(out_);
 }
@@ -548,11 +943,12 @@ Result<KdTreeData> KdBuilder::run() {
 
 Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control) {
   if (build_cancelled(control)) return cancelled_error();
-  if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0).run();
+  if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0, true, true).run();
   // Automatic depth: keep the tree within a size proportional to the scene (at most 64
   // references per triangle, or 4M). Scenes that every plane cuts -- thousands of overlapping
   // coplanar triangles -- would otherwise grow to the absolute budget before failing; there
   // the depth limit is lowered until the tree fits, as the lecture's stop criterion intends.
+  // Only the last attempt's error is returned, so only it needs the serial order's message.
   KdBuildOptions o = options;
   const size_t n = scene.valid_prims().size();
   o.reference_limit = std::min(options.reference_limit, std::max<size_t>(size_t(1) << 22, 64 * n));
@@ -560,7 +956,7 @@ Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& optio
   double reached = 0.0;
   for (int depth = kd_auto_max_depth(n);; depth = std::max(1, depth - 4)) {
     o.max_depth = depth;
-    KdBuilder builder(scene, o, control, reached);
+    KdBuilder builder(scene, o, control, reached, true, depth == 1);
     Result<KdTreeData> tree = builder.run();
     if (tree || depth == 1 || build_cancelled(control)) return tree;
     reached = builder.progress_reached();

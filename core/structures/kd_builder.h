@@ -23,6 +23,14 @@
 //    overlaps a child but which itself misses the child is not stored there. The clipping
 //    is conservative (see kd_builder.cpp): it may keep a triangle that only grazes a child,
 //    never drop one that touches it.
+//  * Parallel (TBB): a node of at least 2048 triangles builds its two children as tasks;
+//    smaller ones build their subtree serially into a buffer of their own, and the buffers
+//    are numbered in pre-order and moved into place at the end. Every node is split exactly
+//    as the serial recursion splits it (the same sorts on the same event orders), so the tree
+//    is the same, bit for bit, for any thread count. The budgets fail exactly when the serial
+//    build does (each node and reference is reserved on a shared counter; the event budget is
+//    the serial build's live count, computed per path); progress is reported by the thread
+//    that started the build only.
 #include <bit>
 #include <cstdint>
 #include <vector>
