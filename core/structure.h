@@ -66,10 +66,12 @@ class Structure {
   /// `control` (optional) receives the progress, ending at 1.0 on success.
   Status build(const Scene& scene, const ParamSet& params, BuildControl* control = nullptr);
   /// Fits the bounds to the moved vertices of `scene` (Scene::move_vertices) without changing
-  /// the topology: the same nodes and primitive lists in the same order, new boxes/spheres,
-  /// in O(n) -- the fastest "rebuild" when the vertices move but the triangles do not (an
-  /// animation). Afterwards queries return exactly the hits of docs/hits.md on the moved
-  /// scene, and refitting to unmoved vertices changes nothing. `scene` (usually the one built
+  /// the topology: the same nodes and primitive lists in the same order, new boxes (O(n)) or
+  /// spheres (fitted as the build fits them) -- the fastest "rebuild" when the vertices move
+  /// but the triangles do not (an animation). Afterwards queries return exactly the hits of
+  /// docs/hits.md on the moved scene, and refitting to unmoved vertices reproduces the
+  /// build's bounds. The tree's quality (SAH cost) may degrade as the vertices travel far
+  /// from where it was built: rebuild now and then. `scene` (usually the one built
   /// over, moved in place) replaces the build's scene: it must outlive the structure. Not
   /// concurrently with queries. Timed (BuildStats::refit_ms); deterministic whatever the
   /// thread count. Errors, leaving the structure as it was (stale: rebuild it): a structure
