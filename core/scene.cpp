@@ -1,6 +1,10 @@
 #include "scene.h"
 
+#include <cmath>
 #include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "geometry.h"
 
@@ -8,23 +12,52 @@ namespace accel {
 
 Scene::Scene(std::vector<Vec3> positions, std::vector<UVec3> triangles, std::string name)
     : positions_(std::move(positions)), triangles_(std::move(triangles)), name_(std::move(name)) {
+  for (const UVec3& t : triangles_)
+    ACCEL_CHECK(t.x < positions_.size() && t.y < positions_.size() && t.z < positions_.size());
+  compute_triangle_data();
+}
+
+Status Scene::move_vertices(std::span<const Vec3> positions) {
+  if (positions.size() != positions_.size())
+    return make_error("move_vertices: " + std::to_string(positions.size()) + " positions given, the scene has " +
+                      std::to_string(positions_.size()) + " vertices");
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const Vec3& p = positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      return make_error("move_vertices: vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+  }
+  positions_.assign(positions.begin(), positions.end());
+  compute_triangle_data();
+  return {};
+}
+
+void Scene::compute_triangle_data() {
   const size_t n = triangles_.size();
   tri_bounds_.resize(n);
   centroids_.resize(n);
   degenerate_.resize(n);
+  // Per triangle in parallel (a moved scene is recomputed every animation frame); the
+  // order-dependent parts, the ascending index list and the scene box, stay a sequential
+  // pass in triangle order, so nothing depends on the thread count (not even the sign of a
+  // zero bound: Aabb::extend keeps the first of two equal zeros).
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      const UVec3& t = triangles_[i];
+      const Vec3 &a = positions_[t.x], &b = positions_[t.y], &c = positions_[t.z];
+      Aabb box;
+      box.extend(a);
+      box.extend(b);
+      box.extend(c);
+      tri_bounds_[i] = box;
+      centroids_[i] = box.center();
+      degenerate_[i] = is_degenerate(a, b, c) ? 1 : 0;
+    }
+  });
+  valid_prims_.clear();
   valid_prims_.reserve(n);
+  bounds_ = Aabb{};
   for (size_t i = 0; i < n; ++i) {
-    const UVec3& t = triangles_[i];
-    ACCEL_CHECK(t.x < positions_.size() && t.y < positions_.size() && t.z < positions_.size());
-    const Vec3 &a = positions_[t.x], &b = positions_[t.y], &c = positions_[t.z];
-    Aabb box;
-    box.extend(a);
-    box.extend(b);
-    box.extend(c);
-    tri_bounds_[i] = box;
-    centroids_[i] = box.center();
-    bounds_.extend(box);
-    degenerate_[i] = is_degenerate(a, b, c) ? 1 : 0;
+    bounds_.extend(tri_bounds_[i]);
     if (!degenerate_[i]) valid_prims_.push_back(uint32_t(i));
   }
 }

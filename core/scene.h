@@ -2,6 +2,7 @@
 // Scene: exactly what ray casting needs (positions, triangles, their bounds) and nothing
 // more: no materials, normals, textures or scene graph.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,7 +39,19 @@ class Scene {
   float max_abs_coordinate() const;
   const std::string& name() const { return name_; }
 
+  /// Replaces the vertex positions (same count; the triangles stay) and recomputes what
+  /// derives from them: triangle bounds, centroids, degenerate flags, valid_prims(), bounds().
+  /// A triangle may change between degenerate and valid; structures built over the old
+  /// positions are then stale: Structure::refit() them (it fails when valid_prims() changed)
+  /// or rebuild. Errors, leaving the scene unchanged: a count other than vertex_count(), a
+  /// NaN or infinite coordinate (named by vertex index).
+  Status move_vertices(std::span<const Vec3> positions);
+
  private:
+  /// Computes tri_bounds_, centroids_, degenerate_, valid_prims_ and bounds_ from the
+  /// positions (the constructor's and move_vertices()'s shared step).
+  void compute_triangle_data();
+
   std::vector<Vec3> positions_;
   std::vector<UVec3> triangles_;
   std::vector<Aabb> tri_bounds_;

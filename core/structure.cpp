@@ -19,12 +19,26 @@ Status Structure::build(const Scene& scene, const ParamSet& params, BuildControl
   auto result = build_impl(scene, params, control);
   if (result) report_progress(control, 1.0);
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  refit_ms_ = std::nan("");
   return result;
+}
+
+Status Structure::refit(const Scene& scene) {
+  const auto start = std::chrono::steady_clock::now();
+  auto result = refit_impl(scene);
+  if (result) refit_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+Status Structure::refit_impl(const Scene&) {
+  return make_error(name() + " cannot refit: rebuild it (only the bounding volume hierarchies keep their topology "
+                    "when vertices move)");
 }
 
 BuildStats Structure::build_stats() const {
   BuildStats s = compute_stats();
   s.build_ms = build_ms_;
+  s.refit_ms = refit_ms_;
   return s;
 }
 

@@ -20,6 +20,7 @@ namespace accel {
 /// (sah_cost NaN, counts 0); `extra` holds structure-specific lines.
 struct BuildStats {
   double build_ms = 0.0;              ///< wall time of build()
+  double refit_ms = std::nan("");     ///< wall time of the last successful refit() since the build, NaN if none
   size_t memory_bytes = 0;            ///< nodes + primitive references (+ grid cells)
   size_t nodes = 0;                   ///< nodes, or grid cells
   size_t leaves = 0;                  ///< leaves, or grid cells
@@ -64,6 +65,19 @@ class Structure {
   /// `control` was cancelled (then the structure is left empty: queries miss, no nodes).
   /// `control` (optional) receives the progress, ending at 1.0 on success.
   Status build(const Scene& scene, const ParamSet& params, BuildControl* control = nullptr);
+  /// Fits the bounds to the moved vertices of `scene` (Scene::move_vertices) without changing
+  /// the topology: the same nodes and primitive lists in the same order, new boxes (O(n)) or
+  /// spheres (fitted as the build fits them) -- the fastest "rebuild" when the vertices move
+  /// but the triangles do not (an animation). Afterwards queries return exactly the hits of
+  /// docs/hits.md on the moved scene, and refitting to unmoved vertices reproduces the
+  /// build's bounds. The tree's quality (SAH cost) may degrade as the vertices travel far
+  /// from where it was built: rebuild now and then. `scene` (usually the one built
+  /// over, moved in place) replaces the build's scene: it must outlive the structure. Not
+  /// concurrently with queries. Timed (BuildStats::refit_ms); deterministic whatever the
+  /// thread count. Errors, leaving the structure as it was (stale: rebuild it): a structure
+  /// that cannot refit (spatial subdivisions, whose cells depend on the vertices), or a scene
+  /// whose valid_prims() are not those built over (a triangle became degenerate or valid).
+  Status refit(const Scene& scene);
   /// Closest hit of `ray` (docs/hits.md rule). Fills per-query counters when `stats` is given.
   virtual Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const = 0;
   /// Same answer as intersect(), recording every traversal step.
@@ -86,13 +100,17 @@ class Structure {
   /// null), polls its cancel flag at coarse points and, when cancelled, clears itself to
   /// the empty state and returns cancelled_error().
   virtual Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) = 0;
-  /// Everything of BuildStats except build_ms.
+  /// The structure's own refit, timed by refit(). The default cannot refit: an error naming
+  /// the structure.
+  virtual Status refit_impl(const Scene& scene);
+  /// Everything of BuildStats except build_ms and refit_ms.
   virtual BuildStats compute_stats() const = 0;
 
   Kernel kernel_ = Kernel::Watertight;
 
  private:
   double build_ms_ = 0.0;
+  double refit_ms_ = std::nan("");
 };
 
 /// CRTP glue: turns one `template <TraversalSink Sink> Hit traverse(const Ray&, Sink&) const` in

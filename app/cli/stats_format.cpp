@@ -59,6 +59,7 @@ std::string stats_text(const std::string& scene, const std::string& structure, c
   line("structure", structure);
   line("params", params.empty() ? "(defaults)" : params);
   line("build_ms", num(b.build_ms));
+  if (std::isfinite(b.refit_ms)) line("refit_ms", num(b.refit_ms));
   line("memory_bytes", std::to_string(b.memory_bytes) + " (" + num(double(b.memory_bytes) / (1024.0 * 1024.0)) + " MB)");
   line("nodes", std::to_string(b.nodes));
   line("leaves", std::to_string(b.leaves));
@@ -93,6 +94,7 @@ std::string stats_json(const std::string& scene, const std::string& structure, c
   field("structure", json_quote(structure));
   field("params", json_quote(params));
   field("build_ms", num(b.build_ms));
+  if (std::isfinite(b.refit_ms)) field("refit_ms", num(b.refit_ms));  // only structures that can refit
   field("memory_bytes", std::to_string(b.memory_bytes));
   field("nodes", std::to_string(b.nodes));
   field("leaves", std::to_string(b.leaves));

@@ -8,6 +8,7 @@
 //   [SECTION] Node layout
 //   [SECTION] Hierarchy: build, stats, views
 //   [SECTION] Traversals: depth-first, ordered, priority queue
+//   [SECTION] Refit (defined in hierarchy_refit.cpp)
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -26,6 +27,17 @@ namespace accel {
 
 /// The builder and traversal order, as lines of the statistics (every hierarchy layout's).
 void add_hierarchy_option_lines(const BvhBuildOptions& options, TraversalOrder order, BuildStats* stats);
+
+/// Refit's precondition, for every hierarchy layout (hierarchy_refit.cpp): the `held`
+/// triangles of the structure (each once, as every builder guarantees) are exactly
+/// scene.valid_prims(). The layout scans its triangles and passes the first that is out of
+/// range or degenerate in `scene` (`bad`, or ~0u if none); the counts settle the rest.
+/// The error names `structure` and tells the caller to rebuild.
+Status check_refit_prims(const std::string& structure, const Scene& scene, size_t held, uint32_t bad);
+/// Whether triangle `prim` may stay in a refitted hierarchy over `scene`.
+inline bool refit_keeps(const Scene& scene, uint32_t prim) {
+  return prim < scene.triangle_count() && !scene.degenerate(prim);
+}
 
 // ============================================================================
 // [SECTION] Node layout
@@ -385,6 +397,26 @@ class Hierarchy : public StructureWithTraversal<Derived> {
       }
     }
   }
+
+  // ==========================================================================
+  // [SECTION] Refit (defined in hierarchy_refit.cpp, instantiated for BinaryBvh and SphereTree)
+  // ==========================================================================
+
+ protected:
+  /// Same nodes, new volumes: boxes bottom-up (a leaf's from its triangles, an inner node's
+  /// the union of its children's), then each volume fitted as flatten() fits it, so
+  /// refitting unmoved vertices reproduces the build's volumes. Subtrees in parallel.
+  Status refit_impl(const Scene& scene) override;
+
+ private:
+  /// The triangle range [first, end) of prims_ below a node (what fit_inner() scans).
+  struct PrimRange {
+    uint32_t first, end;
+  };
+  /// Refits the subtree whose nodes are [node, end) (depth-first layout: a subtree is
+  /// contiguous); `ranges` (null when Volume is the box itself) receives each node's range.
+  void refit_subtree(const Scene& scene, uint32_t node, uint32_t end, PrimRange* ranges);
+  void refit_node(const Scene& scene, uint32_t node, PrimRange* ranges);
 };
 
 }  // namespace accel

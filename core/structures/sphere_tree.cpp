@@ -1,13 +1,22 @@
 #include "structures/sphere_tree.h"
 
 #include <cstdio>
+#include <vector>
 
 namespace accel {
 
 BoundingSphere SphereTree::fit(const Scene& scene, const uint32_t* prims, size_t n, const Aabb& box) {
   if (n == 0) return {};
-  auto vertex = [&](size_t k) { return DVec3(scene.vertex(prims[k / 3], int(k % 3))); };
+  // The vertices gathered once in double: the five passes below then read one contiguous
+  // array instead of chasing triangle and vertex indices each time (the same values in the
+  // same order, so the same sphere). Small nodes (most of them) on the stack.
   const size_t m = 3 * n;
+  constexpr size_t kOnStack = 3 * 64;
+  DVec3 small[kOnStack];
+  std::vector<DVec3> large(m > kOnStack ? m : 0);
+  DVec3* points = m > kOnStack ? large.data() : small;
+  for (size_t k = 0; k < m; ++k) points[k] = DVec3(scene.vertex(prims[k / 3], int(k % 3)));
+  auto vertex = [points](size_t k) { return points[k]; };
   // Ritter: from an arbitrary point find the farthest point a, from a the farthest b; start
   // with the sphere on diameter ab and grow it to include every point outside.
   const DVec3 p0 = vertex(0);

@@ -3,7 +3,8 @@
 // the AABB tree (hierarchy.h); each node's sphere is fitted to the vertices of all
 // triangles below it with Ritter's algorithm (Ritter 1990, "An efficient bounding sphere",
 // Graphics Gems), its radius then tightened to the farthest vertex, and replaced by the
-// box's circumsphere when that is smaller.
+// box's circumsphere when that is smaller. A refit (hierarchy_refit.cpp) fits the spheres
+// of the same nodes to moved vertices in exactly this way.
 #include "structures/hierarchy.h"
 
 namespace accel {

@@ -126,8 +126,14 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   /// The node counters, the SAH cost (ct per inner node, the options' leaf cost per leaf, by
   /// area relative to the root) and the builder, traversal and width lines.
   BuildStats compute_stats() const override;
+  /// Same nodes, new boxes bottom-up, the leaves' triangle blocks re-copied from the moved
+  /// vertices; subtrees in parallel (wide_bvh_refit.cpp).
+  Status refit_impl(const Scene& scene) override;
 
  private:
+  /// Refits the subtree whose node ids are [node, end) (depth-first ids: contiguous).
+  void refit_subtree(const Scene& scene, NodeId node, NodeId end);
+  void refit_node(const Scene& scene, NodeId node);
   /// Collapses a builder's binary tree: each inner node adopts the children of its largest
   /// inner child (by surface area, the child most rays enter) until it has four.
   void collapse(const Scene& scene, const BuildTree& tree);

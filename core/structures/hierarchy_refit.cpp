@@ -1,0 +1,106 @@
+// Refit of the binary hierarchies (hierarchy.h): the bounds of the same nodes recomputed from
+// moved vertices. Kept out of the header so TBB stays a private dependency of the core;
+// instantiated below for the two hierarchies.
+#include <type_traits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include "structures/bvh.h"
+#include "structures/sphere_tree.h"
+
+namespace accel {
+namespace {
+
+/// Subtrees of at most this many nodes are refitted by one task, bottom-up in one loop:
+/// below it a task's overhead outweighs the few box unions of its nodes.
+constexpr uint32_t kRefitGrain = 2048;
+
+}  // namespace
+
+Status check_refit_prims(const std::string& structure, const Scene& scene, size_t held, uint32_t bad) {
+  // A degenerate triangle is never hit (docs/hits.md), but one that turned valid must be in
+  // the structure to be hit: the sets must be equal. Every held triangle valid and the
+  // counts equal proves it.
+  if (bad != ~0u)
+    return make_error(structure + " cannot refit: triangle " + std::to_string(bad) +
+                      (bad < scene.triangle_count() ? " is degenerate now" : " is not in the scene") + ": rebuild it");
+  if (held != scene.valid_prims().size())
+    return make_error(structure + " cannot refit: built over " + std::to_string(held) + " valid triangles, the scene has " +
+                      std::to_string(scene.valid_prims().size()) +
+                      " (a degenerate triangle became valid, or another scene): rebuild it");
+  return {};
+}
+
+template <class Derived, class Volume, class VolumeRay>
+Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
+  // The first triangle that may not stay (the lowest position, whatever the thread count).
+  const size_t bad_at = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, prims_.size(), 16384), prims_.size(),
+      [&](const tbb::blocked_range<size_t>& r, size_t first) {
+        for (size_t k = r.begin(); k < r.end() && k < first; ++k)
+          if (!refit_keeps(scene, prims_[k])) return k;
+        return first;
+      },
+      [](size_t a, size_t b) { return std::min(a, b); });
+  const uint32_t bad = bad_at < prims_.size() ? prims_[bad_at] : ~0u;
+  if (Status s = check_refit_prims(this->name(), scene, prims_.size(), bad); !s) return s;
+  if (!nodes_.empty()) {
+    // A box is its own volume: one pass. A sphere is fitted to every vertex below it, as
+    // fit_inner() does, from the triangle range the bottom-up pass records: a second pass,
+    // where every node is independent once the boxes exist.
+    constexpr bool kVolumeIsBox = std::is_same_v<Volume, Aabb>;
+    std::vector<PrimRange> ranges(kVolumeIsBox ? 0 : nodes_.size());
+    refit_subtree(scene, 0, uint32_t(nodes_.size()), kVolumeIsBox ? nullptr : ranges.data());
+    if constexpr (!kVolumeIsBox) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes_.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k)
+          nodes_[k].volume =
+              Derived::fit(scene, prims_.data() + ranges[k].first, ranges[k].end - ranges[k].first, boxes_[k]);
+      });
+    }
+  }
+  scene_ = &scene;
+  return {};
+}
+
+template <class Derived, class Volume, class VolumeRay>
+void Hierarchy<Derived, Volume, VolumeRay>::refit_subtree(const Scene& scene, uint32_t node, uint32_t end,
+                                                          PrimRange* ranges) {
+  if (end - node <= kRefitGrain) {
+    // Children have larger ids than their parent: a reverse sweep is bottom-up.
+    for (uint32_t k = end; k-- > node;) refit_node(scene, k, ranges);
+    return;
+  }
+  // More than one node: an inner node, its left subtree [node + 1, right), its right [right, end).
+  const uint32_t right = nodes_[node].index;
+  tbb::parallel_invoke([&] { refit_subtree(scene, node + 1, right, ranges); },
+                       [&] { refit_subtree(scene, right, end, ranges); });
+  refit_node(scene, node, ranges);
+}
+
+template <class Derived, class Volume, class VolumeRay>
+void Hierarchy<Derived, Volume, VolumeRay>::refit_node(const Scene& scene, uint32_t k, PrimRange* ranges) {
+  Node& n = nodes_[k];
+  Aabb box;
+  PrimRange range{0, 0};
+  if (n.leaf()) {
+    for (uint32_t i = n.index; i < n.index + n.count; ++i) box.extend(scene.triangle_bounds(prims_[i]));
+    range = {n.index, n.index + n.count};
+  } else {
+    box = merge(boxes_[k + 1], boxes_[n.index]);
+    // As fit_inner(): the lowest and highest triangle below, whichever child holds them.
+    if (ranges)
+      range = {std::min(ranges[k + 1].first, ranges[n.index].first), std::max(ranges[k + 1].end, ranges[n.index].end)};
+  }
+  boxes_[k] = box;
+  if (ranges) ranges[k] = range;
+  if constexpr (std::is_same_v<Volume, Aabb>) n.volume = box;
+}
+
+template Status Hierarchy<BinaryBvh, Aabb, BoxTester>::refit_impl(const Scene&);
+template Status Hierarchy<SphereTree, BoundingSphere, SphereRay>::refit_impl(const Scene&);
+
+}  // namespace accel
