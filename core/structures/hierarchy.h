@@ -153,19 +153,15 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     return build_bvh_tree(scene, options_, progress);
   }
 
-  /// Flattens the builder's tree into the binary node layout and fits the volumes,
-  /// reporting nodes emitted / nodes to `span`. False when cancelled (the nodes are then
-  /// incomplete: the caller clears them).
+  /// Flattens the builder's tree into the binary node layout, then fits the volumes
+  /// (fit_volumes()), reporting nodes fitted / nodes to `span`. False when cancelled (the
+  /// nodes are then incomplete: the caller clears them).
   bool store_binary(const BuildTree& tree, ProgressSpan* span = nullptr) {
     prims_ = tree.prims;
-    stopped_ = false;
-    if (!tree.empty()) {
-      nodes_.reserve(tree.nodes.size());
-      span_ = span;
-      flatten(tree, tree.root, 0);
-      span_ = nullptr;
-    }
-    return !stopped_;
+    if (tree.empty()) return true;
+    nodes_.reserve(tree.nodes.size());
+    flatten(tree, tree.root, 0);
+    return fit_volumes(span);
   }
 
   BuildStats compute_stats() const override {
@@ -205,8 +201,8 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   std::vector<uint32_t> prims_;
 
  private:
-  /// Depth-first flattening: the first child directly follows its parent. Once stopped_
-  /// (cancelled), it unwinds without fitting.
+  /// Depth-first flattening of the topology (the first child directly follows its
+  /// parent); the volumes come after, from fit_volumes().
   uint32_t flatten(const BuildTree& tree, uint32_t src, int depth) {
     const uint32_t dst = uint32_t(nodes_.size());
     const BuildNode& b = tree.nodes[src];
@@ -214,40 +210,22 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     boxes_.push_back(b.box);
     depth_.push_back(uint16_t(depth));
     ACCEL_CHECK(depth < kMaxBvhDepth);
-    if (stopped_ || (span_ && !span_->advance(double(dst) / double(tree.nodes.size())))) {
-      stopped_ = true;
-      return dst;
-    }
     if (b.count) {
       nodes_[dst].index = b.first;
       nodes_[dst].count = b.count;
-      nodes_[dst].volume = Derived::fit(*scene_, prims_.data() + b.first, b.count, b.box);
       return dst;
     }
     flatten(tree, b.left, depth + 1);
     nodes_[dst].index = flatten(tree, b.right, depth + 1);
-    if (stopped_) return dst;
-    nodes_[dst].volume = fit_inner(dst);
     return dst;
   }
 
-  /// Volume of an inner node: fitted to all triangles below it (not to the children's
-  /// volumes, which for spheres would grow at every level).
-  Volume fit_inner(uint32_t dst) {
-    // Leaves below dst are contiguous in prims_ because flattening is depth-first and each
-    // builder lays out a subtree's triangles contiguously.
-    uint32_t lo = ~0u, hi = 0;
-    for (size_t k = dst; k < nodes_.size(); ++k) {
-      if (nodes_[k].leaf()) {
-        lo = std::min(lo, nodes_[k].index);
-        hi = std::max(hi, nodes_[k].index + nodes_[k].count);
-      }
-    }
-    return Derived::fit(*scene_, prims_.data() + lo, hi - lo, boxes_[dst]);
-  }
-
-  ProgressSpan* span_ = nullptr;  // during store_binary() only
-  bool stopped_ = false;          // store_binary() was cancelled
+  /// Fits every node's volume to all triangles below it (an inner node's not to its
+  /// children's volumes, which for spheres would grow at every level), the nodes in
+  /// parallel: each fit depends only on its triangles, so the result is the serial one.
+  /// Reports nodes fitted / nodes to `span` between batches; false when cancelled.
+  /// Defined in hierarchy_refit.cpp, which fits refitted volumes the same way.
+  bool fit_volumes(ProgressSpan* span);
 
   // ==========================================================================
   // [SECTION] Traversals
@@ -409,7 +387,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   Status refit_impl(const Scene& scene) override;
 
  private:
-  /// The triangle range [first, end) of prims_ below a node (what fit_inner() scans).
+  /// The triangle range [first, end) of prims_ below a node (what fit_volumes() fits to).
   struct PrimRange {
     uint32_t first, end;
   };

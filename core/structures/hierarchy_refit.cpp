@@ -49,7 +49,7 @@ Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
   if (Status s = check_refit_prims(this->name(), scene, prims_.size(), bad); !s) return s;
   if (!nodes_.empty()) {
     // A box is its own volume: one pass. A sphere is fitted to every vertex below it, as
-    // fit_inner() does, from the triangle range the bottom-up pass records: a second pass,
+    // fit_volumes() does, from the triangle range the bottom-up pass records: a second pass,
     // where every node is independent once the boxes exist.
     constexpr bool kVolumeIsBox = std::is_same_v<Volume, Aabb>;
     std::vector<PrimRange> ranges(kVolumeIsBox ? 0 : nodes_.size());
@@ -91,7 +91,7 @@ void Hierarchy<Derived, Volume, VolumeRay>::refit_node(const Scene& scene, uint3
     range = {n.index, n.index + n.count};
   } else {
     box = merge(boxes_[k + 1], boxes_[n.index]);
-    // As fit_inner(): the lowest and highest triangle below, whichever child holds them.
+    // As fit_volumes(): the lowest and highest triangle below, whichever child holds them.
     if (ranges)
       range = {std::min(ranges[k + 1].first, ranges[n.index].first), std::max(ranges[k + 1].end, ranges[n.index].end)};
   }
@@ -100,6 +100,34 @@ void Hierarchy<Derived, Volume, VolumeRay>::refit_node(const Scene& scene, uint3
   if constexpr (std::is_same_v<Volume, Aabb>) n.volume = box;
 }
 
+template <class Derived, class Volume, class VolumeRay>
+bool Hierarchy<Derived, Volume, VolumeRay>::fit_volumes(ProgressSpan* span) {
+  // Each node's triangle range, bottom-up: children have larger ids than their parent.
+  // Leaves below a node are contiguous in prims_ because flattening is depth-first and
+  // every builder lays out a subtree's triangles contiguously.
+  std::vector<PrimRange> ranges(nodes_.size());
+  for (size_t k = nodes_.size(); k-- > 0;) {
+    const Node& n = nodes_[k];
+    ranges[k] = n.leaf() ? PrimRange{n.index, n.index + n.count}
+                         : PrimRange{std::min(ranges[k + 1].first, ranges[n.index].first),
+                                     std::max(ranges[k + 1].end, ranges[n.index].end)};
+  }
+  // Batches, so that the build thread can report progress and notice a cancel between them.
+  constexpr size_t kFitBatch = 8192;
+  for (size_t begin = 0; begin < nodes_.size(); begin += kFitBatch) {
+    const size_t end = std::min(nodes_.size(), begin + kFitBatch);
+    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k < r.end(); ++k)
+        nodes_[k].volume =
+            Derived::fit(*scene_, prims_.data() + ranges[k].first, ranges[k].end - ranges[k].first, boxes_[k]);
+    });
+    if (span && !span->advance(double(end) / double(nodes_.size()))) return false;
+  }
+  return true;
+}
+
+template bool Hierarchy<BinaryBvh, Aabb, BoxTester>::fit_volumes(ProgressSpan*);
+template bool Hierarchy<SphereTree, BoundingSphere, SphereRay>::fit_volumes(ProgressSpan*);
 template Status Hierarchy<BinaryBvh, Aabb, BoxTester>::refit_impl(const Scene&);
 template Status Hierarchy<SphereTree, BoundingSphere, SphereRay>::refit_impl(const Scene&);
 
