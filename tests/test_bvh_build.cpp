@@ -12,9 +12,12 @@
 #include "random.h"
 #include "scene.h"
 #include "structures/bvh_builders.h"
+#include "build_tree_compare.h"
 
 namespace accel {
 namespace {
+
+using testing::expect_same_tree;
 
 /// Random triangles: a few clusters of small ones (so the SAH has structure to find) and a
 /// sprinkling of long thin ones; large enough for parallel tasks and parallel binning.
@@ -54,20 +57,6 @@ BuildTree build_with_threads(const Scene& scene, const BvhBuildOptions& o, int t
     return build_bvh_tree(scene, o);
   }
   return build_bvh_tree(scene, o);
-}
-
-void expect_same_tree(const BuildTree& a, const BuildTree& b) {
-  ASSERT_EQ(a.root, b.root);
-  ASSERT_EQ(a.nodes.size(), b.nodes.size());
-  ASSERT_EQ(a.prims, b.prims);
-  for (size_t i = 0; i < a.nodes.size(); ++i) {
-    const BuildNode &x = a.nodes[i], &y = b.nodes[i];
-    ASSERT_EQ(std::memcmp(&x.box, &y.box, sizeof(Aabb)), 0) << "box of node " << i;
-    ASSERT_EQ(x.left, y.left) << "node " << i;
-    ASSERT_EQ(x.right, y.right) << "node " << i;
-    ASSERT_EQ(x.first, y.first) << "node " << i;
-    ASSERT_EQ(x.count, y.count) << "node " << i;
-  }
 }
 
 /// The guarantees of build_bvh_tree(), checked on the builder's own output.

@@ -19,9 +19,12 @@
 #include "registry.h"
 #include "scene.h"
 #include "structures/bvh_builders.h"
+#include "build_tree_compare.h"
 
 namespace accel {
 namespace {
+
+using testing::expect_same_tree;
 
 // ----------------------------------------------------------------------------
 // The reference: the straightforward full sweep, three sorts per node
@@ -202,20 +205,6 @@ const Scene& big_soup() {
 // ----------------------------------------------------------------------------
 // Helpers
 // ----------------------------------------------------------------------------
-
-void expect_same_tree(const BuildTree& a, const BuildTree& b) {
-  ASSERT_EQ(a.root, b.root);
-  ASSERT_EQ(a.nodes.size(), b.nodes.size());
-  ASSERT_EQ(a.prims, b.prims);
-  for (size_t i = 0; i < a.nodes.size(); ++i) {
-    const BuildNode &x = a.nodes[i], &y = b.nodes[i];
-    ASSERT_EQ(std::memcmp(&x.box, &y.box, sizeof(Aabb)), 0) << "box of node " << i;
-    ASSERT_EQ(x.left, y.left) << "node " << i;
-    ASSERT_EQ(x.right, y.right) << "node " << i;
-    ASSERT_EQ(x.first, y.first) << "node " << i;
-    ASSERT_EQ(x.count, y.count) << "node " << i;
-  }
-}
 
 /// Builds with exactly `threads` threads (also on a machine with fewer cores).
 BuildTree build_in_arena(const Scene& scene, const BvhBuildOptions& o, int threads) {
