@@ -14,7 +14,10 @@ echo "== Release build and tests"
 
 if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== AddressSanitizer + UBSan build and tests"
+  # -g1: line tables for the sanitizers' stack traces, without the full debug information
+  # (measured alone: 9 instead of about 14 minutes for this build on 2 cores).
   cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACCEL_SANITIZE=ON \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
         -DACCEL_BUILD_APP=OFF >/dev/null
   cmake --build "$root/build-asan" -j"$jobs"
   # Two hard-suite configurations are left to the Release pass: their builds over 3000
