@@ -46,22 +46,23 @@ Result<const StructureInfo*> find_structure(const std::string& name) {
 }
 
 Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
-                                                   const ParamSet& params, Kernel kernel, BuildControl* control) {
+                                                   const ParamSet& params, Kernel kernel, BuildControl* control,
+                                                   BuildRecorder* recorder) {
   std::unique_ptr<Structure> s = info.create(params);
   s->set_kernel(kernel);
-  auto built = s->build(scene, params, control);
+  auto built = recorder ? s->build_recorded(scene, params, *recorder, control) : s->build(scene, params, control);
   if (!built) return built.error();
   return s;
 }
 
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,
                                                    const std::vector<std::string>& params, Kernel kernel,
-                                                   BuildControl* control) {
+                                                   BuildControl* control, BuildRecorder* recorder) {
   auto info = find_structure(name);
   if (!info) return info.error();
   auto set = ParamSet::parse(info.value()->params, params, name);
   if (!set) return set.error();
-  return build_structure(*info.value(), scene, set.value(), kernel, control);
+  return build_structure(*info.value(), scene, set.value(), kernel, control, recorder);
 }
 
 }  // namespace accel

@@ -46,15 +46,18 @@ Result<const StructureInfo*> find_structure(const std::string& name);
 /// The one way the CLI, the bench, the tests and the viewer build a structure: create
 /// the class the parameters ask for, set the kernel, build. Errors name the parameter
 /// or the internal limit. `control` (optional) reports progress and can cancel the build
-/// (then the error is cancelled_error()).
+/// (then the error is cancelled_error()). With a `recorder` the build is recorded step by
+/// step (Structure::build_recorded()).
 Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
                                                    const ParamSet& params, Kernel kernel = Kernel::Watertight,
-                                                   BuildControl* control = nullptr);
+                                                   BuildControl* control = nullptr,
+                                                   BuildRecorder* recorder = nullptr);
 /// The same from `key=value` strings, validated first (errors name the structure or the
 /// parameter and its valid range).
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,
                                                    const std::vector<std::string>& params,
                                                    Kernel kernel = Kernel::Watertight,
-                                                   BuildControl* control = nullptr);
+                                                   BuildControl* control = nullptr,
+                                                   BuildRecorder* recorder = nullptr);
 
 }  // namespace accel

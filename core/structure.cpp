@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include <tbb/task_arena.h>
+
 namespace accel {
 
 void BuildStats::add_leaf(size_t n) {
@@ -14,9 +16,25 @@ void BuildStats::add_leaf(size_t n) {
 }
 
 Status Structure::build(const Scene& scene, const ParamSet& params, BuildControl* control) {
+  return timed_build(scene, params, control, nullptr);
+}
+
+Status Structure::build_recorded(const Scene& scene, const ParamSet& params, BuildRecorder& recorder,
+                                 BuildControl* control) {
+  // One thread: the steps come in the order of the serial build (depth first, left before
+  // right), and the recorder needs no locks. Builders also take their serial paths when
+  // recording, so the arena is only a guarantee.
+  tbb::task_arena one_thread(1);
+  Status result;
+  one_thread.execute([&] { result = timed_build(scene, params, control, &recorder); });
+  return result;
+}
+
+Status Structure::timed_build(const Scene& scene, const ParamSet& params, BuildControl* control,
+                              BuildRecorder* recorder) {
   const auto start = std::chrono::steady_clock::now();
   report_progress(control, 0.0);
-  auto result = build_impl(scene, params, control);
+  auto result = build_impl(scene, params, control, recorder);
   if (result) report_progress(control, 1.0);
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   refit_ms_ = std::nan("");

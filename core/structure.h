@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "build_control.h"
+#include "build_trace.h"
 #include "geometry.h"
 #include "params.h"
 #include "scene.h"
@@ -65,6 +66,11 @@ class Structure {
   /// `control` was cancelled (then the structure is left empty: queries miss, no nodes).
   /// `control` (optional) receives the progress, ending at 1.0 on success.
   Status build(const Scene& scene, const ParamSet& params, BuildControl* control = nullptr);
+  /// The same build (the same code, single-threaded) while `recorder` keeps every
+  /// construction step (build_trace.h): the structure is exactly the one build() makes.
+  /// Timed like build(), but a recorded build is slower: its time is not a benchmark.
+  Status build_recorded(const Scene& scene, const ParamSet& params, BuildRecorder& recorder,
+                        BuildControl* control = nullptr);
   /// Fits the bounds to the moved vertices of `scene` (Scene::move_vertices) without changing
   /// the topology: the same nodes and primitive lists in the same order, new boxes (O(n)) or
   /// spheres (fitted as the build fits them) -- the fastest "rebuild" when the vertices move
@@ -98,8 +104,11 @@ class Structure {
  protected:
   /// The structure's own build, timed by build(). It reports progress to `control` (may be
   /// null), polls its cancel flag at coarse points and, when cancelled, clears itself to
-  /// the empty state and returns cancelled_error().
-  virtual Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) = 0;
+  /// the empty state and returns cancelled_error(). With a `recorder` (build_recorded(),
+  /// which runs it in a one-thread arena) its builder runs instantiated for BuildRecorder,
+  /// otherwise for NullBuildSink.
+  virtual Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control,
+                            BuildRecorder* recorder) = 0;
   /// The structure's own refit, timed by refit(). The default cannot refit: an error naming
   /// the structure.
   virtual Status refit_impl(const Scene& scene);
@@ -109,6 +118,8 @@ class Structure {
   Kernel kernel_ = Kernel::Watertight;
 
  private:
+  Status timed_build(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder);
+
   double build_ms_ = 0.0;
   double refit_ms_ = std::nan("");
 };

@@ -26,7 +26,7 @@ class BruteForce final : public StructureWithTraversal<BruteForce> {
   }
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

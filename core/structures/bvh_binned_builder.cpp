@@ -516,7 +516,9 @@ void place_upper(const UpperNode& u, uint32_t offset, std::vector<BuildNode>& no
 
 }  // namespace
 
-BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress) {
+BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
+                                BuildRecorder* recorder) {
+  (void)recorder;  // TODO(#12)
   BuildTree tree;
   const std::vector<uint32_t>& valid = scene.valid_prims();
   const size_t n = valid.size();

@@ -980,7 +980,9 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
 
 }  // namespace
 
-BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress) {
+BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
+                         BuildRecorder* recorder) {
+  (void)recorder;  // TODO(#12): recorded builders
   switch (options.builder) {
     case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options, progress);
     case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options, progress);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "build_control.h"
+#include "build_trace.h"
 #include "math.h"
 #include "params.h"
 #include "scene.h"
@@ -62,6 +63,10 @@ struct BuildTree {
   std::vector<BuildNode> nodes;
   std::vector<uint32_t> prims;
   uint32_t root = 0;
+  /// Recorded builds only: the builder's event id of each node (build_trace.h), when it
+  /// differs from the node's index (bottom-up and insertion renumber their final tree).
+  std::vector<uint32_t> event_ids;
+  uint32_t event_id(uint32_t node) const { return event_ids.empty() ? node : event_ids[node]; }
   bool empty() const { return nodes.empty(); }
 };
 
@@ -71,7 +76,10 @@ struct BuildTree {
 /// `progress` (optional) receives the fraction of triangles placed in leaves so far; it is
 /// called from one thread at a time. When its advance() returns false (cancelled), the
 /// builder returns as soon as it can with an incomplete tree, which the caller discards.
-BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress = nullptr);
+/// With a `recorder`, every construction step is recorded (build_trace.h): the builder runs
+/// instantiated for BuildRecorder, serially, and builds the same tree.
+BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress = nullptr,
+                         BuildRecorder* recorder = nullptr);
 
 /// Depth bound of every builder's output (the traversal stacks are sized from it).
 inline constexpr int kMaxBvhDepth = 96;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <type_traits>
 #include <vector>
 
 #include "structures/bvh_builders.h"
@@ -114,14 +115,15 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// kTreeBuiltFraction] (and stops when cancelled), then the flattening and volume fitting
   /// report nodes emitted (the sphere tree's fits are a real share of its build). Cancel is
   /// also checked before and after the tree build and per node while flattening.
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override {
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override {
     if (build_cancelled(control)) return cancel_build();
     ProgressSpan tree_span(control, 0.0, kTreeBuiltFraction);
-    BuildTree tree = build_tree(scene, params, 1, &tree_span);
+    BuildTree tree = build_tree(scene, params, 1, &tree_span, recorder);
     if (build_cancelled(control)) return cancel_build();
     tree_span.finish();
     ProgressSpan span(control, kTreeBuiltFraction, 1.0);
-    if (!store_binary(tree, &span)) return cancel_build();
+    if (!store_binary(tree, &span, recorder)) return cancel_build();
+    if (recorder) recorder->done(nodes_.size());
     return {};
   }
 
@@ -140,7 +142,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// Reads the options and runs the chosen builder (whose SAH counts `prims_per_test`
   /// triangles per leaf test); the nodes stay empty until store_binary().
   BuildTree build_tree(const Scene& scene, const ParamSet& params, int prims_per_test = 1,
-                       ProgressSpan* progress = nullptr) {
+                       ProgressSpan* progress = nullptr, BuildRecorder* recorder = nullptr) {
     scene_ = &scene;
     const HierarchyOptions options = hierarchy_options(params);
     options_ = options.build;
@@ -150,18 +152,29 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     boxes_.clear();
     depth_.clear();
     prims_.clear();
-    return build_bvh_tree(scene, options_, progress);
+    return build_bvh_tree(scene, options_, progress, recorder);
   }
 
   /// Flattens the builder's tree into the binary node layout, then fits the volumes
   /// (fit_volumes()), reporting nodes fitted / nodes to `span`. False when cancelled (the
-  /// nodes are then incomplete: the caller clears them).
-  bool store_binary(const BuildTree& tree, ProgressSpan* span = nullptr) {
+  /// nodes are then incomplete: the caller clears them). A `recorder` receives every
+  /// node's fitted volume, by the builder's event id.
+  bool store_binary(const BuildTree& tree, ProgressSpan* span = nullptr, BuildRecorder* recorder = nullptr) {
     prims_ = tree.prims;
     if (tree.empty()) return true;
     nodes_.reserve(tree.nodes.size());
-    flatten(tree, tree.root, 0);
-    return fit_volumes(span);
+    std::vector<uint32_t> sources;
+    flatten(tree, tree.root, 0, recorder ? &sources : nullptr);
+    if (!fit_volumes(span)) return false;
+    if (recorder) {
+      for (size_t i = 0; i < nodes_.size(); ++i) {
+        if constexpr (std::is_same_v<Volume, BoundingSphere>)
+          recorder->fit(sources[i], boxes_[i], nodes_[i].volume);
+        else
+          recorder->fit(sources[i], nodes_[i].volume, BoundingSphere{});
+      }
+    }
+    return true;
   }
 
   BuildStats compute_stats() const override {
@@ -203,9 +216,11 @@ class Hierarchy : public StructureWithTraversal<Derived> {
  private:
   /// Depth-first flattening of the topology (the first child directly follows its
   /// parent); the volumes come after, from fit_volumes().
-  uint32_t flatten(const BuildTree& tree, uint32_t src, int depth) {
+  /// `sources` (recorded builds) receives each flat node's event id.
+  uint32_t flatten(const BuildTree& tree, uint32_t src, int depth, std::vector<uint32_t>* sources) {
     const uint32_t dst = uint32_t(nodes_.size());
     const BuildNode& b = tree.nodes[src];
+    if (sources) sources->push_back(tree.event_id(src));
     nodes_.emplace_back();
     boxes_.push_back(b.box);
     depth_.push_back(uint16_t(depth));
@@ -215,8 +230,8 @@ class Hierarchy : public StructureWithTraversal<Derived> {
       nodes_[dst].count = b.count;
       return dst;
     }
-    flatten(tree, b.left, depth + 1);
-    nodes_[dst].index = flatten(tree, b.right, depth + 1);
+    flatten(tree, b.left, depth + 1, sources);
+    nodes_[dst].index = flatten(tree, b.right, depth + 1, sources);
     return dst;
   }
 

@@ -941,7 +941,9 @@ Result<KdTreeData> KdBuilder::run() {
 
 }  // namespace
 
-Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control) {
+Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control,
+                                 BuildRecorder* recorder) {
+  (void)recorder;  // TODO(#12)
   if (build_cancelled(control)) return cancelled_error();
   if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0, true, true).run();
   // Automatic depth: keep the tree within a size proportional to the scene (at most 64

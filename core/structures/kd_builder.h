@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "build_control.h"
+#include "build_trace.h"
 #include "math.h"
 #include "result.h"
 #include "scene.h"
@@ -149,7 +150,9 @@ struct KdTreeData {
 /// triangles each receives (straddlers count on both sides, so the shares stay a partition
 /// summing to 1). The automatic depth may retry with a lower limit; a retry continues from
 /// the fraction reached, over what is left, so the reports never go back.
-Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control = nullptr);
+/// With a `recorder`, every construction step is recorded (build_trace.h), serially; the tree is the same.
+Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control = nullptr,
+                                 BuildRecorder* recorder = nullptr);
 
 /// Region of the below (`above` false: coordinates <= split) or above child of a node
 /// whose region is `box`, split at `split` along `axis`.

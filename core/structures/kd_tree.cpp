@@ -48,11 +48,11 @@ const ParamTable<KdBuildOptions>& KdTree::param_table() {
 // [SECTION] KdTree
 //-----------------------------------------------------------------------------
 
-Status KdTree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
+Status KdTree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   scene_ = nullptr;
   data_ = KdTreeData{};
   const KdBuildOptions o = param_table().apply(params);
-  auto built = build_kd_tree(scene, o, control);
+  auto built = build_kd_tree(scene, o, control, recorder);
   if (!built) return built.error();
   data_ = std::move(built.value());
   options_ = o;

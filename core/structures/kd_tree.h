@@ -71,7 +71,7 @@ class KdTree final : public StructureWithTraversal<KdTree> {
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
   BuildStats compute_stats() const override;
 
  private:

@@ -434,7 +434,9 @@ class OctreeBuilder {
 
 }  // namespace
 
-Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control) {
+Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control,
+                                BuildRecorder* recorder) {
+  (void)recorder;  // TODO(#12)
   ACCEL_CHECK(options.max_depth >= 0 && options.max_depth <= kOctreeMaxDepth);
   ACCEL_CHECK(options.max_prims >= 1);
   OctreeBuilder parallel(scene, options, control, true);
@@ -466,12 +468,12 @@ const ParamTable<OctreeOptions>& Octree::param_table() {
   return table;
 }
 
-Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
+Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   scene_ = &scene;
   const OctreeOptions all = param_table().apply(params);
   const OctreeBuildOptions& options = all.build;
   order_ = all.order;
-  auto built = build_octree(scene, options, control);
+  auto built = build_octree(scene, options, control, recorder);
   if (!built) {
     data_ = OctreeData{};
     stats_ = BuildStats{};

@@ -141,8 +141,9 @@ struct OctreeData {
 /// Runs on TBB's threads (the caller's task_arena): the children of a node holding many
 /// triangles are built as parallel tasks and spliced in octant order, so the tree (nodes,
 /// their order, the leaves' triangle lists) is the same for any thread count.
+/// With a `recorder`, every construction step is recorded (build_trace.h), serially; the tree is the same.
 Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options,
-                                BuildControl* control = nullptr);
+                                BuildControl* control = nullptr, BuildRecorder* recorder = nullptr);
 
 /// Everything the octree's parameters set: the build and the children's visiting order.
 struct OctreeOptions {
@@ -173,7 +174,7 @@ class Octree final : public StructureWithTraversal<Octree> {
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

@@ -292,7 +292,9 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
   return fit_resolution(resolution_cbrt(extent, scene.valid_prims().size(), config.lambda));
 }
 
-Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control) {
+Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control,
+                            BuildRecorder* recorder) {
+  (void)recorder;  // TODO(#12)
   GridData g;
   const std::vector<uint32_t>& valid = scene.valid_prims();
   if (build_cancelled(control)) return cancelled_error();
@@ -414,14 +416,14 @@ const ParamTable<UniformGridOptions>& UniformGrid::param_table() {
   return table;
 }
 
-Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
+Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   scene_ = &scene;
   UniformGridOptions options = param_table().apply(params);
   GridConfig& config = options.build;
   config.explicit_res = params.is_set("res");  // a given res overrides the rule
   mailbox_ = options.mailbox;
 
-  auto built = build_grid(scene, config, control);
+  auto built = build_grid(scene, config, control, recorder);
   if (!built) {
     grid_ = GridData{};
     grid_.cell_start = {0, 0};

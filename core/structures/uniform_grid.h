@@ -90,7 +90,9 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
 /// of the two insertion passes (counting to 0.55, filling to 1.0), from the calling thread;
 /// cancel is polled per batch of triangles. Both passes run on TBB's threads (the caller's
 /// task_arena); the grid is the same for any thread count.
-Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control = nullptr);
+/// With a `recorder`, every construction step is recorded (build_trace.h), serially; the grid is the same.
+Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control = nullptr,
+                            BuildRecorder* recorder = nullptr);
 
 /// Conservative triangle/box overlap (Akenine-Moller 2001, "Fast 3D Triangle-Box Overlap
 /// Testing", 13 separating axes), in double, the box grown by `pad`: true whenever the
@@ -138,7 +140,7 @@ class UniformGrid final : public StructureWithTraversal<UniformGrid> {
   }
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
   BuildStats compute_stats() const override { return stats_; }
 
  private:

@@ -18,7 +18,11 @@ void WideBvh::clear() {
   prim_count_ = 0;
 }
 
-Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) {
+namespace {
+void record_collapse(const BuildTree& tree, BuildRecorder& recorder);
+}  // namespace
+
+Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   // Progress as in the binary layouts (hierarchy.h): the builder reports the triangles it
   // has placed as [0, 0.8] and stops when cancelled; then the collapse (parallel, a small
   // share of the build) ends at 1.
@@ -30,11 +34,15 @@ Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildCont
   options_.prims_per_test = 4;
   order_ = options.traversal;
   ProgressSpan tree_span(control, 0.0, 0.8);
-  const BuildTree tree = build_bvh_tree(scene, options_, &tree_span);
+  const BuildTree tree = build_bvh_tree(scene, options_, &tree_span, recorder);
   if (build_cancelled(control)) return cancelled_error();
   tree_span.finish();
   if (build_cancelled(control)) return cancelled_error();  // e.g. cancelled from the callback
   collapse(scene, tree);
+  if (recorder) {
+    if (!tree.empty()) record_collapse(tree, *recorder);
+    recorder->done(entries_.size());
+  }
   return {};
 }
 
@@ -66,8 +74,10 @@ std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
 
 /// The children of wide node `src`: it opens its largest inner child in place (that
 /// child's two children take its slot, keeping tree order) until there are four children
-/// or only leaves are left. Returns how many (2..4).
-int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[4]) {
+/// or only leaves are left. Returns how many (2..4). `sink` sees each opening (a Collapse
+/// step: the wide node adopts its child's children).
+template <class Sink>
+int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[4], Sink& sink) {
   const BuildNode& b = tree.nodes[src];
   kids[0] = b.left;
   kids[1] = b.right;
@@ -84,12 +94,27 @@ int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[4]) {
     }
     if (widest < 0) break;
     const BuildNode& c = tree.nodes[kids[widest]];
+    sink.collapse(tree.event_id(src), tree.event_id(kids[widest]));
     for (int k = n; k > widest + 1; --k) kids[k] = kids[k - 1];
     kids[widest] = c.left;
     kids[widest + 1] = c.right;
     ++n;
   }
   return n;
+}
+
+/// Records the collapse steps: the same choices the collapse makes (wide_children), node by
+/// node from the root, each wide node's openings in order.
+void record_collapse(const BuildTree& tree, BuildRecorder& recorder) {
+  std::vector<uint32_t> stack{tree.root};
+  while (!stack.empty()) {
+    const uint32_t src = stack.back();
+    stack.pop_back();
+    if (tree.nodes[src].count) continue;
+    uint32_t kids[4];
+    const int n = wide_children(tree, src, kids, recorder);
+    for (int s = n; s-- > 0;) stack.push_back(kids[s]);
+  }
 }
 
 }  // namespace
@@ -116,7 +141,8 @@ struct WideBvh::Layout {
       return id;
     }
     uint32_t kids[4];
-    const int n = wide_children(tree, src, kids);
+    NullBuildSink no_steps;
+    const int n = wide_children(tree, src, kids, no_steps);
     const uint32_t w = uint32_t(nodes.size());
     entries[id] = {w, 0};
     nodes.push_back(empty_node());
@@ -197,7 +223,8 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
     const int32_t index = int32_t(top.size());
     top.push_back({src, depth, 0, {}, {}});
     TopNode node = top.back();
-    node.n = wide_children(tree, src, node.kids);
+    NullBuildSink no_steps;
+    node.n = wide_children(tree, src, node.kids, no_steps);
     for (int s = 0; s < node.n; ++s) {
       const uint32_t kid = node.kids[s];
       if (!tree.nodes[kid].count && size[kid] >= kCollapseTaskNodes) {

@@ -122,7 +122,7 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   Hit traverse(const Ray& ray, Sink& sink) const;
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
   /// The node counters, the SAH cost (ct per inner node, the options' leaf cost per leaf, by
   /// area relative to the root) and the builder, traversal and width lines.
   BuildStats compute_stats() const override;

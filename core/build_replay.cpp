@@ -1,0 +1,171 @@
+#include "build_replay.h"
+
+#include <algorithm>
+
+namespace accel {
+
+void BuildReplay::reset() {
+  applied_ = 0;
+  nodes_.clear();
+  slot_of_.clear();
+  grid_ = ReplayGrid{};
+  scene_box_ = Aabb{};
+  live_nodes_ = leaves_ = references_ = 0;
+}
+
+void BuildReplay::seek(size_t k) {
+  k = std::min(k, steps());
+  if (k < applied_) reset();
+  while (applied_ < k) apply(trace_->events[applied_++]);
+}
+
+uint32_t BuildReplay::create(uint32_t id) {
+  if (id >= slot_of_.size()) slot_of_.resize(size_t(id) + 1 + slot_of_.size() / 2, kNoBuildNode);
+  // A builder may reuse an id only for the same node (insertion re-records its leaves); a
+  // fresh Node event then restarts it.
+  uint32_t s = slot_of_[id];
+  if (s == kNoBuildNode || nodes_[s].gone) {
+    s = uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    slot_of_[id] = s;
+    ++live_nodes_;
+  }
+  nodes_[s].id = id;
+  return s;
+}
+
+void BuildReplay::remove_subtree(uint32_t s) {
+  ReplayNode& n = nodes_[s];
+  if (n.gone) return;
+  n.gone = true;
+  --live_nodes_;
+  if (n.leaf) {
+    --leaves_;
+    references_ -= n.prims.size();
+  }
+  const std::vector<uint32_t> children = n.children;
+  for (uint32_t c : children) remove_subtree(c);
+}
+
+void BuildReplay::apply(const BuildEvent& e) {
+  const uint32_t s = e.node == kNoBuildNode ? kNoBuildNode : slot(e.node);
+  switch (e.kind) {
+    case BuildEventKind::SceneBox: scene_box_ = e.box; break;
+    case BuildEventKind::GridResolution:
+      grid_.resolved = true;
+      grid_.box = e.box;
+      grid_.res[0] = int(e.a);
+      grid_.res[1] = int(e.b);
+      grid_.res[2] = int(e.count);
+      grid_.cells.assign(size_t(e.a) * e.b * e.count, {});
+      break;
+    case BuildEventKind::GridInsert:
+      for (uint32_t i = 0; i < e.list_count; ++i) {
+        const uint32_t cell = trace_->list(e)[i];
+        if (cell < grid_.cells.size()) grid_.cells[cell].push_back(e.prim);
+      }
+      references_ += e.list_count;
+      break;
+    case BuildEventKind::Node:
+    case BuildEventKind::Unrecorded: {
+      const uint32_t parent = e.parent == kNoBuildNode ? kNoBuildNode : slot(e.parent);
+      const uint32_t n = create(e.node);
+      ReplayNode& node = nodes_[n];
+      node.parent = parent;
+      node.depth = e.depth;
+      node.box = e.box;
+      node.centroids = e.centroids;
+      node.prim_count = e.count;
+      node.unrecorded = e.kind == BuildEventKind::Unrecorded;
+      if (e.kind == BuildEventKind::Node) node.prims.assign(trace_->list(e), trace_->list(e) + e.list_count);
+      if (parent != kNoBuildNode) nodes_[parent].children.push_back(n);
+      break;
+    }
+    case BuildEventKind::Axis:
+      if (s != kNoBuildNode) nodes_[s].split_axis = e.axis;
+      break;
+    case BuildEventKind::Candidates: break;  // drawn from the event itself (the cost plot)
+    case BuildEventKind::Split:
+      if (s != kNoBuildNode) {
+        nodes_[s].split_axis = e.axis;
+        nodes_[s].split_pos = e.pos;
+      }
+      break;
+    case BuildEventKind::Leaf:
+      if (s != kNoBuildNode && !nodes_[s].gone) {
+        ReplayNode& node = nodes_[s];
+        // A leaf made of a subtree (bottom-up and insertion trees are collapsed into leaves
+        // afterwards) replaces its children; a second Leaf event on a leaf replaces the first.
+        const std::vector<uint32_t> children = node.children;
+        for (uint32_t c : children) remove_subtree(c);
+        node.children.clear();
+        if (node.leaf)
+          references_ -= node.prims.size();
+        else
+          ++leaves_;
+        node.leaf = true;
+        node.prims.assign(trace_->list(e), trace_->list(e) + e.list_count);
+        node.prim_count = e.list_count;
+        references_ += e.list_count;
+      }
+      break;
+    case BuildEventKind::Subdivide: break;  // the eight children follow as Node events
+    case BuildEventKind::Merge: {
+      const uint32_t a = slot(e.a), b = slot(e.b);
+      const uint32_t n = create(e.node);
+      ReplayNode& node = nodes_[n];
+      node.box = e.box;
+      node.leaf = false;
+      // The new node takes a's place under a's parent (insertion puts it between them).
+      const uint32_t up = a != kNoBuildNode ? nodes_[a].parent : kNoBuildNode;
+      node.parent = up;
+      if (up != kNoBuildNode)
+        std::replace(nodes_[up].children.begin(), nodes_[up].children.end(), a, n);
+      node.children.clear();
+      for (uint32_t c : {a, b}) {
+        if (c == kNoBuildNode) continue;
+        nodes_[c].parent = n;
+        nodes_[n].children.push_back(c);
+      }
+      break;
+    }
+    case BuildEventKind::InsertStep:
+      if (s != kNoBuildNode) nodes_[s].box = e.box;
+      break;
+    case BuildEventKind::Collapse: {
+      const uint32_t c = slot(e.a);
+      if (s == kNoBuildNode || c == kNoBuildNode) break;
+      std::vector<uint32_t>& kids = nodes_[s].children;
+      const auto at = std::find(kids.begin(), kids.end(), c);
+      if (at == kids.end()) break;
+      const std::vector<uint32_t> grand = nodes_[c].children;
+      const auto pos = kids.erase(at);
+      kids.insert(pos, grand.begin(), grand.end());
+      for (uint32_t g : grand) nodes_[g].parent = s;
+      nodes_[c].children.clear();
+      nodes_[c].gone = true;
+      --live_nodes_;
+      break;
+    }
+    case BuildEventKind::Fit:
+      if (s != kNoBuildNode) {
+        nodes_[s].box = e.box;
+        nodes_[s].sphere = e.sphere;
+      }
+      break;
+    case BuildEventKind::Done: break;
+  }
+}
+
+std::vector<int> BuildReplay::depths() const {
+  std::vector<int> depth(nodes_.size(), -1);
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].gone) continue;
+    int d = 0;
+    for (uint32_t p = nodes_[i].parent; p != kNoBuildNode; p = nodes_[p].parent) ++d;
+    depth[i] = d;
+  }
+  return depth;
+}
+
+}  // namespace accel

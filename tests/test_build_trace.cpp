@@ -1,0 +1,231 @@
+// Construction recording (build_trace.h, build_replay.h), for every structure and builder
+// option: the recorded build makes exactly the structure of the normal build, and replaying
+// its steps reconstructs that structure -- nodes, bounds and triangle lists.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "build_replay.h"
+#include "random.h"
+#include "registry.h"
+#include "scene.h"
+
+namespace accel {
+namespace {
+
+/// 300 overlapping random triangles in the unit cube (a small soup: every builder, every split kind).
+Scene small_soup() {
+  std::vector<Vec3> positions;
+  std::vector<UVec3> triangles;
+  Rng rng(7);
+  for (uint32_t i = 0; i < 300; ++i) {
+    const Vec3 c(rng.uniform(), rng.uniform(), rng.uniform());
+    for (int k = 0; k < 3; ++k)
+      positions.push_back(c + Vec3(rng.uniform(-0.08f, 0.08f), rng.uniform(-0.08f, 0.08f), rng.uniform(-0.08f, 0.08f)));
+    triangles.push_back(UVec3(3 * i, 3 * i + 1, 3 * i + 2));
+  }
+  return Scene(std::move(positions), std::move(triangles), "small_soup");
+}
+
+const Scene& soup() {
+  static const Scene s = small_soup();
+  return s;
+}
+const Scene& cornell() {
+  static const Scene s = make_procedural_scene("cornell").value();
+  return s;
+}
+
+/// A node as both sides see it, comparable bit for bit (-0 and +0 differ, NaN equals itself).
+struct NodeHead {  // 4-byte fields only: no padding, so memcmp compares the values
+  int32_t depth = 0;  ///< grid: the cell's linear index
+  int32_t leaf = 0;
+  float box[6] = {};
+  float sphere[4] = {};
+  int32_t split_axis = -1;
+  float split_pos = 0.0f;
+};
+struct NodeKey {
+  NodeHead head;
+  std::vector<uint32_t> prims;
+  bool operator<(const NodeKey& o) const {
+    const int c = std::memcmp(&head, &o.head, sizeof(NodeHead));
+    return c < 0 || (c == 0 && prims < o.prims);
+  }
+  bool operator==(const NodeKey& o) const {
+    return std::memcmp(&head, &o.head, sizeof(NodeHead)) == 0 && prims == o.prims;
+  }
+};
+
+std::string describe(const NodeKey& k) {
+  std::ostringstream s;
+  const NodeHead& h = k.head;
+  s << (h.leaf ? "leaf" : "inner") << " depth " << h.depth << " box [" << h.box[0] << ' ' << h.box[1] << ' '
+    << h.box[2] << " | " << h.box[3] << ' ' << h.box[4] << ' ' << h.box[5] << "] sphere r " << h.sphere[3]
+    << " split " << h.split_axis << '@' << h.split_pos << " prims " << k.prims.size();
+  return s.str();
+}
+
+void set_box(NodeHead& h, const Aabb& b) {
+  const float v[6] = {b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z};
+  std::copy(v, v + 6, h.box);
+}
+void set_sphere(NodeHead& h, const BoundingSphere& s) {
+  const float v[4] = {s.center.x, s.center.y, s.center.z, s.radius};
+  std::copy(v, v + 4, h.sphere);
+}
+
+/// What the structure holds: every node (the grid: every non-empty cell, by its index).
+std::vector<NodeKey> structure_nodes(const Structure& s, const std::string& name) {
+  std::vector<NodeKey> keys;
+  s.for_each_node([&](const NodeView& v) {
+    NodeKey k;
+    k.head.leaf = v.leaf;
+    if (name == "grid") {
+      k.head.depth = int(v.id);  // a cell: its linear index and its triangles
+      k.prims = s.node_prims(v.id);
+      if (!k.prims.empty()) keys.push_back(k);
+      return;
+    }
+    k.head.depth = v.depth;
+    set_box(k.head, v.box);
+    if (name == "spheretree") set_sphere(k.head, v.sphere);
+    if (name == "kdtree" && !v.leaf) {
+      k.head.split_axis = v.split_axis;
+      k.head.split_pos = v.split_pos;
+    }
+    if (v.leaf) k.prims = s.node_prims(v.id);
+    keys.push_back(k);
+  });
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+/// What the replay of every recorded step holds, in the same terms.
+std::vector<NodeKey> replayed_nodes(const BuildReplay& replay, const std::string& name) {
+  std::vector<NodeKey> keys;
+  if (name == "grid") {
+    const ReplayGrid& g = replay.grid();
+    for (size_t c = 0; c < g.cells.size(); ++c) {
+      if (g.cells[c].empty()) continue;
+      NodeKey k;
+      k.head.leaf = true;
+      k.head.depth = int(c);
+      k.prims = g.cells[c];
+      keys.push_back(k);
+    }
+    std::sort(keys.begin(), keys.end());
+    return keys;
+  }
+  const std::vector<int> depth = replay.depths();
+  for (size_t i = 0; i < replay.nodes().size(); ++i) {
+    const ReplayNode& n = replay.nodes()[i];
+    if (n.gone) continue;
+    NodeKey k;
+    k.head.leaf = n.leaf;
+    k.head.depth = depth[i];
+    set_box(k.head, n.box);
+    if (name == "spheretree") set_sphere(k.head, n.sphere);
+    if (name == "kdtree" && !n.leaf) {
+      k.head.split_axis = n.split_axis;
+      k.head.split_pos = n.split_pos;
+    }
+    if (n.leaf) k.prims = n.prims;
+    keys.push_back(k);
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+void expect_same_nodes(const std::vector<NodeKey>& want, const std::vector<NodeKey>& got, const std::string& what) {
+  ASSERT_EQ(want.size(), got.size()) << what << ": node count";
+  for (size_t i = 0; i < want.size(); ++i)
+    ASSERT_TRUE(want[i] == got[i]) << what << ": node " << i << " of " << want.size() << "\n  want " << describe(want[i])
+                                   << "\n  got  " << describe(got[i]);
+}
+
+struct Config {
+  std::string structure;
+  std::vector<std::string> params;
+};
+
+std::string config_name(const Config& c) {
+  std::string s = c.structure;
+  for (const std::string& p : c.params) s += " " + p;
+  return s;
+}
+
+std::vector<Config> all_configs() {
+  std::vector<Config> c = {
+      {"brute", {}},
+      {"grid", {}},
+      {"grid", {"insert=bbox"}},
+      {"grid", {"resolution=avgsize", "lambda=1"}},
+      {"grid", {"res=5,3,4", "insert=exact"}},
+      {"octree", {}},
+      {"octree", {"insert=bbox"}},
+      {"octree", {"max_prims=2", "max_depth=4"}},
+      {"kdtree", {}},
+      {"kdtree", {"clip=off"}},
+      {"kdtree", {"split=middle"}},
+      {"kdtree", {"split=median", "axis=round_robin"}},
+      {"kdtree", {"split=middle", "axis=round_robin", "leaf_size=3"}},
+  };
+  for (const char* s : {"bvh", "spheretree"}) {
+    for (const char* b : {"median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion"}) {
+      c.push_back({s, {std::string("builder=") + b}});
+      if (std::string(s) == "bvh") c.push_back({s, {std::string("builder=") + b, "width=2"}});
+    }
+    c.push_back({s, {"builder=median", "axis=x", "leaf_size=1"}});
+    c.push_back({s, {"builder=median", "axis=round_robin"}});
+    c.push_back({s, {"builder=binned_sah", "bins=4", "leaf_size=2"}});
+  }
+  return c;
+}
+
+class RecordedBuild : public ::testing::TestWithParam<std::tuple<Config, int>> {};
+
+TEST_P(RecordedBuild, MakesTheSameStructureAndReplaysToIt) {
+  const Config& config = std::get<0>(GetParam());
+  const Scene& scene = std::get<1>(GetParam()) == 0 ? soup() : cornell();
+  auto normal = build_structure(config.structure, scene, config.params);
+  ASSERT_TRUE(normal) << normal.error().message;
+  BuildRecorder recorder;
+  auto recorded = build_structure(config.structure, scene, config.params, Kernel::Watertight, nullptr, &recorder);
+  ASSERT_TRUE(recorded) << recorded.error().message;
+
+  const std::vector<NodeKey> want = structure_nodes(*normal.value(), config.structure);
+  expect_same_nodes(want, structure_nodes(*recorded.value(), config.structure), "recorded build vs normal build");
+
+  const BuildTrace& trace = recorder.trace();
+  EXPECT_EQ(trace.coverage(), "complete");
+  ASSERT_FALSE(trace.events.empty());
+  EXPECT_EQ(trace.events.front().kind, BuildEventKind::SceneBox);
+  EXPECT_EQ(trace.events.back().kind, BuildEventKind::Done);
+  BuildReplay replay(trace);
+  replay.seek(replay.steps());
+  expect_same_nodes(want, replayed_nodes(replay, config.structure), "replay of the recorded steps");
+
+  // Going back and forth lands on the same state.
+  replay.seek(replay.steps() / 2);
+  replay.seek(replay.steps());
+  expect_same_nodes(want, replayed_nodes(replay, config.structure), "replay after seeking back");
+  for (const BuildEvent& e : trace.events) EXPECT_FALSE(describe_build_event(trace, e).empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(AllStructures, RecordedBuild,
+                         ::testing::Combine(::testing::ValuesIn(all_configs()), ::testing::Values(0, 1)),
+                         [](const ::testing::TestParamInfo<std::tuple<Config, int>>& param_info) {
+                           std::string n = config_name(std::get<0>(param_info.param)) +
+                                           (std::get<1>(param_info.param) == 0 ? "_soup" : "_cornell");
+                           for (char& ch : n)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace accel
