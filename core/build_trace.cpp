@@ -118,7 +118,7 @@ void BuildRecorder::node(uint32_t id, uint32_t parent, int depth, const Aabb& bo
 }
 
 void BuildRecorder::axis(uint32_t id, int axis, const Vec3& dir) {
-  if (!records(depth_of(id)) || !known(id)) return;
+  if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Axis, id)) {
     e->axis = int8_t(axis);
     e->dir = dir;
@@ -126,7 +126,7 @@ void BuildRecorder::axis(uint32_t id, int axis, const Vec3& dir) {
 }
 
 void BuildRecorder::candidates(uint32_t id, int axis, const SplitCandidate* c, size_t n) {
-  if (!known(id) || !records(depth_of(id))) return;
+  if (!within_limit(id)) return;
   if (trace_.bytes() + n * sizeof(SplitCandidate) > budget_bytes_) trace_.truncated = true;
   if (BuildEvent* e = add(BuildEventKind::Candidates, id)) {
     e->axis = int8_t(axis);
@@ -138,7 +138,7 @@ void BuildRecorder::candidates(uint32_t id, int axis, const SplitCandidate* c, s
 
 void BuildRecorder::split(uint32_t id, int axis, float pos, float cost, float leaf_cost, uint32_t left,
                           uint32_t right, uint32_t straddling) {
-  if (!known(id) || !records(depth_of(id))) return;
+  if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Split, id)) {
     e->axis = int8_t(axis);
     e->pos = pos;
@@ -151,7 +151,7 @@ void BuildRecorder::split(uint32_t id, int axis, float pos, float cost, float le
 }
 
 void BuildRecorder::leaf(uint32_t id, LeafReason reason, const uint32_t* prims, size_t n) {
-  if (!known(id) || !records(depth_of(id))) return;
+  if (!within_limit(id)) return;
   if (trace_.bytes() + n * sizeof(uint32_t) > budget_bytes_) trace_.truncated = true;
   if (BuildEvent* e = add(BuildEventKind::Leaf, id)) {
     e->reason = reason;
@@ -162,7 +162,7 @@ void BuildRecorder::leaf(uint32_t id, LeafReason reason, const uint32_t* prims, 
 }
 
 void BuildRecorder::subdivide(uint32_t id, const uint32_t* children) {
-  if (!known(id) || !records(depth_of(id))) return;
+  if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Subdivide, id)) {
     e->first = add_list(children, 8);
     e->list_count = 8;
@@ -183,7 +183,7 @@ void BuildRecorder::merge(uint32_t id, uint32_t a, uint32_t b, const Aabb& box, 
 
 void BuildRecorder::insert_step(uint32_t prim, uint32_t at, int depth, const Aabb& grown, const float* costs,
                                 int choice) {
-  if (!records(depth)) return;
+  if (!records(depth) || depth > trace_.depth_limit) return;
   if (BuildEvent* e = add(BuildEventKind::InsertStep, at)) {
     e->prim = prim;
     e->box = grown;
@@ -194,12 +194,12 @@ void BuildRecorder::insert_step(uint32_t prim, uint32_t at, int depth, const Aab
 }
 
 void BuildRecorder::collapse(uint32_t parent, uint32_t child) {
-  if (!known(parent) || !known(child) || !records(depth_of(child))) return;
+  if (!within_limit(parent) || !within_limit(child)) return;
   if (BuildEvent* e = add(BuildEventKind::Collapse, parent)) e->a = child;
 }
 
 void BuildRecorder::fit(uint32_t id, const Aabb& box, const BoundingSphere& sphere) {
-  if (!known(id) || !records(depth_of(id))) return;
+  if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Fit, id)) {
     e->box = box;
     e->sphere = sphere;

@@ -8,6 +8,7 @@
 //
 // Node ids in the events are the builder's own (any numbering, unique within one build);
 // the replay and the viewer only relate events to each other through them.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
@@ -111,7 +112,7 @@ void write_build_trace_jsonl(const BuildTrace& trace, std::ostream& out);
 struct NullBuildSink {
   static constexpr bool kRecords = false;
   /// Whether steps of a node at `depth` are kept (builders skip preparing their arguments).
-  bool records(int) const { return false; }
+  bool records(int) { return false; }
   void scene_box(const Aabb&) {}
   void grid_resolution(const Aabb&, const double*, const int*) {}
   void grid_insert(uint32_t, const int*, const int*, const uint32_t*, size_t) {}
@@ -139,8 +140,14 @@ class BuildRecorder {
   explicit BuildRecorder(int depth_limit = std::numeric_limits<int>::max(),
                          size_t budget_bytes = kDefaultBudgetBytes);
 
-  /// Whether a node at `depth` is recorded (depth limit, budget not exhausted).
-  bool records(int depth) const { return !trace_.truncated && depth <= trace_.depth_limit; }
+  /// Whether steps of a node at `depth` are kept (depth limit + 1: the first level below
+  /// the limit still gets its Unrecorded step; the budget not exhausted). Builders call it
+  /// for every node before preparing its arguments: it also notes the depth reached, for
+  /// coverage() ("recorded to depth D of E").
+  bool records(int depth) {
+    trace_.max_depth_seen = std::max(trace_.max_depth_seen, depth);
+    return !trace_.truncated && int64_t(depth) <= int64_t(trace_.depth_limit) + 1;
+  }
 
   void scene_box(const Aabb& box);
   /// values = {lambda, N, volume, cube root term}, cells = cells per axis (3).
@@ -171,6 +178,10 @@ class BuildRecorder {
 
  private:
   bool known(uint32_t id) const { return id < depth_of_.size() && depth_of_[id] >= 0; }
+  /// A recorded node within the depth limit (its steps are kept), budget left.
+  bool within_limit(uint32_t id) const {
+    return !trace_.truncated && known(id) && depth_of_[id] <= trace_.depth_limit;
+  }
   int depth_of(uint32_t id) const { return known(id) ? depth_of_[id] : -1; }
   BuildEvent* add(BuildEventKind kind, uint32_t node);
   uint32_t add_list(const uint32_t* items, size_t n);

@@ -52,6 +52,22 @@ Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, co
                                                    const ParamSet& params, Kernel kernel = Kernel::Watertight,
                                                    BuildControl* control = nullptr,
                                                    BuildRecorder* recorder = nullptr);
+/// A build recorded for playback: the structure (exactly the one build_structure() makes)
+/// and its construction steps.
+struct RecordedBuild {
+  std::unique_ptr<Structure> structure;
+  BuildTrace trace;
+};
+/// Builds with every construction step recorded, keeping the steps within `budget_bytes`:
+/// when they do not fit, it records again with the depth limit halved (from the deepest node
+/// the builder made) until they do, so the top levels are complete and trace.coverage()
+/// says "recorded to depth D of E". Builders whose steps have no depth (bottom-up merges)
+/// keep the first steps that fit ("stopped at the step budget after K steps").
+Result<RecordedBuild> build_structure_recorded(const StructureInfo& info, const Scene& scene, const ParamSet& params,
+                                               Kernel kernel = Kernel::Watertight,
+                                               size_t budget_bytes = BuildRecorder::kDefaultBudgetBytes,
+                                               BuildControl* control = nullptr);
+
 /// The same from `key=value` strings, validated first (errors name the structure or the
 /// parameter and its valid range).
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,

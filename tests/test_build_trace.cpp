@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -226,6 +227,87 @@ INSTANTIATE_TEST_SUITE_P(AllStructures, RecordedBuild,
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;
                          });
+
+const Scene& big_soup() {
+  static const Scene s = make_procedural_scene("soup").value();
+  return s;
+}
+
+// The recorded build runs serially; the normal one takes the parallel paths on 10k triangles.
+TEST(BuildRecorder, RecordedBuildOfALargerSceneEqualsTheParallelBuild) {
+  for (const char* name : {"grid", "octree", "kdtree", "bvh", "spheretree"}) {
+    auto normal = build_structure(name, big_soup(), {});
+    ASSERT_TRUE(normal) << name;
+    BuildRecorder recorder;
+    auto recorded = build_structure(name, big_soup(), {}, Kernel::Watertight, nullptr, &recorder);
+    ASSERT_TRUE(recorded) << name;
+    expect_same_nodes(structure_nodes(*normal.value(), name), structure_nodes(*recorded.value(), name), name);
+  }
+}
+
+TEST(BuildRecorder, DepthLimitRecordsTheTopLevelsOnly) {
+  auto normal = build_structure("bvh", big_soup(), {"width=2"});
+  ASSERT_TRUE(normal);
+  BuildRecorder recorder(3);
+  auto recorded = build_structure("bvh", big_soup(), {"width=2"}, Kernel::Watertight, nullptr, &recorder);
+  ASSERT_TRUE(recorded);
+  expect_same_nodes(structure_nodes(*normal.value(), "bvh"), structure_nodes(*recorded.value(), "bvh"), "bvh");
+  const BuildTrace& trace = recorder.trace();
+  const int deepest = int(normal.value()->build_stats().max_depth);
+  EXPECT_EQ(trace.max_depth_seen, deepest);
+  EXPECT_EQ(trace.coverage(), "recorded to depth 3 of " + std::to_string(deepest));
+  size_t unrecorded = 0;
+  for (const BuildEvent& e : trace.events) {
+    if (e.kind == BuildEventKind::Node) {
+      EXPECT_LE(e.depth, 3);
+    }
+    if (e.kind == BuildEventKind::Unrecorded) {
+      EXPECT_EQ(e.depth, 4);
+      ++unrecorded;
+    }
+  }
+  EXPECT_EQ(unrecorded, 16u);  // the binary tree's 16 nodes at depth 4 (no leaf above it on 10k triangles)
+  BuildReplay replay(trace);
+  replay.seek(replay.steps());
+  EXPECT_EQ(replay.live_nodes(), 1u + 2 + 4 + 8 + 16);
+}
+
+TEST(BuildRecorder, BudgetHalvesTheDepthUntilTheStepsFit) {
+  const StructureInfo& info = *find_structure("bvh").value();
+  const ParamSet params = ParamSet::parse(info.params, {}, "bvh").value();
+  const size_t budget = size_t(2) << 20;
+  auto recorded = build_structure_recorded(info, big_soup(), params, Kernel::Watertight, budget);
+  ASSERT_TRUE(recorded);
+  const BuildTrace& trace = recorded.value().trace;
+  EXPECT_FALSE(trace.truncated);
+  EXPECT_LE(trace.bytes(), budget);
+  EXPECT_LT(trace.depth_limit, trace.max_depth_seen);
+  EXPECT_NE(trace.coverage().find("recorded to depth"), std::string::npos) << trace.coverage();
+  auto normal = build_structure("bvh", big_soup(), {});
+  expect_same_nodes(structure_nodes(*normal.value(), "bvh"), structure_nodes(*recorded.value().structure, "bvh"),
+                    "bvh");
+}
+
+TEST(BuildRecorder, StopsAtTheBudgetWithoutAStall) {
+  BuildRecorder recorder(std::numeric_limits<int>::max(), 64 << 10);
+  auto recorded = build_structure("bvh", big_soup(), {}, Kernel::Watertight, nullptr, &recorder);
+  ASSERT_TRUE(recorded);  // the build itself completes
+  EXPECT_TRUE(recorder.trace().truncated);
+  EXPECT_LE(recorder.trace().bytes(), size_t(64) << 10);
+  EXPECT_NE(recorder.trace().coverage().find("stopped at the step budget"), std::string::npos);
+}
+
+TEST(BuildTraceJson, OneLinePerStepAfterAHeader) {
+  BuildRecorder recorder;
+  ASSERT_TRUE(build_structure("bvh", cornell(), {}, Kernel::Watertight, nullptr, &recorder));
+  std::ostringstream out;
+  write_build_trace_jsonl(recorder.trace(), out);
+  const std::string text = out.str();
+  EXPECT_EQ(size_t(std::count(text.begin(), text.end(), '\n')), recorder.trace().events.size() + 1);
+  EXPECT_EQ(text.rfind("{\"steps\":" + std::to_string(recorder.trace().events.size()), 0), 0u);
+  EXPECT_NE(text.find("\"kind\":\"candidates\""), std::string::npos);
+  EXPECT_NE(text.find("\"kind\":\"collapse\""), std::string::npos);
+}
 
 }  // namespace
 }  // namespace accel

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <thread>
 #include <memory>
+#include <sstream>
 
 #include "batch.h"
 #include "ray_gen.h"
@@ -24,6 +25,9 @@ struct Built {
   accel::Scene scene;
   std::unique_ptr<accel::Structure> structure;
   std::string params;
+  accel::ParamSet param_set;
+  accel::Kernel kernel = accel::Kernel::Watertight;
+  const accel::StructureInfo* info = nullptr;
 };
 
 accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) {
@@ -40,6 +44,9 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   auto built = std::make_unique<Built>();
   built->scene = std::move(scene.value());
   built->params = params.value().to_string();
+  built->param_set = params.value();
+  built->kernel = kernel;
+  built->info = info.value();
   auto structure = accel::build_structure(*info.value(), built->scene, params.value(), kernel);
   if (!structure) return structure.error();
   built->structure = std::move(structure.value());
@@ -84,6 +91,18 @@ int run_stats(const StatsOptions& o) {
     q.culled_per_ray = double(total.nodes_culled) / n;
     q.prims_per_ray = double(total.prims_tested) / n;
     q.threads = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+  }
+  if (!o.build_trace.empty()) {
+    // A second, recorded build (single-threaded): the statistics above are the normal one's.
+    auto recorded = accel::build_structure_recorded(*b.info, b.scene, b.param_set, b.kernel,
+                                                    size_t(o.build_trace_budget_mb) << 20);
+    if (!recorded) return fail(recorded.error().message);
+    std::ostringstream out;
+    accel::write_build_trace_jsonl(recorded.value().trace, out);
+    auto written = accel::write_file_atomic(o.build_trace, out.str());
+    if (!written) return fail(written.error().message);
+    std::fprintf(stderr, "build trace: %zu steps (%s) written to %s\n", recorded.value().trace.events.size(),
+                 recorded.value().trace.coverage().c_str(), o.build_trace.c_str());
   }
   const std::string text = o.json ? stats_json(o.build.scene, o.build.structure, b.params, b.scene, stats, q)
                                   : stats_text(o.build.scene, o.build.structure, b.params, b.scene, stats, q);

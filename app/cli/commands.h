@@ -26,6 +26,8 @@ struct StatsOptions {
   bool json = false;
   std::string rays;   ///< optional: also trace these rays and report per-ray counters
   int threads = 0;
+  std::string build_trace;       ///< optional: also record the construction steps to this JSON-lines file
+  int build_trace_budget_mb = 512;  ///< memory for the recorded steps (deeper levels are dropped beyond it)
 };
 
 struct BenchOptions {

@@ -61,6 +61,12 @@ int main(int argc, char** argv) {
                         "triangles tested per ray");
   stats_cmd->add_option("--threads", stats.threads, "worker threads for --rays (0 = all cores)")
       ->check(CLI::Range(0, 1024));
+  stats_cmd->add_option("--build-trace", stats.build_trace,
+                        "also record the construction step by step and write it as JSON lines (docs/build-trace.md)");
+  stats_cmd->add_option("--build-trace-budget", stats.build_trace_budget_mb,
+                        "MB of recorded steps; a bigger build is recorded to the depth that fits")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
 
   cli::BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand(

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <memory>
 #include <thread>
 
@@ -165,26 +166,31 @@ struct BinSplit {
   float cost = 0.0f;
 };
 
+/// The builder, over a build sink (build_trace.h): NullBuildSink for the normal build,
+/// BuildRecorder for the recorded one (serial, through build_serial() from the root).
+template <class Sink>
 class BinnedBuilder {
  public:
-  BinnedBuilder(const BvhBuildOptions& o, Ref* refs) : o_(o), refs_(refs) {
+  BinnedBuilder(const BvhBuildOptions& o, Ref* refs, Sink& sink) : o_(o), refs_(refs), sink_(sink) {
     const uint32_t ppt = uint32_t(o.prims_per_test);
     if (ppt > 0 && (ppt & (ppt - 1)) == 0) ppt_shift_ = std::countr_zero(ppt);
   }
 
-  /// Serial build of the subtree `r`, appended to `nodes` in pre-order; returns its index.
-  uint32_t build_serial(const Range& r, std::vector<BuildNode>& nodes) {
+  /// Serial build of the subtree `r`, appended to `nodes` in pre-order; returns its index
+  /// (the node's id in the recorded steps: the index in the finished tree).
+  uint32_t build_serial(const Range& r, std::vector<BuildNode>& nodes, uint32_t parent = kNoBuildNode) {
     const uint32_t index = uint32_t(nodes.size());
     nodes.emplace_back();
     nodes[index].box = r.box.aabb();
+    if constexpr (Sink::kRecords) record_node(r, index, parent);
     Range left, right;
-    if (!split_node(r, left, right)) {
+    if (!split_node(r, left, right, index)) {
       nodes[index].first = uint32_t(r.begin);
       nodes[index].count = uint32_t(r.size());
       return index;
     }
-    const uint32_t l = build_serial(left, nodes);
-    const uint32_t rr = build_serial(right, nodes);
+    const uint32_t l = build_serial(left, nodes, index);
+    const uint32_t rr = build_serial(right, nodes, index);
     nodes[index].left = l;
     nodes[index].right = rr;
     return index;
@@ -192,18 +198,38 @@ class BinnedBuilder {
 
   /// The leaf rule of the top-down framework in bvh_builders.cpp, then the binned split or
   /// the object-median fallback. False when `r` becomes a leaf; else fills the children.
-  bool split_node(const Range& r, Range& left, Range& right) {
+  /// `id`: the node's id for the sink.
+  bool split_node(const Range& r, Range& left, Range& right, uint32_t id = 0) {
     const size_t count = r.size();
     BinSplit split;
-    if (count > 1) split = find_split(r);
+    if (count > 1) split = find_split(r, id);
     const bool small = count <= size_t(o_.leaf_size);
     if (count <= 1 || (small && (!split.valid || split.cost >= o_.leaf_cost(count))) ||
         r.depth >= kMaxBvhDepth - 1) {
       ACCEL_CHECK(count <= size_t(o_.leaf_size) || r.depth >= kMaxBvhDepth - 1);
+      if constexpr (Sink::kRecords) {
+        const LeafReason why = r.depth >= kMaxBvhDepth - 1 && !small ? LeafReason::MaxDepth
+                               : split.valid                          ? LeafReason::NoGain
+                                                                      : LeafReason::FewPrims;
+        const std::vector<uint32_t> prims = prims_of(r);
+        sink_.leaf(id, why, prims.data(), prims.size());
+      }
       return false;
     }
-    if (!split.valid || !partition(r, split, left, right)) median_split(r, left, right);
+    const bool binned = split.valid && partition(r, split, left, right);
+    if (!binned) median_split(r, left, right);
     left.depth = right.depth = r.depth + 1;
+    if constexpr (Sink::kRecords) {
+      if (binned) {
+        sink_.split(id, split.axis, plane_position(map_, split.axis, split.bin), split.cost, o_.leaf_cost(count),
+                    uint32_t(left.size()), uint32_t(right.size()), 0);
+      } else {  // the object median: no cost computed
+        const int axis = r.centroid.aabb().longest_axis();
+        sink_.axis(id, axis, Vec3(0.0f));
+        sink_.split(id, axis, 0.5f * (refs_[left.end - 1].lo[axis] + refs_[left.end - 1].hi[axis]), std::nanf(""),
+                    o_.leaf_cost(count), uint32_t(left.size()), uint32_t(right.size()), 0);
+      }
+    }
     return true;
   }
 
@@ -229,6 +255,31 @@ class BinnedBuilder {
     }
     const __m128i rounded = _mm_add_epi32(n, _mm_set1_epi32((1 << ppt_shift_) - 1));
     return _mm_mul_ps(_mm_set1_ps(o_.ci), _mm_cvtepi32_ps(_mm_srl_epi32(rounded, _mm_cvtsi32_si128(ppt_shift_))));
+  }
+
+  /// The triangles of refs[r.begin, r.end), in their current order (recording only).
+  std::vector<uint32_t> prims_of(const Range& r) const {
+    std::vector<uint32_t> prims(r.size());
+    for (size_t i = r.begin; i < r.end; ++i) prims[i - r.begin] = refs_[i].prim;
+    return prims;
+  }
+  /// The node's Node step: its box, its centroid bounds (the references hold twice the
+  /// centroid, lo + hi) and its triangles.
+  void record_node(const Range& r, uint32_t id, uint32_t parent) {
+    if (!sink_.records(int(r.depth))) return;
+    Aabb centroids = r.centroid.aabb();
+    centroids.min *= 0.5f;
+    centroids.max *= 0.5f;
+    const std::vector<uint32_t> prims = prims_of(r);
+    sink_.node(id, parent, int(r.depth), r.box.aabb(), centroids, prims.data(), prims.size());
+  }
+  /// Where the plane between bins b - 1 and b lies on `axis`, in scene units (the map bins
+  /// twice the centroid).
+  static float plane_position(const BinMap& map, int axis, int b) {
+    alignas(16) float lo[4], scale[4];
+    _mm_store_ps(lo, map.lo);
+    _mm_store_ps(scale, map.scale);
+    return 0.5f * (lo[axis] + float(b) / scale[axis]);
   }
 
   BinMap bin_map(const Range& r, int nb, bool* any_extent) const {
@@ -277,7 +328,7 @@ class BinnedBuilder {
   }
 
   /// The cheapest binned plane on any axis by the SAH; ties keep the lower axis and plane.
-  BinSplit find_split(const Range& r) {
+  BinSplit find_split(const Range& r, uint32_t id) {
     const size_t n = r.size();
     const int nb = bin_count(n);
     bool any_extent = false;
@@ -299,14 +350,14 @@ class BinnedBuilder {
     } else {
       bin_refs(r.begin, r.end, map, nb, bins, *spare_);
     }
-    return sweep(bins, nb, r, map);
+    return sweep(bins, nb, r, map, id);
   }
 
   /// SAH sweep over the bins (Wald 2007, section 3.2), the three axes side by side in SSE
   /// lanes. Per lane it is the scalar sweep: the cost formula of sah_split_cost() in
   /// bvh_builders.cpp in the same operation order, the first (lowest) plane kept on ties,
   /// then the lowest axis among equal costs, as a loop over axes then planes would choose.
-  BinSplit sweep(const BinSet& bins, int nb, const Range& r, const BinMap& map) {
+  BinSplit sweep(const BinSet& bins, int nb, const Range& r, const BinMap& map, uint32_t id) {
     const __m128 axis_ok = _mm_cmpgt_ps(_mm_sub_ps(r.centroid.hi, r.centroid.lo), _mm_setzero_ps());
     const float parent_area = r.box.area();
     const __m128 inv = _mm_set1_ps(parent_area > 0.0f ? 1.0f / parent_area : 1.0f);
@@ -339,7 +390,9 @@ class BinnedBuilder {
       best_cost = select(take, cost, best_cost);
       best_bin = _mm_castps_si128(select(take, _mm_castsi128_ps(_mm_set1_epi32(b)), _mm_castsi128_ps(best_bin)));
       best_valid = _mm_or_ps(best_valid, valid);
+      if constexpr (Sink::kRecords) record_plane(b, valid, cost, cnt, right_count[b]);
     }
+    if constexpr (Sink::kRecords) record_candidates(id, map, r);
     alignas(16) float costs[4];
     alignas(16) int32_t bin[4], ok[4];
     _mm_store_ps(costs, best_cost);
@@ -427,8 +480,33 @@ class BinnedBuilder {
     }
   }
 
+  /// Recording: keeps the plane between bins b - 1 and b of each axis whose both sides hold
+  /// references, with the cost the sweep computed.
+  void record_plane(int b, __m128 valid, __m128 cost, __m128i left, __m128i right) {
+    alignas(16) float c[4], ok[4];
+    alignas(16) uint32_t l[4], rr[4];
+    _mm_store_ps(c, cost);
+    _mm_store_ps(ok, valid);
+    _mm_store_si128(reinterpret_cast<__m128i*>(l), left);
+    _mm_store_si128(reinterpret_cast<__m128i*>(rr), right);
+    for (int a = 0; a < 3; ++a) {
+      if (std::bit_cast<uint32_t>(ok[a]) == 0) continue;
+      planes_[a].push_back({float(b), c[a], l[a], rr[a]});
+    }
+  }
+  /// Recording: one Candidates step per axis, the bin index turned into the plane's position.
+  void record_candidates(uint32_t id, const BinMap& map, const Range& r) {
+    for (int a = 0; a < 3; ++a) {
+      for (SplitCandidate& c : planes_[a]) c.pos = plane_position(map, a, int(c.pos));
+      if (sink_.records(int(r.depth))) sink_.candidates(id, a, planes_[a].data(), planes_[a].size());
+      planes_[a].clear();
+    }
+  }
+
   const BvhBuildOptions& o_;
   Ref* refs_;
+  Sink& sink_;
+  std::vector<SplitCandidate> planes_[3];  ///< recording only: the planes of the node being swept
   int ppt_shift_ = -1;  ///< log2(prims_per_test) when it is a power of two
   BinMap map_{};  ///< bin map of the last successful find_split(), used by partition()
   // Scratch of find_split(), allocated once per builder (one per task), not per node, and
@@ -474,7 +552,8 @@ struct BuildProgress {
 std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r, BuildProgress& progress) {
   auto u = std::make_unique<UpperNode>();
   if (progress.stop()) return u;  // cancelled: an empty subtree, discarded by the caller
-  BinnedBuilder builder(o, refs);
+  NullBuildSink no_steps;
+  BinnedBuilder<NullBuildSink> builder(o, refs, no_steps);
   if (r.size() < kTaskThreshold) {
     u->subtree.reserve(r.size());
     builder.build_serial(r, u->subtree);
@@ -518,10 +597,10 @@ void place_upper(const UpperNode& u, uint32_t offset, std::vector<BuildNode>& no
 
 BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                                 BuildRecorder* recorder) {
-  (void)recorder;  // TODO(#12)
   BuildTree tree;
   const std::vector<uint32_t>& valid = scene.valid_prims();
   const size_t n = valid.size();
+  if (recorder) recorder->scene_box(scene.bounds());
   if (n == 0) return tree;
   std::vector<Ref> refs(n);
   // References and root bounds in one parallel pass; min/max reduce exactly in any order.
@@ -549,6 +628,15 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   root.begin = 0;
   root.end = n;
   root.depth = 0;
+  if (recorder) {  // recorded: the serial build from the root (the same tree, in pre-order)
+    BinnedBuilder<BuildRecorder> builder(options, refs.data(), *recorder);
+    tree.nodes.reserve(2 * n / size_t(std::max(1, options.leaf_size)) + 1);
+    builder.build_serial(root, tree.nodes);
+    if (progress) progress->advance(1.0);
+    tree.prims.resize(n);
+    for (size_t i = 0; i < n; ++i) tree.prims[i] = refs[i].prim;
+    return tree;
+  }
 
   BuildProgress shared_progress;
   shared_progress.span = progress;

@@ -984,7 +984,7 @@ BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, Pro
                          BuildRecorder* recorder) {
   (void)recorder;  // TODO(#12): recorded builders
   switch (options.builder) {
-    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options, progress);
+    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options, progress, recorder);
     case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options, progress);
     case BvhBuilderKind::Insertion: return build_insertion(scene, options, progress);
     default: return build_top_down(scene, options, progress);

@@ -263,6 +263,34 @@ def test_bench_without_embree(cli, work):
         check(cells and all(c == "-" for c in cells), f"bench --no-embree Markdown: ratio cells {cells}")
 
 
+def test_build_trace(cli, source, work):
+    """stats --build-trace FILE: JSON lines, a header then one object per step, from the scene
+    box to done; the same structure's statistics on stdout; bad paths are one-line errors."""
+    import json
+    obj = os.path.join(source, "scenes", "steps.obj")
+    for structure in ["brute", "grid", "octree", "kdtree", "bvh", "spheretree"]:
+        out = os.path.join(work, f"build_{structure}.jsonl")
+        code, stdout, err = run(cli, "stats", "--scene", obj, "--structure", structure, "--build-trace", out)
+        check(code == 0, f"stats --build-trace {structure}: exit {code}, {err!r}")
+        if code != 0:
+            continue
+        check("build trace:" in err and out in err, f"{structure}: no 'build trace:' line in {err!r}")
+        with open(out) as f:
+            lines = [json.loads(l) for l in f]
+        header, steps = lines[0], lines[1:]
+        check(header["steps"] == len(steps), f"{structure}: header says {header['steps']} steps, file has {len(steps)}")
+        check(header["coverage"] == "complete", f"{structure}: coverage {header['coverage']}")
+        check(steps[0]["kind"] == "scene_box" and steps[-1]["kind"] == "done",
+              f"{structure}: first/last steps {steps[0]['kind']}/{steps[-1]['kind']}")
+        check([s["step"] for s in steps] == list(range(len(steps))), f"{structure}: steps not numbered 0..N-1")
+    expect_bad(cli, ["stats", "--scene", obj, "--structure", "bvh", "--build-trace",
+                     os.path.join(work, "no_such_dir", "t.jsonl")], "no_such_dir",
+               out=os.path.join(work, "no_such_dir", "t.jsonl"))
+    expect_bad(cli, ["stats", "--scene", obj, "--structure", "bvh", "--build-trace",
+                     os.path.join(work, "t.jsonl"), "--build-trace-budget", "0"], "--build-trace-budget",
+               out=os.path.join(work, "t.jsonl"))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cli", required=True)
@@ -275,6 +303,7 @@ def main():
     test_trace(a.cli, a.source, a.work)
     test_bad_input(a.cli, a.source, a.shared, a.work)
     test_bench(a.cli, a.work)
+    test_build_trace(a.cli, a.source, a.work)
     print(f"{'FAILED' if FAILURES else 'OK'}: {len(FAILURES)} failures")
     return 1 if FAILURES else 0
 
