@@ -514,6 +514,7 @@ const PseudoCode& build_bvh_insertion_code() {
         {"insert_step", "    sift: here, left or right (least cost)"},
         {"node", "    new leaf (sibling where it stopped)"},
         {"leaf", "    leaf of the polygon"},
+        {"merge", "    new inner node over it and that sibling"},
     };
     for (auto t : hierarchy_tail()) r.push_back(t);
     return r;

@@ -226,7 +226,8 @@ void append_plane(BuildView& v, const accel::Aabb& box, int axis, float pos, con
     const glm::vec3 o = c + (pos - glm::dot(c, n)) * n;
     const glm::vec3 a = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
     const glm::vec3 b = glm::cross(n, a);
-    const float r = 0.5f * glm::length(box.max - box.min);
+    const glm::vec3 ext = box.max - box.min;
+    const float r = 0.5f * std::max(ext.x, std::max(ext.y, ext.z));  // about the box's size, not its diagonal
     q[0] = o - r * a - r * b;
     q[1] = o + r * a - r * b;
     q[2] = o + r * a + r * b;

@@ -227,7 +227,7 @@ void BuildPlayer::cost_plot_widget() {
     return;
   }
   ImGui::Text("C(B) of node %u against the plane position", plot.node);
-  const ImVec2 size(ImGui::GetContentRegionAvail().x, 9.0f * em);
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 6.0f * em);
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   const ImVec2 p1(p0.x + size.x, p0.y + size.y);
   ImDrawList* dl = ImGui::GetWindowDrawList();
