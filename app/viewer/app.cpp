@@ -49,6 +49,7 @@ accel::Status App::init(GLFWwindow* window, const std::string& shader_dir, const
   session_.init_gl();
   nodes_.init_gl();
   ray_.init_gl();
+  build_.init_gl();
   heatmap_.init_gl();
 
   // GLFW callbacks are plain functions: the window's user pointer leads back to us.
@@ -75,12 +76,14 @@ accel::Status App::init(GLFWwindow* window, const std::string& shader_dir, const
 void App::shutdown() {
   // Background jobs first: they may still read the scene and structure.
   session_.wait();
+  build_.wait();
   heatmap_.wait();
   compare_.wait();
   sweep_.wait();
   // GL objects next: their destructors call into the context main() destroys next.
   heatmap_.release_gl();
   ray_.release_gl();
+  build_.release_gl();
   nodes_.release_gl();
   session_.release_gl();
   renderer_.reset();
@@ -106,6 +109,7 @@ void App::sync_session() {
   if (e.scene_loaded) {
     // A new scene: the old ray, its comparison and the heat map no longer mean anything.
     ray_.reset();
+    build_.reset();
     compare_.clear();
     heatmap_.invalidate();
     frame_scene();
@@ -113,6 +117,7 @@ void App::sync_session() {
   if (e.structure_installed) {
     nodes_.install(*session_.shown());
     ray_.replay(session_.current());
+    build_.reset();  // recorded on another structure
   }
   if (e.scene_loaded || e.structure_installed) update_window_title();
 }
@@ -170,6 +175,7 @@ void App::update(float dt) {
   session_.poll();
   sync_session();
   compare_.poll();
+  build_.poll();
   update_camera_input();
   update_shortcuts();
 
@@ -179,7 +185,10 @@ void App::update(float dt) {
                          : (1.0 - kTimingSmoothing) * timing_.frame_ms + kTimingSmoothing * frame_ms;
   timing_.fps = timing_.frame_ms > 0.0 ? 1000.0 / timing_.frame_ms : 0.0;
 
-  if (!synchronous_) ray_.advance(static_cast<double>(dt));
+  if (!synchronous_) {
+    ray_.advance(static_cast<double>(dt));
+    build_.advance(static_cast<double>(dt));
+  }
   heatmap_.update(dt, heatmap_view());
 
   apply_lecture_mode();
@@ -189,12 +198,19 @@ void App::update(float dt) {
     layout_windows();
     if (panels_.main) main_panel();
     const BuiltStructure* shown = session_.shown();
-    if (panels_.ray && ray_.ray_panel(place(layout_.ray), shown)) {
-      compare_.set_open(true);
-      start_compare();
+    ImFont* mono = lecture_mode_ ? fonts_.mono_large : fonts_.mono;
+    if (build_.active() || build_.recording()) {  // the construction mode takes the traversal panels' places
+      if (panels_.ray) build_.control_panel(place(layout_.ray), session_.scene_ptr(), session_.current_request());
+      if (panels_.steps) build_.steps_panel(place(layout_.steps));
+      if (panels_.code) build_.code_panel(place(layout_.code), mono);
+    } else {
+      if (panels_.ray && ray_.ray_panel(place(layout_.ray), shown)) {
+        compare_.set_open(true);
+        start_compare();
+      }
+      if (panels_.steps) ray_.steps_panel(place(layout_.steps));
+      if (panels_.code) ray_.code_panel(place(layout_.code), shown, mono);
     }
-    if (panels_.steps) ray_.steps_panel(place(layout_.steps));
-    if (panels_.code) ray_.code_panel(place(layout_.code), shown, lecture_mode_ ? fonts_.mono_large : fonts_.mono);
     if (compare_.open()) {
       if (auto choice = compare_.panel(place(layout_.bottom, false), shown, ray_.ray().ray)) switch_structure(*choice);
     }
@@ -218,6 +234,7 @@ void App::update(float dt) {
   const glm::ivec2 fb(static_cast<int>(std::lround(io.DisplaySize.x * sx)), static_cast<int>(std::lround(io.DisplaySize.y * sy)));
   if (fb.x > 0 && fb.y > 0) framebuffer_ = fb;
   ray_.update(session_.scene(), session_.current());
+  build_.update();
 }
 
 void App::update_camera_input() {
@@ -250,6 +267,7 @@ void App::update_shortcuts() {
   // Typing "f" into the OBJ path field must not reframe the scene.
   if (ImGui::GetIO().WantCaptureKeyboard) return;
   accel::TracePlayer& p = ray_.player();
+  BuildStepPlayer& b = build_.player();
   for (const KeyPress& k : keys) {
     const size_t n = (k.mods & GLFW_MOD_SHIFT) ? 10 : 1;
     switch (k.key) {
@@ -266,6 +284,18 @@ void App::update_shortcuts() {
       case GLFW_KEY_LEFT_BRACKET: p.set_speed(p.speed() / 1.5); break;
       case GLFW_KEY_C: compare_.set_open(true); start_compare(); break;
       case GLFW_KEY_M: heatmap_.cycle(); break;
+      // The construction mode: B records (again: back to the traversal), P . , PgUp PgDn - = step it.
+      case GLFW_KEY_B:
+        if (build_.active()) build_.set_active(false);
+        else if (session_.current() && !build_.recording()) construct();
+        break;
+      case GLFW_KEY_P: b.toggle(); break;
+      case GLFW_KEY_PERIOD: b.pause(); b.step_forward(n); break;
+      case GLFW_KEY_COMMA: b.pause(); b.step_back(n); break;
+      case GLFW_KEY_PAGE_UP: b.pause(); b.seek(0); break;
+      case GLFW_KEY_PAGE_DOWN: b.pause(); b.jump_to_end(); break;
+      case GLFW_KEY_EQUAL: b.set_speed(b.speed() * 1.5); break;
+      case GLFW_KEY_MINUS: b.set_speed(b.speed() / 1.5); break;
       default: break;
     }
   }
@@ -281,6 +311,7 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
   session_.upload(*renderer_);
   nodes_.sync_gl();
   ray_.sync_gl();
+  build_.sync_gl();
   heatmap_.sync_gl();
   // The view keeps its rectangle from update(); clamp it to this framebuffer.
   view_.x = std::clamp(view_.x, 0, framebuffer_.x - 1);
@@ -304,9 +335,13 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
   // The mesh first (translucent too: it writes depth), so nodes and highlights behind it
   // are drawn faintly by the x-ray passes and those in front stay crisp.
   renderer_->draw_mesh(nodes_.mesh_style());
-  const bool tracing = ray_.ray().active && !ray_.ray().player.empty();
-  nodes_.draw(*renderer_, session_.current(), tracing);
-  ray_.draw(*renderer_);
+  if (build_.active()) {
+    build_.draw(*renderer_);  // the partly built structure instead of the finished one
+  } else {
+    const bool tracing = ray_.ray().active && !ray_.ray().player.empty();
+    nodes_.draw(*renderer_, session_.current(), tracing);
+    ray_.draw(*renderer_);
+  }
   session_.draw_bounds(*renderer_);
   heatmap_.draw(*renderer_, heatmap_view());
   renderer_->end_frame();

@@ -21,6 +21,7 @@
 #include "renderer.h"
 #include "result.h"
 #include "script.h"
+#include "tools/build_player.h"
 #include "tools/compare_tool.h"
 #include "tools/heatmap_tool.h"
 #include "tools/node_display.h"
@@ -122,6 +123,7 @@ class App {
   void set_ray(const accel::Ray& ray, const std::string& origin);
   void start_compare();
   accel::Status start_sweep();
+  void construct() { build_.construct(session_.scene_ptr(), session_.current_request(), synchronous_); }
   void switch_structure(const StructureChoice& choice) { session_.switch_structure(choice.name, choice.params); }
   HeatmapView heatmap_view() const;
   void frame_scene() { frame_requested_ = true; }
@@ -141,6 +143,7 @@ class App {
   StructureSession session_;
   NodeDisplay nodes_;
   RayDebugger ray_;
+  BuildPlayer build_;  // the construction mode
   CompareTool compare_;
   SweepTool sweep_;
   HeatmapTool heatmap_;

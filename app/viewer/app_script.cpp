@@ -100,6 +100,32 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       }
       return {};
     }
+    case CommandKind::Construct:
+      if (auto st = session_.need_structure(); !st) return st;
+      construct();  // synchronous in script mode
+      if (auto st = build_.need_trace(); !st) return accel::make_error("construct: " + st.error().message);
+      return {};
+    case CommandKind::BuildStep: {
+      if (auto st = build_.need_trace(); !st) return accel::make_error("build-step: " + st.error().message);
+      BuildStepPlayer& p = build_.player();
+      p.pause();
+      switch (c.step) {
+        case StepMode::Forward: p.step_forward(static_cast<size_t>(c.ints[0])); break;
+        case StepMode::Back: p.step_back(static_cast<size_t>(c.ints[0])); break;
+        case StepMode::End: p.jump_to_end(); break;
+        case StepMode::Start:
+        case StepMode::Hit: p.seek(0); break;
+      }
+      build_.set_active(true);
+      return {};
+    }
+    case CommandKind::PrintBuildStep:
+      if (auto st = build_.need_trace(); !st) return accel::make_error("print-build-step: " + st.error().message);
+      print_line(build_.step_line());
+      return {};
+    case CommandKind::SahPlot:
+      build_.set_sah_plot(c.on);
+      return {};
     case CommandKind::Show:
       switch (c.show) {
         case ShowMode::All: nodes_.show_all(); break;

@@ -76,7 +76,16 @@ void App::main_panel() {
       frame_requested_ = false;
     }
   }
-  if (ImGui::CollapsingHeader("Structure", ImGuiTreeNodeFlags_DefaultOpen)) session_.structure_section();
+  if (ImGui::CollapsingHeader("Structure", ImGuiTreeNodeFlags_DefaultOpen)) {
+    session_.structure_section();
+    ImGui::BeginDisabled(!session_.current() || build_.recording());
+    if (ImGui::Button("Construct (B)")) construct();
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("record the build and watch it step by step");
+    ImGui::SameLine();
+    bool mode = build_.active();
+    if (ImGui::Checkbox("construction mode", &mode)) build_.set_active(mode);
+  }
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (nodes_.section(session_.shown())) {
       session_.set_empty_cells(nodes_.empty_cells());
@@ -96,6 +105,9 @@ void App::main_panel() {
     ImGui::TextDisabled("home/end: first/last step   J: jump to hit");
     ImGui::TextDisabled("[ ]: slower/faster   C: compare   M: heat map");
     ImGui::TextDisabled("F: frame scene   H: hide panels   L: lecture mode");
+    ImGui::TextDisabled("B: construct (again: traversal)   P: play/pause build");
+    ImGui::TextDisabled(", .: build step (shift: 10)   PgUp/PgDn: first/last");
+    ImGui::TextDisabled("- =: build slower/faster");
   }
   ImGui::End();
 }
@@ -104,7 +116,8 @@ void App::status_overlay() {
   if (!ui_visible_) return;
   const bool building = session_.building();
   const bool waiting_heatmap = heatmap_.computing();
-  if (!building && !waiting_heatmap) return;
+  const bool recording = build_.recording();
+  if (!building && !waiting_heatmap && !recording) return;
   const float em = ImGui::GetFontSize();
   glm::vec2 pos = layout_.status.pos;
   if (panels_.legend && heatmap_.on()) pos.y += 7.5f * em;  // below the legend
@@ -117,6 +130,10 @@ void App::status_overlay() {
     ImGui::TextColored(ui::kCurrentText, "building %s ... %.1f s (the old structure stays until it is ready)",
                        session_.requested_name().c_str(), session_.build_seconds());
     ImGui::ProgressBar(static_cast<float>(session_.build_fraction()), ImVec2(20.0f * em, 0.4f * em), "");
+  }
+  if (recording) {
+    ImGui::TextColored(ui::kCurrentText, "recording the construction ... %.1f s", build_.recording_seconds());
+    ImGui::ProgressBar(static_cast<float>(build_.recording_fraction()), ImVec2(20.0f * em, 0.4f * em), "");
   }
   if (waiting_heatmap) {
     const glm::ivec2 size = heatmap_.computing_size();

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "params.h"
+
 namespace viz {
 namespace {
 
@@ -357,6 +359,232 @@ int pseudo_code_line(TraversalKind kind, std::span<const TraceEvent> events, siz
   const PseudoCode& code = pseudo_code(kind);
   for (size_t i = 0; i < code.anchors.size(); ++i)
     if (code.anchors[i] == anchor) return int(i);
+  return -1;
+}
+
+// ---------------------------------------------------------------------------------------
+// Construction listings: the lecture's procedures (../shared/seed/), one line per step the
+// builders record; anchors are the event kinds (build_trace.h).
+
+namespace {
+
+const PseudoCode& build_brute_code() {
+  static const PseudoCode code = listing("Brute force: no construction", {
+      {"scene_box", "box = bbox of the scene"},
+      {"node", "list = all triangles"},
+      {"leaf", "one leaf holds them all"},
+      {"done", "done"},
+  });
+  return code;
+}
+
+const PseudoCode& build_grid_code() {
+  static const PseudoCode code = listing("Uniform grid: generation (lecture)", {
+      {"scene_box", "box = bbox of the scene"},
+      {"grid_resolution", "resolution = lambda * cbrt(N) cells per axis"},
+      {"", "    (cells cuboid-like: scaled by the box's extents)"},
+      {"", "for each object:   // insert objects in cells"},
+      {"grid_insert", "    for each cell under the object's bbox:"},
+      {"", "        append the object to ObjectList[X][Y][Z]"},
+      {"", "    (exact: keep only cells the triangle touches)"},
+      {"done", "done: #cells in O(N)"},
+  });
+  return code;
+}
+
+const PseudoCode& build_octree_code() {
+  static const PseudoCode code = listing("Octree: construction (lecture)", {
+      {"scene_box", "start with the bbox of the whole scene"},
+      {"node", "build(cell, objects):"},
+      {"leaf", "    if few objects or max depth: leaf"},
+      {"subdivide", "    subdivide the cell into 8 equal sub-cells"},
+      {"", "    for each sub-cell:"},
+      {"", "        build(sub-cell, objects overlapping it)"},
+      {"unrecorded", "    (below the recorded depth: built, not shown)"},
+      {"done", "done"},
+  });
+  return code;
+}
+
+const PseudoCode& build_kd_code() {
+  static const PseudoCode code = listing("kd-tree: construction, top down (lecture)", {
+      {"scene_box", "root cell = bbox of the scene"},
+      {"node", "build(cell, primitives):"},
+      {"axis", "    1. choose an axis-aligned plane: axis"},
+      {"candidates", "       position: middle / median / min C(B)"},
+      {"split", "       split, unless no plane beats the leaf"},
+      {"", "    2. distribute the geometry among the children"},
+      {"", "       (some go to both)"},
+      {"", "    3. recursion: build(left), build(right)"},
+      {"leaf", "    until the stopping criterion: leaf"},
+      {"unrecorded", "    (below the recorded depth: built, not shown)"},
+      {"done", "done"},
+  });
+  return code;
+}
+
+/// The hierarchies' common tail: fit the volumes, collapse a wide BVH.
+std::vector<std::pair<const char*, const char*>> hierarchy_tail() {
+  return {
+      {"unrecorded", "(below the recorded depth: built, not shown)"},
+      {"collapse", "width 4: node adopts its child's children"},
+      {"fit", "fit each node's bounding volume (box / sphere)"},
+      {"done", "done"},
+  };
+}
+
+PseudoCode top_down(std::string title, std::vector<std::pair<const char*, const char*>> choose) {
+  std::vector<std::pair<const char*, const char*>> rows = {
+      {"scene_box", "elementary BVs around all objects"},
+      {"node", "build(objects):"},
+  };
+  rows.insert(rows.end(), choose.begin(), choose.end());
+  for (auto r : std::vector<std::pair<const char*, const char*>>{
+           {"", "    left = objects before the plane, right = the rest"},
+           {"", "    build(left); build(right)"},
+           {"leaf", "    terminate when fewer than n objects: leaf"},
+       })
+    rows.push_back(r);
+  for (auto r : hierarchy_tail()) rows.push_back(r);
+  return listing(std::move(title), rows);
+}
+
+const PseudoCode& build_bvh_median_code() {
+  static const PseudoCode code = top_down("BVH: top-down, median (lecture)", {
+      {"axis", "    axis: x / cycle x,y,z / longest extent"},
+      {"", "    sort the objects by their centre along it"},
+      {"split", "    split at the median: half left, half right"},
+  });
+  return code;
+}
+
+const PseudoCode& build_bvh_sah_code() {
+  static const PseudoCode code = top_down("BVH: top-down, SAH plane sweep", {
+      {"axis", "    for each axis x, y, z:"},
+      {"candidates", "        sweep: C(B) at every position"},
+      {"split", "    split at the minimum of C(B),"},
+      {"", "        unless the leaf is cheaper"},
+  });
+  return code;
+}
+
+const PseudoCode& build_bvh_binned_code() {
+  static const PseudoCode code = top_down("BVH: top-down, binned SAH", {
+      {"axis", "    for each axis x, y, z:"},
+      {"candidates", "        bin the centres; C(B) at each bin boundary"},
+      {"split", "    split at the minimum of C(B),"},
+      {"", "        unless the leaf is cheaper"},
+  });
+  return code;
+}
+
+const PseudoCode& build_bvh_pca_code() {
+  static const PseudoCode code = top_down("BVH: top-down, PCA + SAH (lecture)", {
+      {"", "    represent all polygons by their midpoints"},
+      {"axis", "    axis of largest extent (using PCA)"},
+      {"", "    project the midpoints onto it and sort"},
+      {"candidates", "    search minimum of C(B) by plane sweep"},
+      {"split", "    split there, unless the leaf is cheaper"},
+  });
+  return code;
+}
+
+const PseudoCode& build_bvh_bottom_up_code() {
+  static std::vector<std::pair<const char*, const char*>> rows = [] {
+    std::vector<std::pair<const char*, const char*>> r = {
+        {"scene_box", "elementary BVs around all objects"},
+        {"node", "each object is a cluster (a leaf)"},
+        {"leaf", "    leaf of one triangle"},
+        {"", "while more than one cluster:"},
+        {"merge", "    combine the two whose BV is smallest"},
+        {"", "    enclose them in a (larger) BV"},
+    };
+    for (auto t : hierarchy_tail()) r.push_back(t);
+    return r;
+  }();
+  static const PseudoCode code = listing("BVH: bottom-up (lecture)", rows);
+  return code;
+}
+
+const PseudoCode& build_bvh_insertion_code() {
+  static std::vector<std::pair<const char*, const char*>> rows = [] {
+    std::vector<std::pair<const char*, const char*>> r = {
+        {"scene_box", "start with an empty tree"},
+        {"", "for each polygon:   [Goldsmith/Salmon]"},
+        {"insert_step", "    sift: here, left or right (least cost)"},
+        {"node", "    new leaf (sibling where it stopped)"},
+        {"leaf", "    leaf of the polygon"},
+        {"merge", "    new inner node over it and that sibling"},
+    };
+    for (auto t : hierarchy_tail()) r.push_back(t);
+    return r;
+  }();
+  static const PseudoCode code = listing("BVH: iterative insert (lecture)", rows);
+  return code;
+}
+
+}  // namespace
+
+BuildCodeKind build_code_kind(const std::string& name, const std::vector<std::string>& params) {
+  if (name == "brute") return BuildCodeKind::Brute;
+  if (name == "grid") return BuildCodeKind::Grid;
+  if (name == "octree") return BuildCodeKind::Octree;
+  if (name == "kdtree") return BuildCodeKind::KdTree;
+  if (name != "bvh" && name != "spheretree") return BuildCodeKind::Unknown;
+  auto info = accel::find_structure(name);
+  if (!info) return BuildCodeKind::Unknown;
+  auto set = accel::ParamSet::parse(info.value()->params, params, name);
+  if (!set || !set.value().has("builder")) return BuildCodeKind::Unknown;
+  const std::string b = set.value().get_choice("builder");
+  if (b == "median") return BuildCodeKind::BvhMedian;
+  if (b == "sah") return BuildCodeKind::BvhSah;
+  if (b == "binned_sah") return BuildCodeKind::BvhBinned;
+  if (b == "pca_sah") return BuildCodeKind::BvhPca;
+  if (b == "bottom_up") return BuildCodeKind::BvhBottomUp;
+  if (b == "insertion") return BuildCodeKind::BvhInsertion;
+  return BuildCodeKind::Unknown;
+}
+
+const char* build_code_label(BuildCodeKind kind) {
+  switch (kind) {
+    case BuildCodeKind::Brute: return "brute force";
+    case BuildCodeKind::Grid: return "grid";
+    case BuildCodeKind::Octree: return "octree";
+    case BuildCodeKind::KdTree: return "kd-tree";
+    case BuildCodeKind::BvhMedian: return "median";
+    case BuildCodeKind::BvhSah: return "SAH sweep";
+    case BuildCodeKind::BvhBinned: return "binned SAH";
+    case BuildCodeKind::BvhPca: return "PCA + SAH";
+    case BuildCodeKind::BvhBottomUp: return "bottom-up";
+    case BuildCodeKind::BvhInsertion: return "insertion";
+    case BuildCodeKind::Unknown: break;
+  }
+  return "?";
+}
+
+const PseudoCode& build_pseudo_code(BuildCodeKind kind) {
+  switch (kind) {
+    case BuildCodeKind::Brute: return build_brute_code();
+    case BuildCodeKind::Grid: return build_grid_code();
+    case BuildCodeKind::Octree: return build_octree_code();
+    case BuildCodeKind::KdTree: return build_kd_code();
+    case BuildCodeKind::BvhMedian: return build_bvh_median_code();
+    case BuildCodeKind::BvhSah: return build_bvh_sah_code();
+    case BuildCodeKind::BvhBinned: return build_bvh_binned_code();
+    case BuildCodeKind::BvhPca: return build_bvh_pca_code();
+    case BuildCodeKind::BvhBottomUp: return build_bvh_bottom_up_code();
+    case BuildCodeKind::BvhInsertion: return build_bvh_insertion_code();
+    case BuildCodeKind::Unknown: break;
+  }
+  return unknown_code();
+}
+
+int build_code_line(BuildCodeKind kind, const accel::BuildEvent* e) {
+  if (!e) return -1;
+  const PseudoCode& code = build_pseudo_code(kind);
+  const std::string anchor = accel::build_event_kind_name(e->kind);
+  for (size_t i = 0; i < code.anchors.size(); ++i)
+    if (code.anchors[i] == anchor) return static_cast<int>(i);
   return -1;
 }
 

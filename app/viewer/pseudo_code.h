@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "build_trace.h"
 #include "registry.h"
 #include "structure.h"
 
@@ -51,5 +52,33 @@ int pseudo_code_line(TraversalKind kind, std::span<const accel::TraceEvent> even
 /// The anchor name of events[step] (what pseudo_code_line looks up), for tests.
 std::string pseudo_code_anchor(TraversalKind kind, std::span<const accel::TraceEvent> events, size_t step,
                                const NodeLookup& lookup);
+
+// ---------------------------------------------------------------------------------------
+// Construction (the construction mode's panel)
+
+/// The construction algorithms the viewer has pseudo code for.
+enum class BuildCodeKind {
+  Brute,        ///< one leaf of every triangle
+  Grid,         ///< resolution rule + insert loop
+  Octree,       ///< subdivide into 8 until the stopping criterion
+  KdTree,       ///< choose axis / plane, distribute, recurse, leaf
+  BvhMedian,    ///< top-down, median of the centres
+  BvhSah,       ///< top-down, SAH plane sweep on all axes
+  BvhBinned,    ///< top-down, binned SAH
+  BvhPca,       ///< top-down, SAH sweep along the PCA axis
+  BvhBottomUp,  ///< agglomerative clustering
+  BvhInsertion, ///< Goldsmith-Salmon insertion
+  Unknown,
+};
+
+/// The construction of structure `name` with its `params` (key=value; the builder and
+/// split parameters choose the listing, defaults as the registry's).
+BuildCodeKind build_code_kind(const std::string& name, const std::vector<std::string>& params);
+/// Short label, e.g. "binned SAH".
+const char* build_code_label(BuildCodeKind kind);
+/// The listing of `kind`; its anchors are build_event_kind_name()s (leaves: "leaf").
+const PseudoCode& build_pseudo_code(BuildCodeKind kind);
+/// The line of step `e` in build_pseudo_code(kind), or -1 when it has none (nullptr: -1).
+int build_code_line(BuildCodeKind kind, const accel::BuildEvent* e);
 
 }  // namespace viz

@@ -132,6 +132,25 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     }
     return "";
   }
+  if (verb == "build-step") {
+    c.kind = CommandKind::BuildStep;
+    const char* usage = "build-step N | build-step end | build-step back N | build-step start";
+    if (n == 1 && args[0] == "end") c.step = StepMode::End;
+    else if (n == 1 && args[0] == "start") c.step = StepMode::Start;
+    else if (n == 1 && parse_int(args[0], &c.ints[0]) && c.ints[0] >= 0) c.step = StepMode::Forward;
+    else if (n == 2 && args[0] == "back" && parse_int(args[1], &c.ints[0]) && c.ints[0] >= 0) c.step = StepMode::Back;
+    else return count_error(usage);
+    return "";
+  }
+  if (verb == "construct" || verb == "print-build-step") {
+    c.kind = verb == "construct" ? CommandKind::Construct : CommandKind::PrintBuildStep;
+    return n == 0 ? "" : "'" + verb + "' takes no arguments";
+  }
+  if (verb == "sah-plot") {
+    c.kind = CommandKind::SahPlot;
+    if (n != 1 || !parse_on_off(args[0], &c.on)) return count_error("sah-plot on|off");
+    return "";
+  }
   if (verb == "show") {
     c.kind = CommandKind::Show;
     const char* usage = "show depth=A..B | show depth=A | show leaves | show all";

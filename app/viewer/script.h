@@ -25,6 +25,10 @@
 //   sweep PARAM LO HI STEPS           parameter sweep of the current structure (synchronous)
 //   screenshot PATH                   write a PNG
 //   frames PREFIX                     PREFIX0000.png ... one PNG per remaining step
+//   construct                         record the current structure's build (construction mode)
+//   build-step N | build-step end | build-step back N | build-step start
+//   print-build-step                  "build step K/N: TEXT" (K steps applied)
+//   sah-plot on|off                   the construction panel's SAH cost plot
 //   print-hit                         "hit PRIM T" or "miss"
 //   print-step                        the current step as one line
 //   print-ray                         "ox oy oz dx dy dz" as C99 hex floats (a rays-file line)
@@ -46,7 +50,7 @@ namespace viz {
 enum class CommandKind {
   Size, Scene, Preset, Structure, Kernel, Camera, RayAtPixel, Ray, Step, Show, Heatmap, Mesh,
   EmptyCells, Nodes, Opacity, Panel, Large, Compare, Sweep, Screenshot, Frames, PrintHit, PrintStep,
-  PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart,
+  PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart, Construct, BuildStep, PrintBuildStep, SahPlot,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };
@@ -60,10 +64,10 @@ struct ScriptCommand {
   std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
   std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
   bool has_fov = false;              ///< camera: FOVY given
-  int ints[2] = {0, 0};              ///< size W H; step count; sweep steps; frame count
-  StepMode step = StepMode::Forward;
+  int ints[2] = {0, 0};              ///< size W H; step / build-step count; sweep steps; frame count
+  StepMode step = StepMode::Forward;  ///< step, build-step (no Hit)
   ShowMode show = ShowMode::All;
-  bool on = true;                    ///< panel/large/empty-cells/nodes/show-chart on|off
+  bool on = true;                    ///< panel/large/empty-cells/nodes/show-chart/sah-plot on|off
 };
 
 /// Parses `text` (the script named `script_name` in messages). Validates everything that

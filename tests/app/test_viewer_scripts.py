@@ -9,6 +9,8 @@ pixel known to hit, step from the first to the last step, take a screenshot of e
     viewer prints it with print-ray as hex floats, written to a rays file);
   * the last step is the Done event with that hit;
   * `frames` writes one PNG per remaining step, `heatmap prims` overlays the cost image;
+  * `construct` + `build-step` + `print-build-step` step through the recorded build, and
+    its steps look different;
   * `load-bench` + `show-chart on` draw the speed-against-error chart over the view;
   * script errors exit 2 with "accelviz: SCRIPT:LINE: message".
 Exit 77 (ctest: skipped) when xvfb-run is missing.
@@ -146,6 +148,34 @@ def main():
     c, o, _ = run([args.png_check, "--differ", f"{work}/heatmap.png", f"{work}/chart.png", "2000"])
     check(c == 0, f"show-chart on changed nothing: {o}")
 
+    # ---- The construction mode: brute force records 4 steps; the pictures of its steps differ.
+    lines = [f"size {W} {H}", f"scene {SCENE}", "structure brute", "construct", "print-build-step",
+             "build-step 1", "print-build-step", f"screenshot {work}/build_1.png",
+             "build-step 1", "print-build-step", f"screenshot {work}/build_2.png",
+             "build-step end", "print-build-step", f"screenshot {work}/build_end.png",
+             "build-step back 10", "print-build-step", "sah-plot off",
+             "structure bvh", "construct", "build-step end", "print-build-step", f"screenshot {work}/build_bvh.png"]
+    script = os.path.join(work, "construct.txt")
+    with open(script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    code, out, err = viewer(args, script)
+    if check(code == 0, f"construct: viewer exit {code}\n{err}"):
+        got = out.strip().splitlines()
+        expected = [
+            r"build step 0/4: nothing built yet",
+            r"build step 1/4: scene box computed",
+            r"build step 2/4: node 0 \(depth 0\) with \d+ triangles",
+            r"build step 4/4: done: 1 nodes",
+            r"build step 0/4: nothing built yet",
+            r"build step (\d+)/\1: .*",
+        ]
+        if check(len(got) == len(expected), f"construct: expected {len(expected)} lines:\n{out}"):
+            for line, pattern in zip(got, expected):
+                check(re.fullmatch(pattern, line) is not None, f"construct: '{line}' does not match {pattern}")
+        for a, b in (("build_1", "build_2"), ("build_2", "build_end")):
+            c, o, _ = run([args.png_check, "--differ", f"{work}/{a}.png", f"{work}/{b}.png", "30"])
+            check(c == 0, f"construct: {a} and {b} look the same: {o}")
+
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
         ("bad_parse.txt", "size 320 240\n# comment\nfly to the moon\n", r"^accelviz: .*bad_parse\.txt:3: unknown command 'fly'\n$"),
@@ -163,6 +193,10 @@ def main():
          r"^accelviz: .*bad_chart\.txt:2: show-chart: no bench JSON loaded"),
         ("bad_group.txt", f"size {W} {H}\nload-bench {BENCH_JSON}\nshow-chart on group=3\n",
          r"^accelviz: .*bad_group\.txt:3: show-chart: group=3, but .*bench_chart\.json has 2 group\(s\)"),
+        ("bad_build_step.txt", f"size {W} {H}\nscene {SCENE}\nbuild-step 3\n",
+         r"^accelviz: .*bad_build_step\.txt:3: build-step: no construction recorded yet \(use construct first\)\n$"),
+        ("bad_build_args.txt", "build-step back\n",
+         r"^accelviz: .*bad_build_args\.txt:1: usage: build-step N \| build-step end \| build-step back N"),
         ("bad_bench.txt", f"size {W} {H}\nload-bench /no/such/bench.json\n",
          r"^accelviz: .*bad_bench\.txt:2: /no/such/bench\.json: cannot read the file\n$"),
     ]

@@ -1,0 +1,396 @@
+#include "tools/build_player.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "panels.h"
+#include "tools/ui_colors.h"
+
+namespace viz {
+namespace {
+
+using accel::BuildEvent;
+using accel::BuildEventKind;
+using ui::kCurrentText;
+using ui::kDimText;
+using ui::kHitText;
+using ui::kQueueText;
+
+ImVec4 event_color(const BuildEvent& e) {
+  switch (e.kind) {
+    case BuildEventKind::Node: return kCurrentText;
+    case BuildEventKind::Leaf: return kHitText;
+    case BuildEventKind::Split:
+    case BuildEventKind::Subdivide:
+    case BuildEventKind::Merge: return ImVec4(1.0f, 0.55f, 0.9f, 1.0f);
+    case BuildEventKind::Candidates:
+    case BuildEventKind::Axis: return ImVec4(0.95f, 0.75f, 1.0f, 1.0f);
+    case BuildEventKind::GridInsert:
+    case BuildEventKind::InsertStep: return kQueueText;
+    case BuildEventKind::Unrecorded: return kDimText;
+    default: return ImVec4(1.0f, 1.0f, 1.0f, 1.0f);
+  }
+}
+
+const ImU32 kAxisColors[4] = {IM_COL32(255, 90, 90, 255), IM_COL32(90, 230, 110, 255), IM_COL32(100, 150, 255, 255),
+                              IM_COL32(255, 200, 60, 255)};
+const char* const kAxisNames[4] = {"x", "y", "z", "PCA"};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Recording
+
+void BuildPlayer::construct(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
+                            bool synchronous) {
+  job_.wait();
+  control_ = std::make_shared<accel::BuildControl>();
+  pending_scene_ = scene;
+  pending_request_ = request;
+  error_.clear();
+  auto control = control_;
+  job_.start(
+      [scene, request, control](const std::atomic<bool>& cancel) -> accel::Result<RecordedBuild> {
+        if (cancel) return accel::cancelled_error();
+        return record_structure(*scene, request, control.get());
+      },
+      synchronous);
+  if (synchronous) poll();
+}
+
+void BuildPlayer::poll() {
+  if (!job_.ready()) return;
+  auto result = job_.take();
+  const bool cancelled = control_ && control_->cancelled();
+  control_.reset();
+  if (!result) {
+    error_ = cancelled ? "construction cancelled" : result.error().message;
+    return;
+  }
+  scene_ = std::move(pending_scene_);
+  request_ = pending_request_;
+  trace_ = result.value().trace;
+  attempts_ = result.value().attempts;
+  replay_ = std::make_unique<accel::BuildReplay>(*trace_);
+  code_kind_ = build_code_kind(request_.name, request_.params);
+  player_.load(trace_->events.size());
+  active_ = true;
+  dirty_ = true;
+}
+
+void BuildPlayer::cancel() {
+  if (control_) control_->cancel();
+  job_.cancel();
+}
+
+void BuildPlayer::wait() {
+  cancel();
+  job_.wait();
+}
+
+void BuildPlayer::reset() {
+  wait();
+  control_.reset();
+  active_ = false;
+  trace_.reset();
+  replay_.reset();
+  scene_.reset();
+  attempts_.clear();
+  player_.clear();
+  view_ = BuildView{};
+  upload_ = true;
+  error_.clear();
+}
+
+accel::Status BuildPlayer::need_trace() const {
+  if (!trace_) {
+    if (!error_.empty()) return accel::make_error("construction failed: " + error_);
+    return accel::make_error("no construction recorded yet (use construct first)");
+  }
+  return {};
+}
+
+std::string BuildPlayer::step_line() const {
+  if (!trace_) return "no construction";
+  return build_step_line(*trace_, player_.step());
+}
+
+void BuildPlayer::update() {
+  if (!replay_ || !scene_) return;
+  if (!dirty_ && view_step_ == player_.step()) return;
+  dirty_ = false;
+  view_step_ = player_.step();
+  replay_->seek(player_.step());
+  view_ = build_view(*trace_, *replay_, *scene_);
+  upload_ = true;
+}
+
+// ---------------------------------------------------------------------------------------
+// Panels
+
+void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<const accel::Scene>& scene,
+                                const StructureRequest& request) {
+  const float em = ImGui::GetFontSize();
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin("Construction")) {
+    ImGui::End();
+    return;
+  }
+  ui::note_docked(where);
+  if (recording()) {
+    ImGui::TextColored(kCurrentText, "recording the build of %s ... %.1f s", pending_request_.name.c_str(),
+                       recording_seconds());
+    ImGui::ProgressBar(static_cast<float>(recording_fraction()), ImVec2(-5.0f * em, 0.0f), "");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) cancel();
+  } else {
+    if (ImGui::Button("Construct (B)")) construct(scene, request, false);
+    ImGui::SameLine();
+    if (ImGui::Button("Traversal mode")) active_ = false;
+  }
+  if (!error_.empty()) ImGui::TextColored(ui::kMissText, "%s", error_.c_str());
+  if (!trace_) {
+    ImGui::TextWrapped("Construct records every step of the current structure's build and plays it.");
+    ImGui::End();
+    return;
+  }
+  ImGui::TextDisabled("%s (%s): %s", request_.name.c_str(), build_code_label(code_kind_), trace_->coverage().c_str());
+  if (attempts_.size() > 1) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(%zu attempts)", attempts_.size());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the step budget ran out: re-recorded with half the depth");
+  }
+
+  BuildStepPlayer& p = player_;
+  if (ImGui::Button("|<")) { p.pause(); p.seek(0); }
+  ImGui::SameLine();
+  if (ImGui::Button("<")) { p.pause(); p.step_back(); }
+  ImGui::SameLine();
+  if (ImGui::Button(p.playing() ? "Pause" : "Play", ImVec2(4.0f * em, 0.0f))) p.toggle();
+  ImGui::SameLine();
+  if (ImGui::Button(">")) { p.pause(); p.step_forward(); }
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) { p.pause(); p.jump_to_end(); }
+  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+  int step = static_cast<int>(p.step());
+  ImGui::SetNextItemWidth(half);
+  char step_format[48];
+  std::snprintf(step_format, sizeof step_format, "step %%d of %zu", p.size());
+  if (ImGui::SliderInt("##bstep", &step, 0, static_cast<int>(p.size()), step_format, ImGuiSliderFlags_AlwaysClamp)) {
+    p.pause();
+    p.seek(static_cast<size_t>(step));
+  }
+  ImGui::SameLine();
+  float speed = static_cast<float>(p.speed());
+  ImGui::SetNextItemWidth(half);
+  if (ImGui::SliderFloat("##bspeed", &speed, static_cast<float>(BuildStepPlayer::kMinSpeed),
+                         static_cast<float>(BuildStepPlayer::kMaxSpeed), "speed %.3g steps/s",
+                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
+    p.set_speed(speed);
+
+  const BuildEvent* e = replay_ ? replay_->current() : nullptr;
+  if (e) {
+    ImGui::PushStyleColor(ImGuiCol_Text, event_color(*e));
+    ImGui::TextWrapped("%s", accel::describe_build_event(*trace_, *e).c_str());
+    ImGui::PopStyleColor();
+  } else {
+    ImGui::TextDisabled("nothing built yet");
+  }
+  if (replay_ && ImGui::BeginTable("bcounters", 4, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerH)) {
+    for (const char* h : {"so far", "nodes", "leaves", "references"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    ImGui::TableNextRow();
+    ImGui::TableSetColumnIndex(0);
+    ImGui::TextDisabled("step %zu", p.step());
+    const size_t values[3] = {replay_->live_nodes(), replay_->leaves(), replay_->references()};
+    for (int i = 0; i < 3; ++i) {
+      ImGui::TableSetColumnIndex(i + 1);
+      ImGui::Text("%zu", values[i]);
+    }
+    ImGui::EndTable();
+  }
+  if (view_.nodes_capped) ImGui::TextDisabled("drawing the %zu shallowest nodes", view_.nodes_drawn);
+  ImGui::Checkbox("SAH cost plot", &sah_plot_);
+  if (sah_plot_) cost_plot_widget();
+  ImGui::End();
+}
+
+void BuildPlayer::cost_plot_widget() {
+  const CostPlot plot = trace_ ? cost_plot(*trace_, player_.step()) : CostPlot{};
+  const float em = ImGui::GetFontSize();
+  if (plot.curves.empty()) {
+    ImGui::TextDisabled("C(B): no candidate planes at this step");
+    return;
+  }
+  ImGui::Text("C(B) of node %u against the plane position", plot.node);
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 6.0f * em);
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  const ImVec2 p1(p0.x + size.x, p0.y + size.y);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(p0, p1, IM_COL32(20, 22, 28, 255));
+  dl->AddRect(p0, p1, IM_COL32(120, 120, 130, 255));
+  const float pad = 0.4f * em;
+  const float lo = plot.min_cost, hi = plot.max_cost > plot.min_cost ? plot.max_cost : plot.min_cost + 1.0f;
+  auto y_of = [&](float c) { return p1.y - pad - (c - lo) / (hi - lo) * (size.y - 2.0f * pad); };
+  // Each axis on its own position range, stretched over the plot's width.
+  for (size_t i = 0; i < plot.curves.size(); ++i) {
+    const CostCurve& c = plot.curves[i];
+    const auto [mn, mx] = std::minmax_element(c.pos.begin(), c.pos.end());
+    const float a = *mn, b = *mx > *mn ? *mx : *mn + 1.0f;
+    auto x_of = [&](float x) { return p0.x + pad + (x - a) / (b - a) * (size.x - 2.0f * pad); };
+    const ImU32 col = kAxisColors[std::clamp(c.axis, 0, 3)];
+    for (size_t k = 0; k + 1 < c.pos.size(); ++k)
+      if (std::isfinite(c.cost[k]) && std::isfinite(c.cost[k + 1]))
+        dl->AddLine(ImVec2(x_of(c.pos[k]), y_of(c.cost[k])), ImVec2(x_of(c.pos[k + 1]), y_of(c.cost[k + 1])), col, 2.0f);
+    if (c.pos.size() == 1) dl->AddCircleFilled(ImVec2(x_of(c.pos[0]), y_of(c.cost[0])), 3.0f, col);
+    const ImVec2 m(x_of(c.pos[c.best]), y_of(c.cost[c.best]));
+    const bool overall = static_cast<int>(i) == plot.best_curve;
+    dl->AddCircle(m, overall ? 6.0f : 4.0f, overall ? IM_COL32(255, 255, 255, 255) : col, 12, 2.0f);
+  }
+  if (plot.has_leaf_cost && std::isfinite(plot.leaf_cost)) {
+    const float y = y_of(plot.leaf_cost);
+    for (float x = p0.x + pad; x < p1.x - pad; x += 8.0f)
+      dl->AddLine(ImVec2(x, y), ImVec2(std::min(x + 4.0f, p1.x - pad), y), IM_COL32(230, 230, 230, 220), 1.5f);
+    dl->AddText(ImVec2(p0.x + pad, y - em), IM_COL32(230, 230, 230, 220), "leaf cost");
+  }
+  ImGui::Dummy(size);
+  // Legend: the axes evaluated and their minima.
+  for (size_t i = 0; i < plot.curves.size(); ++i) {
+    const CostCurve& c = plot.curves[i];
+    if (i) ImGui::SameLine();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(kAxisColors[std::clamp(c.axis, 0, 3)]));
+    ImGui::Text("%s: min %.4g at %.4g%s", kAxisNames[std::clamp(c.axis, 0, 3)], static_cast<double>(c.cost[c.best]),
+                static_cast<double>(c.pos[c.best]), static_cast<int>(i) == plot.best_curve ? " (best)" : "");
+    ImGui::PopStyleColor();
+  }
+  if (plot.has_leaf_cost) ImGui::TextDisabled("leaf cost %.4g (dashed)", static_cast<double>(plot.leaf_cost));
+}
+
+void BuildPlayer::steps_panel(const PanelPlace& where) {
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin("Construction steps")) {
+    ImGui::End();
+    return;
+  }
+  ui::note_docked(where);
+  if (!trace_ || trace_->events.empty()) {
+    ImGui::TextDisabled("nothing recorded yet: Construct (B)");
+    ImGui::End();
+    return;
+  }
+  ImGui::Checkbox("follow", &follow_step_);
+  ImGui::SameLine();
+  ImGui::TextDisabled("click a step to go there");
+  ImGui::BeginChild("bsteps");
+  const auto& events = trace_->events;
+  const float row_h = ImGui::GetTextLineHeightWithSpacing();
+  const size_t applied = player_.step();
+  const size_t current = applied ? applied - 1 : ~size_t(0);
+  if (follow_step_ && applied != steps_scrolled_) {
+    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(applied) * row_h - 0.5f * ImGui::GetWindowHeight()));
+    steps_scrolled_ = applied;
+  }
+  ImGuiListClipper clipper;
+  clipper.Begin(static_cast<int>(events.size()), row_h);
+  while (clipper.Step()) {
+    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
+      const BuildEvent& e = events[static_cast<size_t>(i)];
+      char label[320];
+      std::snprintf(label, sizeof label, "%5d  %*s%s", i + 1, std::min<int>(e.depth, 24), "",
+                    accel::describe_build_event(*trace_, e).c_str());
+      const bool is_current = static_cast<size_t>(i) == current;
+      ImGui::PushStyleColor(ImGuiCol_Text, is_current ? ImVec4(0, 0, 0, 1) : event_color(e));
+      if (is_current) ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
+      if (ImGui::Selectable(label, is_current)) {
+        player_.pause();
+        player_.seek(static_cast<size_t>(i) + 1);
+        steps_scrolled_ = static_cast<size_t>(i) + 1;
+      }
+      if (is_current) ImGui::PopStyleColor();
+      ImGui::PopStyleColor();
+    }
+  }
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin("Construction code")) {
+    ImGui::End();
+    return;
+  }
+  ui::note_docked(where);
+  const PseudoCode& code = build_pseudo_code(code_kind_);
+  const int line = build_code_line(code_kind_, replay_ ? replay_->current() : nullptr);
+  ImGui::TextDisabled("%s", code.title.c_str());
+  ImGui::BeginChild("bcode", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
+  if (mono) ImGui::PushFont(mono);
+  const float row_h = ImGui::GetTextLineHeightWithSpacing();
+  if (line >= 0 && line != code_scrolled_) {
+    const float y = static_cast<float>(line) * row_h;
+    if (y < ImGui::GetScrollY() + row_h || y > ImGui::GetScrollY() + ImGui::GetWindowHeight() - 2.0f * row_h)
+      ImGui::SetScrollY(std::max(0.0f, y - 0.4f * ImGui::GetWindowHeight()));
+    code_scrolled_ = line;
+  }
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  for (size_t i = 0; i < code.lines.size(); ++i) {
+    const bool current = static_cast<int>(i) == line;
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    if (current) {
+      dl->AddRectFilled(ImVec2(p.x - 4.0f, p.y - 1.0f),
+                        ImVec2(p.x + ImGui::GetContentRegionAvail().x + ImGui::GetScrollX(), p.y + row_h - 1.0f),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.9f)));
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 1));
+    }
+    ImGui::TextUnformatted(code.lines[i].empty() ? " " : code.lines[i].c_str());
+    if (current) ImGui::PopStyleColor();
+  }
+  if (mono) ImGui::PopFont();
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+// ---------------------------------------------------------------------------------------
+// Drawing
+
+void BuildPlayer::init_gl() {
+  segments_gl_.emplace();
+  triangles_gl_.emplace(GL_TRIANGLES);
+  lines_gl_.emplace(GL_LINES);
+  upload_ = true;
+}
+
+void BuildPlayer::sync_gl() {
+  if (!segments_gl_ || !upload_) return;
+  segments_gl_->upload(view_.segments);
+  triangles_gl_->upload(view_.triangles, GL_DYNAMIC_DRAW);
+  lines_gl_->upload(view_.lines, GL_DYNAMIC_DRAW);
+  upload_ = false;
+}
+
+void BuildPlayer::draw(Renderer& renderer) {
+  if (!segments_gl_ || !active_) return;
+  LineStyle thin;
+  thin.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.35f);
+  renderer.draw_lines(*lines_gl_, thin);
+  renderer.draw_triangles(*triangles_gl_);
+  LineStyle thick;
+  thick.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.4f);
+  thick.depth_bias = 0.001f;
+  renderer.draw_segments(*segments_gl_, thick);
+}
+
+void BuildPlayer::release_gl() {
+  lines_gl_.reset();
+  triangles_gl_.reset();
+  segments_gl_.reset();
+}
+
+}  // namespace viz

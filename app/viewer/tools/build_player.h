@@ -1,0 +1,97 @@
+#pragma once
+// The construction mode ("watch it being built"): records the current structure's build
+// (BuildRecorder, on a background Job with its own BuildControl: progress and cancel), plays
+// its steps (BuildStepPlayer), draws the partly built structure of the current step
+// (tools/build_playback.h) and shows the "Construction", "Construction steps" and
+// "Construction code" panels in the places of the traversal panels while the mode is on.
+// Gets the scene and structure request passed in; App only wires it.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "renderer.h"
+#include "result.h"
+#include "tools/build_playback.h"
+#include "view_layout.h"
+#include "workbench.h"
+
+struct ImFont;
+
+namespace viz {
+
+class BuildPlayer {
+ public:
+  /// Records the build of `request` over `scene` and turns the mode on; `synchronous`
+  /// (script mode) records before returning. A recording in progress is cancelled first.
+  void construct(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request, bool synchronous);
+  /// Takes a finished recording (per frame).
+  void poll();
+  /// Cancels a recording in progress.
+  void cancel();
+  /// Forgets the recording and leaves the mode (a new scene or structure).
+  void reset();
+  /// Waits for the recording thread (shutdown).
+  void wait();
+
+  /// The mode is on: its panels and drawing replace the traversal's.
+  bool active() const { return active_; }
+  void set_active(bool on) { active_ = on && trace_ != nullptr; }
+  bool recording() const { return job_.busy(); }
+  double recording_fraction() const { return control_ ? control_->fraction() : 0.0; }
+  double recording_seconds() const { return job_.seconds(); }
+
+  /// The step player (keys and scripts step it).
+  BuildStepPlayer& player() { return player_; }
+  /// Success, or why there are no steps (nothing recorded, or the recording failed).
+  accel::Status need_trace() const;
+  /// "build step K/N: TEXT" (print-build-step).
+  std::string step_line() const;
+  /// The SAH cost plot on or off (sah-plot).
+  void set_sah_plot(bool on) { sah_plot_ = on; }
+  /// Plays on by `seconds`.
+  void advance(double seconds) { player_.advance(seconds); }
+  /// Applies the player's step to the replay and rebuilds the view when it changed.
+  void update();
+
+  /// The "Construction" panel (controls, counters, cost plot) at the ray panel's place.
+  void control_panel(const PanelPlace& place, const std::shared_ptr<const accel::Scene>& scene,
+                     const StructureRequest& request);
+  /// The "Construction steps" list.
+  void steps_panel(const PanelPlace& place);
+  /// The "Construction code" panel in `mono`.
+  void code_panel(const PanelPlace& place, ImFont* mono);
+
+  void init_gl();
+  void sync_gl();
+  void draw(Renderer& renderer);
+  void release_gl();
+
+ private:
+  void cost_plot_widget();
+
+  Job<accel::Result<RecordedBuild>> job_;
+  std::shared_ptr<accel::BuildControl> control_;
+  std::shared_ptr<const accel::Scene> scene_;          // the recorded build's scene
+  std::shared_ptr<const accel::Scene> pending_scene_;  // of the recording in progress
+  StructureRequest request_, pending_request_;
+  std::shared_ptr<const accel::BuildTrace> trace_;
+  std::unique_ptr<accel::BuildReplay> replay_;
+  std::vector<RecordAttempt> attempts_;
+  std::string error_;
+  BuildCodeKind code_kind_ = BuildCodeKind::Unknown;
+  BuildStepPlayer player_;
+  bool active_ = false;
+  bool sah_plot_ = true;
+  bool dirty_ = true;
+  bool upload_ = false;
+  size_t view_step_ = ~size_t(0);
+  BuildView view_;
+  bool follow_step_ = true;
+  size_t steps_scrolled_ = ~size_t(0);
+  int code_scrolled_ = -2;
+  std::optional<SegmentBatch> segments_gl_;
+  std::optional<ColorBatch> triangles_gl_;
+  std::optional<ColorBatch> lines_gl_;
+};
+
+}  // namespace viz
