@@ -150,6 +150,26 @@ TEST(BuildTraceBvh, MedianStepsByLongestAxis) {
   EXPECT_TRUE(r.tree.event_ids.empty());  // the event ids are the tree's indices
 }
 
+// Recorded to depth 1: the nodes at depth 2 appear as unrecorded subtrees (count only), with
+// no steps of their own; the tree is the same.
+TEST(BuildTraceBvh, MedianDepthLimit) {
+  const Scene scene = unit_triangles({{4, 0, 0}, {0, 0, 0}, {6, 0, 0}, {2, 0, 0}});
+  BvhBuildOptions o;
+  o.builder = BvhBuilderKind::Median;
+  o.leaf_size = 1;
+  BuildRecorder recorder(1);
+  const BuildTree tree = build_bvh_tree(scene, o, nullptr, &recorder);
+  testing::expect_same_tree(build_bvh_tree(scene, o), tree);
+  const BuildTrace& t = recorder.trace();
+  const std::vector<K> want = {K::SceneBox,   K::Node, K::Axis, K::Split,      K::Node,
+                               K::Axis,       K::Split, K::Unrecorded, K::Unrecorded, K::Node,
+                               K::Axis,       K::Split, K::Unrecorded, K::Unrecorded};
+  ASSERT_EQ(kinds(t), want);
+  EXPECT_EQ(t.events[7].node, 2u);
+  EXPECT_EQ(t.events[7].count, 1u);
+  EXPECT_EQ(t.coverage(), "recorded to depth 1 of 2");
+}
+
 // Round robin: depth 0 splits on x, depth 1 on y (all centres share y: the order is by
 // triangle index, and the plane lies on the common centre).
 TEST(BuildTraceBvh, MedianRoundRobinAxes) {
