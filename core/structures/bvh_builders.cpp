@@ -114,9 +114,11 @@ Split object_median_split(std::vector<PrimRef>& refs, size_t begin, size_t end, 
 }
 
 /// Sweeps the n refs base[order[0..n)] in that order: the best split position (reported as
-/// begin + i) and its cost. The first minimum wins. `right_area` is scratch.
+/// begin + i) and its cost. The first minimum wins. `right_area` is scratch. kCosts (recorded
+/// builds): costs[i] = the cost of position i, for i in [1, n).
+template <bool kCosts = false>
 Split sweep_order(const BvhBuildOptions& o, const PrimRef* base, const uint32_t* order, size_t n, size_t begin,
-                  float parent_area, std::vector<float>& right_area) {
+                  float parent_area, std::vector<float>& right_area, [[maybe_unused]] float* costs = nullptr) {
   right_area.resize(n);
   Aabb acc;
   for (size_t i = n; i-- > 1;) {
@@ -128,6 +130,7 @@ Split sweep_order(const BvhBuildOptions& o, const PrimRef* base, const uint32_t*
   for (size_t i = 1; i < n; ++i) {
     acc.extend(base[order[i - 1]].box);
     const float cost = sah_split_cost(o, parent_area, acc.area(), i, right_area[i], n - i);
+    if constexpr (kCosts) costs[i] = cost;
     if (!best.valid || cost < best.cost) best = {true, begin + i, cost};
   }
   return best;
@@ -206,10 +209,16 @@ struct SweepBox {
 /// O(n) instead of three sorts. The order on an axis is a total order (centroid_less), so a
 /// node's list is exactly what sorting its references would give, and the splits, costs
 /// and leaf orders are those of sorting per node.
+///
+/// Sink (build_trace.h): NullBuildSink for the normal build; BuildRecorder records every
+/// node, axis, candidate sweep, split and leaf. Recording builds the whole tree in one
+/// serial chunk, so the event ids are the final pre-order indices.
+template <class Sink>
 class TopDownBuilder {
  public:
-  TopDownBuilder(const BvhBuildOptions& o, std::vector<PrimRef>& refs, ProgressSpan* progress)
-      : o_(o), refs_(refs), total_(refs.size()), progress_(progress), reporter_(std::this_thread::get_id()) {}
+  TopDownBuilder(const BvhBuildOptions& o, std::vector<PrimRef>& refs, ProgressSpan* progress, Sink& sink)
+      : o_(o), refs_(refs), total_(refs.size()), progress_(progress), reporter_(std::this_thread::get_id()),
+        sink_(sink) {}
 
   BuildTree build() {
     BuildTree tree;
@@ -237,6 +246,10 @@ class TopDownBuilder {
     std::vector<double> key;
     std::vector<PrimRef> refs;
     std::vector<SweepRef> right_side;
+    // Recorded builds only:
+    std::vector<uint32_t> rec_prims;         ///< a node's triangles
+    std::vector<float> rec_costs;            ///< the sweeps' costs by position ([3 * i + axis] for SAH)
+    std::vector<SplitCandidate> rec_candidates;
   };
 
   /// A subtree built by one task. Serial: `nodes` is the whole subtree in local pre-order
@@ -259,13 +272,13 @@ class TopDownBuilder {
   std::unique_ptr<Chunk> build_chunk(size_t begin, size_t end, int depth, int order_axis) {
     auto chunk = std::make_unique<Chunk>();
     Scratch scratch;
-    if (end - begin <= kTaskThreshold) {
+    if (Sink::kRecords || end - begin <= kTaskThreshold) {  // recording: one serial chunk, in pre-order
       chunk->nodes.reserve(2 * (end - begin));
-      build_serial(chunk->nodes, scratch, begin, end, depth, order_axis);
+      build_serial(chunk->nodes, scratch, begin, end, depth, order_axis, kNoBuildNode);
       chunk->size = chunk->nodes.size();
       return chunk;
     }
-    const Decision d = decide(scratch, begin, end, depth, order_axis);
+    const Decision d = decide(scratch, begin, end, depth, order_axis, 0, kNoBuildNode);
     scratch = Scratch{};  // the children allocate their own: free the big buffers first
     chunk->nodes.push_back(d.node);
     chunk->size = 1;
@@ -277,14 +290,15 @@ class TopDownBuilder {
   }
 
   /// The serial recursion: appends the subtree in pre-order, returns its root's index.
+  /// `parent` is the parent's index (recorded builds: the event ids are these indices).
   uint32_t build_serial(std::vector<BuildNode>& nodes, Scratch& scratch, size_t begin, size_t end, int depth,
-                        int order_axis) {
+                        int order_axis, uint32_t parent) {
     const uint32_t index = uint32_t(nodes.size());
-    const Decision d = decide(scratch, begin, end, depth, order_axis);
+    const Decision d = decide(scratch, begin, end, depth, order_axis, index, parent);
     nodes.push_back(d.node);
     if (d.leaf) return index;
-    const uint32_t left = build_serial(nodes, scratch, begin, d.mid, depth + 1, d.child_order);
-    const uint32_t right = build_serial(nodes, scratch, d.mid, end, depth + 1, d.child_order);
+    const uint32_t left = build_serial(nodes, scratch, begin, d.mid, depth + 1, d.child_order, index);
+    const uint32_t right = build_serial(nodes, scratch, d.mid, end, depth + 1, d.child_order, index);
     nodes[index].left = left;
     nodes[index].right = right;
     return index;
@@ -327,7 +341,9 @@ class TopDownBuilder {
   // One node: bounds, split, leaf rule
   // --------------------------------------------------------------------------
 
-  Decision decide(Scratch& scratch, size_t begin, size_t end, int depth, int order_axis) {
+  /// `id` and `parent` name the node in the recorded steps (unused by the normal build).
+  Decision decide(Scratch& scratch, size_t begin, size_t end, int depth, int order_axis,
+                  [[maybe_unused]] uint32_t id, [[maybe_unused]] uint32_t parent) {
     Decision d;
     const size_t count = end - begin;
     d.node.first = uint32_t(begin);
@@ -342,13 +358,14 @@ class TopDownBuilder {
     const Aabb box = sah && order_axis != kRootOrder ? bounds_of_list(order_axis, begin, end)
                                                      : bounds_of(refs_, begin, end);
     d.node.box = box;
+    if constexpr (Sink::kRecords) record_node(scratch, id, parent, depth, begin, end, order_axis, box);
     Split split;
     int sweep_axis = 0;
     if (count > 1) {
       switch (o_.builder) {
-        case BvhBuilderKind::Median: split = median_split(begin, end, depth); break;
-        case BvhBuilderKind::PcaSah: split = pca_split(scratch, begin, end, box); break;
-        default: split = sweep_split(scratch, begin, end, box, &sweep_axis); break;
+        case BvhBuilderKind::Median: split = median_split(begin, end, depth, id); break;
+        case BvhBuilderKind::PcaSah: split = pca_split(scratch, begin, end, box, depth, id); break;
+        default: split = sweep_split(scratch, begin, end, box, &sweep_axis, depth, id); break;
       }
     }
     const bool sah_cost = o_.builder != BvhBuilderKind::Median;
@@ -358,14 +375,26 @@ class TopDownBuilder {
         depth >= kMaxBvhDepth - 1) {
       ACCEL_CHECK(count <= size_t(o_.leaf_size) || depth >= kMaxBvhDepth - 1);
       emit_leaf(begin, end, sah ? sweep_axis : kRootOrder);
+      if constexpr (Sink::kRecords) {
+        const LeafReason reason = count <= 1 ? LeafReason::FewPrims
+                                  : !small   ? LeafReason::MaxDepth
+                                  : sah_cost && split.valid && split.cost >= leaf_cost ? LeafReason::NoGain
+                                                                                       : LeafReason::FewPrims;
+        sink_.leaf(id, reason, prims_.data() + begin, count);
+      }
       return d;
     }
     if (!split.valid || split.mid <= begin || split.mid >= end) {
       // The sweep's split is always inside the node (it tries every position): only the
       // median and PCA builders can get here, and they work on refs_ in place.
       ACCEL_CHECK(!sah);
-      split = object_median_split(refs_, begin, end, centroid_bounds_of(refs_, begin, end).longest_axis());
+      const int axis = centroid_bounds_of(refs_, begin, end).longest_axis();
+      split = object_median_split(refs_, begin, end, axis);
+      if constexpr (Sink::kRecords) record_median(id, axis, begin, split.mid, end);
     }
+    if constexpr (Sink::kRecords)
+      sink_.split(id, rec_axis_, rec_pos_, std::isnan(split.cost) ? rec_cost_ : split.cost, leaf_cost,
+                  uint32_t(split.mid - begin), uint32_t(end - split.mid), 0);
     if (sah) partition_axis_lists(scratch, sweep_axis, begin, split.mid, end);
     d.node.first = d.node.count = 0;
     d.leaf = false;
@@ -409,11 +438,63 @@ class TopDownBuilder {
   // --------------------------------------------------------------------------
   // [SECTION] Median split
   // --------------------------------------------------------------------------
-  Split median_split(size_t begin, size_t end, int depth) {
+  Split median_split(size_t begin, size_t end, int depth, [[maybe_unused]] uint32_t id) {
     int axis = 0;
     if (o_.axis == MedianAxis::RoundRobin) axis = depth % 3;
     if (o_.axis == MedianAxis::Longest) axis = centroid_bounds_of(refs_, begin, end).longest_axis();
-    return object_median_split(refs_, begin, end, axis);
+    const Split s = object_median_split(refs_, begin, end, axis);
+    if constexpr (Sink::kRecords) record_median(id, axis, begin, s.mid, end);
+    return s;
+  }
+
+  // --------------------------------------------------------------------------
+  // Recorded builds: the steps' arguments (only instantiated for a recording sink)
+  // --------------------------------------------------------------------------
+
+  static Vec3 unit(int axis) {
+    Vec3 v(0.0f);
+    v[axis] = 1.0f;
+    return v;
+  }
+
+  /// The centre of a triangle of the SAH lists (refs_ stays in scene order there).
+  const Vec3& centroid_of_prim(uint32_t prim) const { return refs_[ref_of_prim_[prim]].centroid; }
+
+  /// Node step: its triangles in the order they arrive in, their centroid bounds.
+  void record_node(Scratch& scratch, uint32_t id, uint32_t parent, int depth, size_t begin, size_t end,
+                   int order_axis, const Aabb& box) {
+    const size_t n = end - begin;
+    if (!sink_.records(depth)) {  // below the depth limit: the sink keeps at most the count
+      sink_.node(id, parent, depth, box, Aabb{}, nullptr, n);
+      return;
+    }
+    std::vector<uint32_t>& prims = scratch.rec_prims;
+    prims.resize(n);
+    Aabb cb;
+    if (order_axis != kRootOrder) {
+      for (size_t k = begin; k < end; ++k) {
+        prims[k - begin] = lists_[order_axis][k].prim;
+        cb.extend(centroid_of_prim(prims[k - begin]));
+      }
+    } else {
+      for (size_t k = begin; k < end; ++k) {
+        prims[k - begin] = refs_[k].prim;
+        cb.extend(refs_[k].centroid);
+      }
+    }
+    sink_.node(id, parent, depth, box, cb, prims.data(), n);
+  }
+
+  /// Median split of refs_[begin, end) at mid along `axis`: the axis step; the plane is
+  /// halfway between the last left and the first right centre, the cost the split's SAH cost.
+  void record_median(uint32_t id, int axis, size_t begin, size_t mid, size_t end) {
+    sink_.axis(id, axis, unit(axis));
+    float left_max = -kInf;
+    for (size_t k = begin; k < mid; ++k) left_max = std::max(left_max, refs_[k].centroid[axis]);
+    rec_axis_ = axis;
+    rec_pos_ = 0.5f * (left_max + refs_[mid].centroid[axis]);
+    rec_cost_ = sah_split_cost(o_, bounds_of(refs_, begin, end).area(), bounds_of(refs_, begin, mid).area(),
+                               mid - begin, bounds_of(refs_, mid, end).area(), end - mid);
   }
 
   // --------------------------------------------------------------------------
@@ -424,6 +505,10 @@ class TopDownBuilder {
   /// (the children get its two halves), so tasks never touch the same entries.
   void sort_axis_lists() {
     left_.assign(refs_.back().prim + 1, 0);
+    if constexpr (Sink::kRecords) {
+      ref_of_prim_.assign(refs_.back().prim + 1, 0);
+      for (size_t i = 0; i < total_; ++i) ref_of_prim_[refs_[i].prim] = uint32_t(i);
+    }
     leaf_costs_.resize(total_ + 1);
     for (size_t k = 0; k <= total_; ++k) leaf_costs_[k] = o_.leaf_cost(k);
     // A stable sort by the centre, as an order-preserving integer, of the references in
@@ -464,8 +549,16 @@ class TopDownBuilder {
   /// dependency chains, so the CPU overlaps them), with the boxes read in place and the leaf
   /// costs from a table (the same floats as leaf_cost(), without its division). As there,
   /// the first minimum of an axis wins, and on equal costs the lower axis.
-  Split sweep_split(Scratch& scratch, size_t begin, size_t end, const Aabb& box, int* best_axis) {
+  Split sweep_split(Scratch& scratch, size_t begin, size_t end, const Aabb& box, int* best_axis,
+                    [[maybe_unused]] int depth, [[maybe_unused]] uint32_t id) {
     const size_t n = end - begin;  // >= 2
+    [[maybe_unused]] float* rec_costs = nullptr;  // recorded builds: every position's cost
+    if constexpr (Sink::kRecords) {
+      if (sink_.records(depth)) {
+        scratch.rec_costs.resize(3 * n);
+        rec_costs = scratch.rec_costs.data();
+      }
+    }
     const SweepRef* list[3] = {lists_[0].data() + begin, lists_[1].data() + begin, lists_[2].data() + begin};
     std::vector<float>& right_area = scratch.right_area;  // [3 * i + axis]: area of positions [i, n)
     right_area.resize(3 * n);
@@ -487,6 +580,8 @@ class TopDownBuilder {
       acc[axis].extend(list[axis][0]);
       best_cost[axis] =
           sah_split_cost_scaled(ct, inv, acc[axis].area(), leaf_cost[1], right_area[3 + axis], leaf_cost[n - 1]);
+      if constexpr (Sink::kRecords)
+        if (rec_costs) rec_costs[3 + axis] = best_cost[axis];
     }
     for (size_t i = 2; i < n; ++i) {
       const float left_leaf = leaf_cost[i], right_leaf = leaf_cost[n - i];
@@ -494,6 +589,8 @@ class TopDownBuilder {
         acc[axis].extend(list[axis][i - 1]);
         const float cost =
             sah_split_cost_scaled(ct, inv, acc[axis].area(), left_leaf, right_area[3 * i + axis], right_leaf);
+        if constexpr (Sink::kRecords)
+          if (rec_costs) rec_costs[3 * i + axis] = cost;
         if (cost < best_cost[axis]) {
           best_cost[axis] = cost;
           best_i[axis] = i;
@@ -504,6 +601,24 @@ class TopDownBuilder {
     for (int axis = 1; axis < 3; ++axis)
       if (best_cost[axis] < best_cost[winner]) winner = axis;
     *best_axis = winner;
+    if constexpr (Sink::kRecords) {
+      // Candidates of every axis in sweep order: position i (i references left) is the plane
+      // halfway between the centres of the i-th and (i+1)-th reference in the axis order.
+      std::vector<SplitCandidate>& cands = scratch.rec_candidates;
+      for (int axis = 0; axis < 3 && rec_costs; ++axis) {
+        cands.resize(n - 1);
+        for (size_t i = 1; i < n; ++i)
+          cands[i - 1] = {0.5f * (centroid_of_prim(list[axis][i - 1].prim)[axis] +
+                                  centroid_of_prim(list[axis][i].prim)[axis]),
+                          rec_costs[3 * i + axis], uint32_t(i), uint32_t(n - i)};
+        sink_.candidates(id, axis, cands.data(), cands.size());
+      }
+      sink_.axis(id, winner, unit(winner));
+      const size_t i = best_i[winner];
+      rec_axis_ = winner;
+      rec_pos_ = 0.5f * (centroid_of_prim(list[winner][i - 1].prim)[winner] +
+                         centroid_of_prim(list[winner][i].prim)[winner]);
+    }
     return {true, begin + best_i[winner], best_cost[winner]};
   }
 
@@ -546,7 +661,8 @@ class TopDownBuilder {
   /// Lecture: "represent polygons by their midpoints, calculate the axis of largest extent
   /// using PCA, project the midpoints onto it and sort, search the minimum of C(B) by sweep".
   /// The axis changes per node, so this builder sorts per node.
-  Split pca_split(Scratch& scratch, size_t begin, size_t end, const Aabb& box) {
+  Split pca_split(Scratch& scratch, size_t begin, size_t end, const Aabb& box, [[maybe_unused]] int depth,
+                  [[maybe_unused]] uint32_t id) {
     const size_t n = end - begin;
     DVec3 mean(0.0);
     for (size_t i = begin; i < end; ++i) mean += DVec3(refs_[i].centroid);
@@ -574,6 +690,26 @@ class TopDownBuilder {
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
       return key[a] < key[b] || (key[a] == key[b] && refs_[begin + a].prim < refs_[begin + b].prim);
     });
+    if constexpr (Sink::kRecords) {
+      if (sink_.records(depth)) {
+        // The PCA direction is axis 3; the candidates lie along it, each halfway between two
+        // consecutive projections of the sorted centres.
+        sink_.axis(id, 3, Vec3(axis));
+        scratch.rec_costs.resize(n);
+        const Split s = sweep_order<true>(o_, refs_.data() + begin, order.data(), n, begin, box.area(),
+                                          scratch.right_area, scratch.rec_costs.data());
+        std::vector<SplitCandidate>& cands = scratch.rec_candidates;
+        cands.resize(n - 1);
+        for (size_t i = 1; i < n; ++i)
+          cands[i - 1] = {float(0.5 * (key[order[i - 1]] + key[order[i]])), scratch.rec_costs[i], uint32_t(i),
+                          uint32_t(n - i)};
+        sink_.candidates(id, 3, cands.data(), cands.size());
+        rec_axis_ = 3;
+        rec_pos_ = cands[s.mid - begin - 1].pos;
+        if (s.valid) apply_order(scratch, order, begin);
+        return s;
+      }
+    }
     const Split s = sweep_order(o_, refs_.data() + begin, order.data(), n, begin, box.area(), scratch.right_area);
     if (s.valid) apply_order(scratch, order, begin);
     return s;
@@ -590,6 +726,12 @@ class TopDownBuilder {
   const std::thread::id reporter_;
   std::atomic<size_t> placed_{0};
   std::atomic<bool> stop_{false};
+  Sink& sink_;
+  // Recorded builds only: the split about to be recorded, the SAH lists' triangle -> refs_ index.
+  int rec_axis_ = 0;
+  float rec_pos_ = 0.0f;
+  float rec_cost_ = 0.0f;
+  std::vector<uint32_t> ref_of_prim_;
 };
 
 std::vector<PrimRef> make_refs(const Scene& scene) {
@@ -599,10 +741,12 @@ std::vector<PrimRef> make_refs(const Scene& scene) {
   return refs;
 }
 
-BuildTree build_top_down(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress) {
+template <class Sink>
+BuildTree build_top_down(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress, Sink& sink) {
+  sink.scene_box(scene.bounds());
   std::vector<PrimRef> refs = make_refs(scene);
   if (refs.empty()) return {};
-  return TopDownBuilder(o, refs, progress).build();
+  return TopDownBuilder<Sink>(o, refs, progress, sink).build();
 }
 
 // ============================================================================
@@ -739,8 +883,11 @@ void limit_depth(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t ro
 /// Turns a single-triangle-leaf binary tree into a BuildTree: subtrees of at most
 /// leaf_size triangles become one leaf when that is no more expensive by the SAH
 /// (ci*n*A <= the subtree's cost), after bounding the depth.
+/// Recorded builds: tree.event_ids maps every node to its binary node (the event ids), and
+/// each inner node that becomes a leaf is recorded as a leaf step (the replay drops its children).
+template <class Sink>
 BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t root,
-                               const BvhBuildOptions& o) {
+                               const BvhBuildOptions& o, Sink& sink) {
   SubtreeCosts costs;
   compute_subtree_costs(nodes, root, o, costs);
   if (costs.height[root] > 2 * kDepthCut) {  // rare: only then is the tree walked twice
@@ -757,6 +904,7 @@ BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& node
     uint32_t src, dst;
   };
   tree.nodes.emplace_back();
+  if constexpr (Sink::kRecords) tree.event_ids.resize(n);
   std::vector<Item> work{{root, 0}};
   std::vector<uint32_t> gather_stack;
   while (!work.empty()) {
@@ -764,10 +912,15 @@ BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& node
     work.pop_back();
     const BinaryNode& nd = nodes[it.src];
     tree.nodes[it.dst].box = nd.box;
+    if constexpr (Sink::kRecords) tree.event_ids[it.dst] = it.src;
     if (collapse[it.src]) {
       tree.nodes[it.dst].first = uint32_t(tree.prims.size());
       gather_prims(nodes, it.src, tree.prims, gather_stack);
       tree.nodes[it.dst].count = uint32_t(tree.prims.size()) - tree.nodes[it.dst].first;
+      if constexpr (Sink::kRecords)
+        if (!nd.is_leaf())
+          sink.leaf(it.src, LeafReason::NoGain, tree.prims.data() + tree.nodes[it.dst].first,
+                    tree.nodes[it.dst].count);
       continue;
     }
     const uint32_t l = uint32_t(tree.nodes.size());
@@ -778,6 +931,7 @@ BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& node
     work.push_back({nd.right, l + 1});
     work.push_back({nd.left, l});
   }
+  if constexpr (Sink::kRecords) tree.event_ids.resize(tree.nodes.size());
   tree.root = 0;
   return tree;
 }
@@ -837,7 +991,18 @@ void nearest_neighbours(const std::vector<Aabb>& boxes, int radius, std::vector<
   });
 }
 
-BuildTree build_bottom_up(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress) {
+/// Records each triangle entering as a cluster: a parentless node that is a leaf.
+template <class Sink>
+void record_cluster(const Scene& scene, uint32_t id, const Aabb& box, uint32_t prim, Sink& sink) {
+  Aabb centroid;
+  centroid.extend(scene.centroid(prim));
+  sink.node(id, kNoBuildNode, 0, box, centroid, &prim, 1);
+  sink.leaf(id, LeafReason::Cluster, &prim, 1);
+}
+
+template <class Sink>
+BuildTree build_bottom_up(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress, Sink& sink) {
+  sink.scene_box(scene.bounds());
   const auto& prims = scene.valid_prims();
   if (prims.empty()) return {};
   std::vector<BinaryNode> nodes;
@@ -858,6 +1023,7 @@ BuildTree build_bottom_up(const Scene& scene, const BvhBuildOptions& o, Progress
   for (size_t i = 0; i < keyed.size(); ++i) {
     clusters[i] = uint32_t(nodes.size());
     nodes.push_back(BinaryNode::leaf_of(scene.triangle_bounds(keyed[i].second), keyed[i].second));
+    if constexpr (Sink::kRecords) record_cluster(scene, clusters[i], nodes.back().box, keyed[i].second, sink);
   }
   constexpr int kRadius = 16;  // search window on each side (the paper uses 8..32)
   std::vector<Aabb> boxes;
@@ -880,6 +1046,7 @@ BuildTree build_bottom_up(const Scene& scene, const BvhBuildOptions& o, Progress
           nodes.push_back(BinaryNode::inner(merge(nodes[a].box, nodes[b].box), a, b));
           next.push_back(uint32_t(nodes.size() - 1));
           merged_any = true;
+          if constexpr (Sink::kRecords) sink.merge(next.back(), a, b, nodes.back().box, nodes.back().box.area());
         }
         continue;  // j > i was merged into i
       }
@@ -888,6 +1055,8 @@ BuildTree build_bottom_up(const Scene& scene, const BvhBuildOptions& o, Progress
     if (!merged_any) {  // cannot happen (the globally closest pair is mutual), but never loop forever
       const uint32_t a = next[0], b = next[1];
       nodes.push_back(BinaryNode::inner(merge(nodes[a].box, nodes[b].box), a, b));
+      if constexpr (Sink::kRecords)
+        sink.merge(uint32_t(nodes.size() - 1), a, b, nodes.back().box, nodes.back().box.area());
       next.erase(next.begin(), next.begin() + 2);
       next.insert(next.begin(), uint32_t(nodes.size() - 1));
     }
@@ -895,14 +1064,16 @@ BuildTree build_bottom_up(const Scene& scene, const BvhBuildOptions& o, Progress
     // Progress: merges done (n - 1 in all) per round; the rounds shrink geometrically.
     if (progress && !progress->advance(double(prims.size() - clusters.size()) / double(prims.size()))) return {};
   }
-  return finalize_binary_tree(scene, nodes, clusters[0], o);
+  return finalize_binary_tree(scene, nodes, clusters[0], o, sink);
 }
 
 // ============================================================================
 // [SECTION] Insertion (Goldsmith & Salmon 1987)
 // ============================================================================
 
-BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress) {
+template <class Sink>
+BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress, Sink& sink) {
+  sink.scene_box(scene.bounds());
   std::vector<uint32_t> order = scene.valid_prims();
   if (order.empty()) return {};
   // Goldsmith & Salmon recommend a random insertion order: file order is spatially coherent
@@ -926,6 +1097,7 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
     const Aabb box = scene.triangle_bounds(prim);
     const uint32_t leaf = uint32_t(nodes.size());
     nodes.push_back(BinaryNode::leaf_of(box, prim));
+    if constexpr (Sink::kRecords) record_cluster(scene, leaf, box, prim, sink);
     if (root == kNone) {
       root = leaf;
       continue;
@@ -938,6 +1110,7 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
     // further down reads it).
     uint32_t at = root, above = kNone;
     float inherited = 0.0f;
+    [[maybe_unused]] int depth = 0;  // recorded builds: the depth of `at`
     while (!nodes[at].is_leaf()) {
       const BinaryNode& node = nodes[at];
       const BinaryNode &l = nodes[node.left], &r = nodes[node.right];
@@ -958,6 +1131,14 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
         return c.is_leaf() ? a + grow : a - c.box.area() + grow;
       };
       const float cl = child_cost(l), cr = child_cost(r);
+      if constexpr (Sink::kRecords) {
+        const float costs[3] = {here, cl, cr};
+        const int choice = here <= cl && here <= cr ? 0 : cl <= cr ? 1 : 2;
+        // The node grows only when the triangle goes on below it; as the sibling here, the
+        // triangle is bounded by the new parent instead (the merge step), the node keeps its box.
+        sink.insert_step(prim, at, depth, choice == 0 ? node.box : merge(node.box, box), costs, choice);
+        ++depth;
+      }
       if (here <= cl && here <= cr) break;
       inherited = grow;
       nodes[at].box.extend(box);
@@ -967,6 +1148,7 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
     // New inner node replaces `at`, with children `at` and the new leaf.
     const uint32_t inner = uint32_t(nodes.size());
     nodes.push_back(BinaryNode::inner(merge(nodes[at].box, box), at, leaf));
+    if constexpr (Sink::kRecords) sink.merge(inner, at, leaf, nodes.back().box, nodes.back().box.area());
     if (above == kNone) {
       root = inner;
     } else if (nodes[above].left == at) {
@@ -975,20 +1157,24 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
       nodes[above].right = inner;
     }
   }
-  return finalize_binary_tree(scene, nodes, root, o);
+  return finalize_binary_tree(scene, nodes, root, o, sink);
 }
 
 }  // namespace
 
 BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                          BuildRecorder* recorder) {
-  (void)recorder;  // TODO(#12): recorded builders
-  switch (options.builder) {
-    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options, progress);
-    case BvhBuilderKind::Insertion: return build_insertion(scene, options, progress);
-    default: return build_top_down(scene, options, progress);
-  }
+  if (options.builder == BvhBuilderKind::BinnedSah) return build_binned_sah_tree(scene, options, progress, recorder);
+  const auto run = [&](auto& sink) {
+    switch (options.builder) {
+      case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options, progress, sink);
+      case BvhBuilderKind::Insertion: return build_insertion(scene, options, progress, sink);
+      default: return build_top_down(scene, options, progress, sink);
+    }
+  };
+  if (recorder) return run(*recorder);
+  NullBuildSink no_steps;
+  return run(no_steps);
 }
 
 }  // namespace accel
