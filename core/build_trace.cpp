@@ -210,6 +210,25 @@ void BuildRecorder::done(size_t nodes) {
   if (BuildEvent* e = add(BuildEventKind::Done, kNoBuildNode)) e->count = uint32_t(nodes);
 }
 
+Result<RecordedSteps> record_within_budget(const std::function<Status(BuildRecorder&)>& record,
+                                           int first_depth_limit, size_t budget_bytes) {
+  RecordedSteps out;
+  int limit = std::max(0, first_depth_limit);
+  while (true) {
+    BuildRecorder recorder(limit, budget_bytes);
+    if (auto done = record(recorder); !done) return done.error();
+    BuildTrace trace = recorder.take();
+    out.attempts.push_back({limit, trace.truncated, trace.events.size()});
+    const bool depthless = std::any_of(trace.events.begin(), trace.events.end(),
+                                       [](const BuildEvent& e) { return e.kind == BuildEventKind::Merge; });
+    if (!trace.truncated || depthless || limit == 0) {
+      out.trace = std::move(trace);
+      return out;
+    }
+    limit = std::min(limit, trace.max_depth_seen) / 2;
+  }
+}
+
 // ----------------------------------------------------------------------------
 // Text
 // ----------------------------------------------------------------------------

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <limits>
 #include <utility>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "geometry.h"
+#include "result.h"
 
 namespace accel {
 
@@ -190,5 +192,28 @@ class BuildRecorder {
   size_t budget_bytes_;
   std::vector<int> depth_of_;  ///< recorded nodes' depths by id (-1: not recorded)
 };
+
+/// One attempt of record_within_budget().
+struct RecordAttempt {
+  int depth_limit = 0;  ///< std::numeric_limits<int>::max(): every depth
+  bool truncated = false;
+  size_t steps = 0;
+};
+
+/// A recorded build's steps and how they were obtained.
+struct RecordedSteps {
+  BuildTrace trace;
+  std::vector<RecordAttempt> attempts;
+};
+
+/// Records with `record` (one build into the recorder it is given), each attempt in a fresh
+/// BuildRecorder(depth_limit, budget_bytes), the first at `first_depth_limit`. While the
+/// steps come back truncated (the budget ran out), it records again with the depth limit
+/// halved from the depth the attempt saw (max_depth_seen / 2, then / 4, ...), down to 0,
+/// so the top levels are complete and coverage() says "recorded to depth D of E". Builds
+/// whose overflowing steps have no depth (bottom-up merges) keep their first attempt, as
+/// does depth 0. Errors (and cancellation) of `record` are returned as they are.
+Result<RecordedSteps> record_within_budget(const std::function<Status(BuildRecorder&)>& record,
+                                           int first_depth_limit, size_t budget_bytes);
 
 }  // namespace accel

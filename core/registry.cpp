@@ -1,6 +1,5 @@
 #include "registry.h"
 
-#include <algorithm>
 #include <limits>
 
 #include "structures/brute_force.h"
@@ -60,21 +59,18 @@ Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, co
 
 Result<RecordedBuild> build_structure_recorded(const StructureInfo& info, const Scene& scene, const ParamSet& params,
                                                Kernel kernel, size_t budget_bytes, BuildControl* control) {
-  int depth_limit = std::numeric_limits<int>::max();
-  while (true) {
-    BuildRecorder recorder(depth_limit, budget_bytes);
-    auto built = build_structure(info, scene, params, kernel, control, &recorder);
-    if (!built) return built.error();
-    const BuildTrace& trace = recorder.trace();
-    // Fits, or halving cannot help any more (depth 0 reached, or the steps that overflow
-    // have no depth: then the first steps that fit are kept).
-    const int next = std::min(depth_limit, trace.max_depth_seen) / 2;
-    const bool depthless = std::any_of(trace.events.begin(), trace.events.end(),
-                                       [](const BuildEvent& e) { return e.kind == BuildEventKind::Merge; });
-    if (!trace.truncated || depthless || depth_limit == 0 || next >= depth_limit)
-      return RecordedBuild{std::move(built.value()), recorder.take()};
-    depth_limit = next;
-  }
+  RecordedBuild out;
+  auto steps = record_within_budget(
+      [&](BuildRecorder& recorder) -> Status {
+        auto built = build_structure(info, scene, params, kernel, control, &recorder);
+        if (!built) return built.error();
+        out.structure = std::move(built.value());
+        return {};
+      },
+      std::numeric_limits<int>::max(), budget_bytes);
+  if (!steps) return steps.error();
+  out.trace = std::move(steps.value().trace);
+  return out;
 }
 
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,

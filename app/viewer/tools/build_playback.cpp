@@ -60,24 +60,15 @@ bool BuildStepPlayer::seek(size_t step) {
 // Recording
 
 accel::Result<RecordedBuild> record_with_retry(const RecordFn& record, size_t triangles, size_t budget_bytes) {
-  constexpr int kAll = std::numeric_limits<int>::max();
-  int limit = kAll;
+  int limit = std::numeric_limits<int>::max();
   if (triangles > kLargeSceneTriangles)
     limit = std::max(1, static_cast<int>(std::ceil(std::log2(static_cast<double>(triangles)))) / 2);
+  auto steps = accel::record_within_budget(record, limit, budget_bytes);
+  if (!steps) return steps.error();
   RecordedBuild out;
-  for (;;) {
-    accel::BuildRecorder recorder(limit, budget_bytes);
-    if (auto st = record(recorder); !st) return st.error();
-    BuildTrace trace = recorder.take();
-    out.attempts.push_back({limit, trace.truncated, trace.events.size()});
-    const int seen = std::min(limit, trace.max_depth_seen);
-    if (!trace.truncated || limit == 0) {
-      out.trace = std::make_shared<const BuildTrace>(std::move(trace));
-      return out;
-    }
-    // Halve from the tree depth (or from the last limit when the tree is deeper).
-    limit = seen / 2;
-  }
+  out.attempts = std::move(steps.value().attempts);
+  out.trace = std::make_shared<const BuildTrace>(std::move(steps.value().trace));
+  return out;
 }
 
 accel::Result<RecordedBuild> record_structure(const accel::Scene& scene, const StructureRequest& request,

@@ -61,17 +61,10 @@ class BuildStepPlayer {
   double carry_ = 0.0;
 };
 
-/// One recording attempt of record_with_retry().
-struct RecordAttempt {
-  int depth_limit = 0;  ///< std::numeric_limits<int>::max(): every depth
-  bool truncated = false;
-  size_t steps = 0;
-};
-
 /// A recorded build: the trace and how it was obtained.
 struct RecordedBuild {
   std::shared_ptr<const accel::BuildTrace> trace;
-  std::vector<RecordAttempt> attempts;
+  std::vector<accel::RecordAttempt> attempts;
 };
 
 /// Runs one recorded build into the recorder it is given.
@@ -80,13 +73,10 @@ using RecordFn = std::function<accel::Status(accel::BuildRecorder&)>;
 /// Scenes with more triangles than this start recording at a depth limit (see record_with_retry).
 inline constexpr size_t kLargeSceneTriangles = 200000;
 
-/// Records with `record`, each attempt in a fresh BuildRecorder(depth_limit, budget_bytes).
-/// The first attempt records every depth, or, for scenes over kLargeSceneTriangles, half
-/// the depth a balanced binary tree over them would have (ceil(log2 N) / 2). While the
-/// trace comes back truncated (the budget ran out), it is recorded again with the depth
-/// limit halved from the tree depth the truncated attempt saw (max_depth_seen / 2, then
-/// / 4, ...), down to depth 0; the last attempt is kept even if still truncated.
-/// Errors (and cancellation) of `record` are returned as they are.
+/// Records with `record` within the budget (accel::record_within_budget). The first attempt
+/// records every depth, or, for scenes over kLargeSceneTriangles, half the depth a balanced
+/// binary tree over them would have (ceil(log2 N) / 2), so a huge scene is not recorded in
+/// full only to be recorded again.
 accel::Result<RecordedBuild> record_with_retry(const RecordFn& record, size_t triangles,
                                                size_t budget_bytes = accel::BuildRecorder::kDefaultBudgetBytes);
 

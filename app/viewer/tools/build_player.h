@@ -76,7 +76,7 @@ class BuildPlayer {
   StructureRequest request_, pending_request_;
   std::shared_ptr<const accel::BuildTrace> trace_;
   std::unique_ptr<accel::BuildReplay> replay_;
-  std::vector<RecordAttempt> attempts_;
+  std::vector<accel::RecordAttempt> attempts_;
   std::string error_;
   BuildCodeKind code_kind_ = BuildCodeKind::Unknown;
   BuildStepPlayer player_;
