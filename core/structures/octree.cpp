@@ -159,11 +159,21 @@ struct OctreeScratch {
 /// triangles as it goes, so child k's subtree is one contiguous run of nodes and of
 /// triangle ids after child k-1's: splicing the parts in order, with their offsets moved,
 /// reproduces the serial numbering exactly, whatever the thread count.
+///
+/// Every construction step goes to `Sink` (build_trace.h): NullBuildSink for the normal
+/// build, BuildRecorder for a recorded one, which always runs serially, so its node ids are
+/// the finished tree's ids and its steps come depth-first, child 0's subtree first:
+/// node(root), then per node either leaf(id, reason) or subdivide(id, its 8 children)
+/// followed by each child's node(...) and its own steps in octant order. Leaf reasons:
+/// FewPrims (<= max_prims), MaxDepth, and NoGain for the other stops (no gain, inseparable,
+/// box too small to halve: splitting would not separate the triangles).
+template <class Sink>
 class OctreeBuilder {
  public:
-  OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control, bool parallel)
-      : scene_(scene), options_(options), control_(control), parallel_(parallel), progress_(control, 0.0, 1.0),
-        owner_(std::this_thread::get_id()) {}
+  OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control, bool parallel,
+                Sink& sink)
+      : scene_(scene), options_(options), control_(control), parallel_(parallel && !Sink::kRecords),
+        progress_(control, 0.0, 1.0), owner_(std::this_thread::get_id()), sink_(sink) {}
 
   /// The failure a build stopped with (checked in this order of priority by build_octree()).
   enum class Failure : int { None, Cancelled, Nodes, References };
@@ -182,12 +192,14 @@ class OctreeBuilder {
                         }
                       });
     data.root_box = octree_root_box(bounds);
+    sink_.scene_box(bounds);
     OctreePart main;  // the whole tree: its root is node 0, not outside
     add_node(main, kNoNode, 0);
     nodes_total_ = 1;
     OctreeScratch scratch;
     const std::vector<uint32_t>& all = scene_.valid_prims();
     OctreeNode root;
+    record_node(0, kNoBuildNode, 0, data.root_box, all.data(), all.size());
     if (!build_node(main, 0, data.root_box, 0, all.data(), all.size(), 1.0, scratch, &root)) return error();
     main.nodes[0] = root;
     ACCEL_CHECK(main.nodes.size() % 8u == 1u);  // blocks of 8 after the root: octant = (id - 1) % 8
@@ -196,6 +208,7 @@ class OctreeBuilder {
     data.parents = std::move(main.parents);
     data.depths = std::move(main.depths);
     data.reasons = main.reasons;
+    sink_.done(data.nodes.size());
     return data;
   }
 
@@ -285,6 +298,26 @@ class OctreeBuilder {
     return true;
   }
 
+  /// make_leaf() of node `id`, recording the leaf step (`why`) when it succeeds.
+  ACCEL_FORCE_INLINE bool leaf(OctreePart& part, uint32_t id, LeafReason why, const uint32_t* prims, size_t count,
+                               size_t* reason, double share, OctreeNode* out) {
+    if (!make_leaf(part, prims, count, reason, share, out)) return false;
+    if constexpr (Sink::kRecords) sink_.leaf(id, why, prims, count);
+    return true;
+  }
+
+  /// Records node `id` (child of `parent`, at `depth`, box `box`) with its triangles. Every
+  /// node is passed on (the recorder counts the depths below its limit); the centroid
+  /// bounds are computed only for the nodes it keeps.
+  void record_node(uint32_t id, uint32_t parent, int depth, const Aabb& box, const uint32_t* prims, size_t n) {
+    if constexpr (Sink::kRecords) {
+      Aabb centroids;
+      if (sink_.records(depth))
+        for (size_t k = 0; k < n; ++k) centroids.extend(scene_.centroid(prims[k]));
+      sink_.node(id, parent, depth, box, centroids, prims, n);
+    }
+  }
+
   /// Octants (bits of a mask) of the children of `box` the triangle is assigned to.
   unsigned child_mask(uint32_t prim, const Aabb& box, const Vec3& mid) const {
     // The halves the triangle's bounding box reaches (it overlaps the node's box, or, for
@@ -324,13 +357,14 @@ class OctreeBuilder {
                   double share, OctreeScratch& scratch, OctreeNode* out) {
     if (stopping()) return false;
     OctreeLeafReasons& why = part.reasons;
-    if (n <= size_t(options_.max_prims)) return make_leaf(part, prims, n, &why.few_prims, share, out);
-    if (depth >= options_.max_depth) return make_leaf(part, prims, n, &why.max_depth, share, out);
+    if (n <= size_t(options_.max_prims))
+      return leaf(part, self, LeafReason::FewPrims, prims, n, &why.few_prims, share, out);
+    if (depth >= options_.max_depth) return leaf(part, self, LeafReason::MaxDepth, prims, n, &why.max_depth, share, out);
     const Vec3 mid = 0.5f * box.min + 0.5f * box.max;
     for (int axis = 0; axis < 3; ++axis) {
       // At float resolution a half would equal the whole box: splitting cannot separate anything.
       if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis])
-        return make_leaf(part, prims, n, &why.tiny_box, share, out);
+        return leaf(part, self, LeafReason::NoGain, prims, n, &why.tiny_box, share, out);
     }
 
     // The children's lists, in the node's order, one after the other in this depth's buffer.
@@ -355,7 +389,7 @@ class OctreeBuilder {
     for (unsigned octant = 0; octant < 8; ++octant) starts[octant] = refs, refs += sizes[octant];
     // No gain: each child has a quarter of the node's surface area, so a ray through the
     // node passes 2 children on average and would test refs/4 triangles instead of n.
-    if (refs >= 4 * n) return make_leaf(part, prims, n, &why.no_gain, share, out);
+    if (refs >= 4 * n) return leaf(part, self, LeafReason::NoGain, prims, n, &why.no_gain, share, out);
     std::vector<uint32_t>& lists = scratch.refs[depth];
     lists.resize(refs);
     {
@@ -369,6 +403,11 @@ class OctreeBuilder {
     const uint32_t first = uint32_t(part.nodes.size());
     for (int k = 0; k < 8; ++k) add_node(part, self, depth + 1);
     *out = OctreeNode{first, OctreeNode::kInner};
+    if constexpr (Sink::kRecords) {
+      uint32_t children[8];
+      for (uint32_t k = 0; k < 8; ++k) children[k] = first + k;
+      sink_.subdivide(self, children);
+    }
     // A child that keeps all n triangles is split again only while that can still separate
     // them: not after a poor split (references at least doubled: the triangles spread over
     // the children, as around a shared vertex or edge), and not when the triangles' bounds
@@ -391,7 +430,8 @@ class OctreeBuilder {
       const Aabb child_box = octree_child_box(box, octant);
       const bool stuck = size == n && (poor || bounds.contains(child_box));
       const double child_share = share * double(size) / double(refs);
-      return stuck ? make_leaf(into, child, size, &into.reasons.inseparable, child_share, value)
+      record_node(id, self, depth + 1, child_box, child, size);
+      return stuck ? leaf(into, id, LeafReason::NoGain, child, size, &into.reasons.inseparable, child_share, value)
                    : build_node(into, id, child_box, depth + 1, child, size, child_share, scr, value);
     };
     if (!parallel_ || n < kParallelChildren) {
@@ -425,6 +465,7 @@ class OctreeBuilder {
   const bool parallel_;
   ProgressSpan progress_;  // the owner thread's only
   const std::thread::id owner_;
+  Sink& sink_;
   std::vector<OctreePrim> prims_;        // by triangle id (valid ones only filled)
   std::atomic<uint64_t> done_{0};        // share of the build in finished leaves, in kShareUnit
   std::atomic<size_t> nodes_total_{0};   // nodes reserved by all tasks
@@ -436,15 +477,18 @@ class OctreeBuilder {
 
 Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control,
                                 BuildRecorder* recorder) {
-  (void)recorder;  // TODO(#12)
   ACCEL_CHECK(options.max_depth >= 0 && options.max_depth <= kOctreeMaxDepth);
   ACCEL_CHECK(options.max_prims >= 1);
-  OctreeBuilder parallel(scene, options, control, true);
+  // Recorded: serially (the same tree, node ids and all), so one run names any limit too.
+  if (recorder) return OctreeBuilder<BuildRecorder>(scene, options, control, false, *recorder).run();
+  NullBuildSink sink;
+  using Builder = OctreeBuilder<NullBuildSink>;
+  Builder parallel(scene, options, control, true, sink);
   auto built = parallel.run();
-  if (built || parallel.failure() == OctreeBuilder::Failure::Cancelled) return built;
+  if (built || parallel.failure() == Builder::Failure::Cancelled) return built;
   // Over a limit. Whether the build fails does not depend on the order (the totals only
   // grow), but which limit is met first does: the serial build names it as it always did.
-  return OctreeBuilder(scene, options, control, false).run();
+  return Builder(scene, options, control, false, sink).run();
 }
 
 // [SECTION] Structure

@@ -292,17 +292,65 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
   return fit_resolution(resolution_cbrt(extent, scene.valid_prims().size(), config.lambda));
 }
 
-Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control,
-                            BuildRecorder* recorder) {
-  (void)recorder;  // TODO(#12)
+namespace {
+
+/// The numbers of the GridResolution step (build_trace.h: values = {lambda, N, volume, cube
+/// root}), NaN where one does not apply:
+///  * cbrt: lambda; N = valid triangles; volume = the product of the extents of the axes the
+///    rule gives more than one cell (the box volume, or the area of a flat scene); cube root =
+///    (lambda^3 * N / volume)^(1/k) over those k axes, the rule's cells per unit length:
+///    extent * it = the real-valued cells of an axis before rounding (on a unit cube it is
+///    the lecture's lambda * cbrt(N)).
+///  * avgsize: lambda and N; volume and cube root NaN (the rule has neither).
+///  * explicit res: N; lambda, volume and cube root NaN.
+/// The cells per axis of the event are the grid's final ones (after any shrinking to the
+/// memory budget).
+std::array<double, 4> resolution_terms(const GridConfig& config, const DVec3& extent, size_t n_prims) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::array<double, 4> v = {config.lambda, double(n_prims), nan, nan};
+  if (config.explicit_res) {
+    v[0] = nan;
+    return v;
+  }
+  if (config.rule != GridResolutionRule::Cbrt) return v;
+  // The iteration of resolution_cbrt(), keeping its volume and cell edge s.
+  const double target = config.lambda * config.lambda * config.lambda * double(n_prims);
+  bool active[3] = {extent.x > 0.0, extent.y > 0.0, extent.z > 0.0};
+  double s = 0.0, volume = nan;
+  for (int iter = 0; iter < 3; ++iter) {
+    int k = 0;
+    double product = 1.0;
+    for (int a = 0; a < 3; ++a)
+      if (active[a]) ++k, product *= extent[a];
+    if (k == 0) break;
+    volume = product;
+    s = std::pow(product / std::max(target, 1e-300), 1.0 / k);
+    bool changed = false;
+    for (int a = 0; a < 3; ++a)
+      if (active[a] && extent[a] < s) active[a] = false, changed = true;
+    if (!changed) break;
+  }
+  // The last volume is the one s was computed from (the loop stops when no axis drops).
+  v[2] = volume;
+  v[3] = s > 0.0 ? 1.0 / s : nan;
+  return v;
+}
+
+/// build_grid() for one sink: NullBuildSink (the normal, parallel build) or BuildRecorder
+/// (the same grid, the insertion pass serial in triangle order so the steps come in order).
+template <class Sink>
+Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, BuildControl* control, Sink& sink) {
   GridData g;
   const std::vector<uint32_t>& valid = scene.valid_prims();
   if (build_cancelled(control)) return cancelled_error();
   if (valid.empty()) {
     g.cell_start = {0, 0};
+    sink.scene_box(g.bounds);
+    sink.done(g.cell_count());
     return g;
   }
   for (uint32_t prim : valid) g.bounds.extend(scene.triangle_bounds(prim));
+  sink.scene_box(g.bounds);
   auto res = grid_resolution(scene, g.bounds, config);
   if (!res) return res.error();
   g.res = res.value().res;
@@ -340,6 +388,10 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildC
     for (int& n : g.res) n = std::max(1, int(double(n) * f));
     g.clamped_to_budget = true;
   }
+  if constexpr (Sink::kRecords) {
+    const std::array<double, 4> values = resolution_terms(config, extent, valid.size());
+    sink.grid_resolution(g.bounds, values.data(), g.res.data());
+  }
 
   // Counting sort into CSR: cell_start[c + 1] counts, then holds the start of c, then
   // (after the fill) the end of c = the start of c + 1. Both passes run over the triangles
@@ -366,8 +418,30 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildC
   report_progress(control, 0.1);
   if (build_cancelled(control)) return cancelled_error();
   ProgressSpan counting(control, 0.1, 0.55);
-  if (!for_each_prim_batch(valid.size(), counting, [&](size_t k) { for_each_cell(k, false, bump); }))
-    return cancelled_error();
+  if constexpr (Sink::kRecords) {
+    // Serially in triangle order, one step per triangle: the cells of its box range it is
+    // counted into (for_each_cell visits them in increasing linear index, x fastest).
+    std::vector<uint32_t> stored;
+    for (size_t k = 0; k < valid.size(); ++k) {
+      if (k % 4096 == 0 && !counting.advance(double(k) / double(valid.size()))) return cancelled_error();
+      if (!sink.records(0)) {
+        for_each_cell(k, false, bump);
+        continue;
+      }
+      stored.clear();
+      for_each_cell(k, false, [&](size_t c) {
+        bump(c);
+        stored.push_back(uint32_t(c));
+      });
+      const int lo[3] = {ranges[k].lo[0], ranges[k].lo[1], ranges[k].lo[2]};
+      const int hi[3] = {ranges[k].hi[0], ranges[k].hi[1], ranges[k].hi[2]};
+      sink.grid_insert(valid[k], lo, hi, stored.data(), stored.size());
+    }
+    if (counting.cancelled()) return cancelled_error();
+  } else {
+    if (!for_each_prim_batch(valid.size(), counting, [&](size_t k) { for_each_cell(k, false, bump); }))
+      return cancelled_error();
+  }
   counting.finish();
   uint32_t run = 0;
   for (size_t c = 0; c < cells; ++c) {
@@ -388,7 +462,17 @@ Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildC
   });
   filling.finish();
   ACCEL_CHECK(g.cell_start[cells] == run);
+  sink.done(cells);
   return g;
+}
+
+}  // namespace
+
+Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control,
+                            BuildRecorder* recorder) {
+  if (recorder) return build_grid_with(scene, config, control, *recorder);
+  NullBuildSink sink;
+  return build_grid_with(scene, config, control, sink);
 }
 
 const ParamTable<UniformGridOptions>& UniformGrid::param_table() {

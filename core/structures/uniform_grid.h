@@ -90,7 +90,13 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
 /// of the two insertion passes (counting to 0.55, filling to 1.0), from the calling thread;
 /// cancel is polled per batch of triangles. Both passes run on TBB's threads (the caller's
 /// task_arena); the grid is the same for any thread count.
-/// With a `recorder`, every construction step is recorded (build_trace.h), serially; the grid is the same.
+/// With a `recorder`, every construction step is recorded (build_trace.h), the insertion
+/// serially; the grid is the same. Steps: scene_box (the valid triangles' box); grid_resolution
+/// (the grid box, values = {lambda, N, volume, cube root}, NaN where the rule has no such
+/// number, see resolution_terms() in the .cpp; the final cells per axis); for every valid
+/// triangle in index order grid_insert (its box's cell range [lo, hi] and the linear ids
+/// x + NX*(y + NY*z), ascending, of the cells it is stored in: the whole range with
+/// insert=bbox, the cells the exact test accepts with insert=exact); done (cell count).
 Result<GridData> build_grid(const Scene& scene, const GridConfig& config, BuildControl* control = nullptr,
                             BuildRecorder* recorder = nullptr);
 
