@@ -251,9 +251,14 @@ std::string describe_build_event(const BuildTrace& trace, const BuildEvent& e) {
   const std::string node = "node " + std::to_string(e.node);
   switch (e.kind) {
     case BuildEventKind::SceneBox: return "scene box computed";
-    case BuildEventKind::GridResolution:
+    case BuildEventKind::GridResolution: {
+      // The rule's numbers that apply (NaN: not used by this rule; no lambda: res was given).
+      std::string rule = std::isnan(e.values[0]) ? "res given" : "lambda " + num(e.values[0]);
+      rule += ", N " + num(e.values[1]);
+      if (!std::isnan(e.values[3])) rule += ", cube root " + num(e.values[3]);
       return "grid resolution " + std::to_string(e.a) + "x" + std::to_string(e.b) + "x" + std::to_string(e.count) +
-             " (lambda " + num(e.values[0]) + ", N " + num(e.values[1]) + ", cube root " + num(e.values[3]) + ")";
+             " (" + rule + ")";
+    }
     case BuildEventKind::GridInsert: {
       const uint64_t bbox_cells = uint64_t(e.hi[0] - e.lo[0] + 1) * uint64_t(e.hi[1] - e.lo[1] + 1) *
                                   uint64_t(e.hi[2] - e.lo[2] + 1);
