@@ -323,6 +323,7 @@ struct Workspace {
   bool swept[3] = {false, false, false};
   std::vector<SplitCandidate> candidates[3];
   double best_cost = 0.0;  // split_sah(): the chosen plane's cost
+  size_t both = 0;         // distribute(): triangles stored in both children (after clipping)
 };
 
 /// A node to build: its events (consumed), what the guards, the budget and the progress
@@ -358,7 +359,6 @@ struct Decision {
   EventLists left, right;
   size_t nl = 0, nr = 0;  // triangles of each child
   int bad_refines = 0;    // of the children's paths
-  size_t both = 0;        // recording only: triangles stored in both children (after clipping)
 };
 
 class KdBuilder {
@@ -637,6 +637,7 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
   std::vector<uint32_t>& straddlers = ws.straddlers;
   if (straddlers.size() < events.axis[0].size()) straddlers.resize(events.axis[0].size());
   size_t nl = 0, nr = 0, straddling = 0;
+  if constexpr (Sink::kRecords) ws.both = 0;
   for (const Event& e : events.axis[0]) {
     const uint32_t prim = e.prim();
     const bool first = e.type() != kEnd;
@@ -661,7 +662,7 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
       if (in_left) add_events(new_left, prim, b), ++nl;
       const bool in_right = clip_triangle_bounds(scene_, prim, box_r, &b);
       if (in_right) add_events(new_right, prim, b), ++nr;
-      if constexpr (Sink::kRecords) d.both += in_left && in_right;
+      if constexpr (Sink::kRecords) ws.both += in_left && in_right;
     } else {
       const Aabb& tri = scene_.triangle_bounds(prim);
       for (const Aabb* child : {&box_l, &box_r}) {
@@ -670,7 +671,7 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
         add_events(child == &box_l ? new_left : new_right, prim, b);
       }
       ++nl, ++nr;
-      if constexpr (Sink::kRecords) ++d.both;
+      if constexpr (Sink::kRecords) ++ws.both;
     }
   }
   d.nl = nl;
@@ -870,7 +871,7 @@ void KdBuilder::record_split(const Workspace& ws, const NodeTask& t, const Decis
   }
   if (d.s.axis >= 0)
     rec.split(id, d.s.axis, d.s.pos, float(cost), float(leaf_cost), uint32_t(d.nl), uint32_t(d.nr),
-              uint32_t(d.both));
+              uint32_t(ws.both));
 }
 
 // Depth-first, writing nodes in pre-order: the below child follows its parent, the above
