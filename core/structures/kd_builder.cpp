@@ -317,6 +317,13 @@ struct Workspace {
   std::vector<PlaneCounts> planes;   // split_sah(): the counts of one axis
   EventLists fresh[2];         // distribute(): events of re-clipped straddlers, per side
   EventPool pool;
+  // Recording only (build_trace.h; untouched by the NullBuildSink build): whether the node
+  // being split is recorded, and split_sah()'s planes of it with their costs, per axis swept.
+  bool record = false;
+  bool swept[3] = {false, false, false};
+  std::vector<SplitCandidate> candidates[3];
+  double best_cost = 0.0;  // split_sah(): the chosen plane's cost
+  size_t both = 0;         // distribute(): triangles stored in both children (after clipping)
 };
 
 /// A node to build: its events (consumed), what the guards, the budget and the progress
@@ -367,26 +374,33 @@ class KdBuilder {
         progress_(control, progress_from, 1.0),
         parallel_(parallel),
         exact_errors_(exact_errors) {}
-  Result<KdTreeData> run();
+  /// `recorder` (nullptr = none): every step is recorded into it (the builder must be serial).
+  Result<KdTreeData> run(BuildRecorder* recorder = nullptr);
   /// The last fraction reported.
   double progress_reached() const { return progress_.last(); }
 
  private:
   Workspace& workspace();
   bool enter_node();
+  template <class Sink>
   void decide(Workspace& ws, const NodeTask& t, Decision& d) const;
   bool accept_split(Workspace& ws, NodeTask& t, const Decision& d);
   NodeTask child_task(NodeTask& t, Decision& d, bool above) const;
+  template <class Sink>
   void build_serial(Workspace& ws, Subtree& out, NodeTask& t);
   std::unique_ptr<Subtree> build_task(NodeTask t);
+  void record_node(Workspace& ws, const NodeTask& t, uint32_t id);
+  void record_split(const Workspace& ws, const NodeTask& t, const Decision& d, uint32_t id) const;
   void make_leaf(Workspace& ws, Subtree& out, NodeTask& t, size_t KdLeafReasons::*reason);
   void stitch(Subtree& root);
   double split_cost(const Aabb& box, const SplitChoice& s, size_t nl, size_t nr) const;
   int choose_axis(const Aabb& box, int depth) const;
   SplitChoice split_middle(const Aabb& box, int depth) const;
   SplitChoice split_median(Workspace& ws, const EventLists& events, const Aabb& box, int depth, size_t n) const;
+  template <class Sink>
   SplitChoice split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const;
   void classify(Workspace& ws, const EventLists& events, const SplitChoice& s) const;
+  template <class Sink>
   void distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box, Decision& d) const;
   void report_leaf(double share);
   void over_budget(const char* what, size_t limit);
@@ -410,6 +424,10 @@ class KdBuilder {
   std::atomic<bool> failed_{false};
   std::mutex error_mutex_;
   Status status_;  // the first error recorded (budget or cancel); the build stops at it
+  // Recording (build_serial<BuildRecorder>() only): the recorder and the parent of the next
+  // node the serial recursion enters.
+  BuildRecorder* recorder_ = nullptr;
+  uint32_t parent_ = kNoBuildNode;
 };
 
 /// This thread's workspace, its per-triangle arrays sized on first use.
@@ -507,6 +525,9 @@ SplitChoice KdBuilder::split_median(Workspace& ws, const EventLists& events, con
 // region are candidates; a plane on its boundary only to cut off the triangles lying in it.
 // Returns "leaf" when no plane beats the leaf cost ci * N (Wald & Havran's automatic
 // termination).
+// Recording (Sink::kRecords and ws.record): every plane given a cost, in sweep order, per
+// axis into ws.candidates, and the chosen plane's cost into ws.best_cost.
+template <class Sink>
 SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const {
   SplitChoice best;
   const DVec3 e = DVec3(box.max) - DVec3(box.min);
@@ -523,6 +544,12 @@ SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const 
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     const double cross = e[a1] * e[a2], around = e[a1] + e[a2];
     const size_t planes = count_planes(events.axis[axis], n, ws.planes);
+    if constexpr (Sink::kRecords) {
+      if (ws.record) {
+        ws.swept[axis] = true;
+        ws.candidates[axis].clear();
+      }
+    }
     for (size_t g = 0; g < planes; ++g) {
       const float p = ws.planes[g].pos;
       const size_t nl = ws.planes[g].left, nr = ws.planes[g].right, planars = ws.planes[g].planar;
@@ -533,6 +560,11 @@ SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const 
         const double c_left = cost(pl, pr, nl + planars, nr);
         const double c_right = planars > 0 ? cost(pl, pr, nl, nr + planars) : c_left;
         const double c = std::min(c_left, c_right);
+        if constexpr (Sink::kRecords) {
+          if (ws.record)
+            ws.candidates[axis].push_back(c_left <= c_right ? SplitCandidate{p, float(c), uint32_t(nl + planars), uint32_t(nr)}
+                                                            : SplitCandidate{p, float(c), uint32_t(nl), uint32_t(nr + planars)});
+        }
         if (c < best_cost) {
           best_cost = c;
           best = {axis, p, c_left <= c_right};
@@ -543,6 +575,11 @@ SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const 
         // Both sides then hold fewer triangles than the node, so this always progresses.
         const bool at_min = p == box.min[axis];
         const double c = at_min ? cost(pl, pr, planars, n - planars) : cost(pl, pr, n - planars, planars);
+        if constexpr (Sink::kRecords) {
+          if (ws.record)
+            ws.candidates[axis].push_back(at_min ? SplitCandidate{p, float(c), uint32_t(planars), uint32_t(n - planars)}
+                                                 : SplitCandidate{p, float(c), uint32_t(n - planars), uint32_t(planars)});
+        }
         if (c < best_cost) {
           best_cost = c;
           best = {axis, p, at_min};
@@ -550,6 +587,7 @@ SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const 
       }
     }
   }
+  if constexpr (Sink::kRecords) ws.best_cost = best_cost;
   return best;
 }
 
@@ -583,6 +621,7 @@ void KdBuilder::classify(Workspace& ws, const EventLists& events, const SplitCho
 // -- and merged in. This keeps every list sorted without a sort per node: O(N log N). The
 // filter writes each event to both children and advances the side it belongs to, without a
 // branch to mispredict; the merge works in place from the back (merge_fresh()).
+template <class Sink>
 void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box,
                            Decision& d) const {
   EventLists& new_left = ws.fresh[0];
@@ -598,6 +637,7 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
   std::vector<uint32_t>& straddlers = ws.straddlers;
   if (straddlers.size() < events.axis[0].size()) straddlers.resize(events.axis[0].size());
   size_t nl = 0, nr = 0, straddling = 0;
+  if constexpr (Sink::kRecords) ws.both = 0;
   for (const Event& e : events.axis[0]) {
     const uint32_t prim = e.prim();
     const bool first = e.type() != kEnd;
@@ -618,8 +658,11 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
     const uint32_t prim = straddlers[i];
     Aabb b;
     if (o_.clip) {
-      if (clip_triangle_bounds(scene_, prim, box_l, &b)) add_events(new_left, prim, b), ++nl;
-      if (clip_triangle_bounds(scene_, prim, box_r, &b)) add_events(new_right, prim, b), ++nr;
+      const bool in_left = clip_triangle_bounds(scene_, prim, box_l, &b);
+      if (in_left) add_events(new_left, prim, b), ++nl;
+      const bool in_right = clip_triangle_bounds(scene_, prim, box_r, &b);
+      if (in_right) add_events(new_right, prim, b), ++nr;
+      if constexpr (Sink::kRecords) ws.both += in_left && in_right;
     } else {
       const Aabb& tri = scene_.triangle_bounds(prim);
       for (const Aabb* child : {&box_l, &box_r}) {
@@ -628,6 +671,7 @@ void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitC
         add_events(child == &box_l ? new_left : new_right, prim, b);
       }
       ++nl, ++nr;
+      if constexpr (Sink::kRecords) ++ws.both;
     }
   }
   d.nl = nl;
@@ -717,6 +761,7 @@ bool KdBuilder::enter_node() {
 //    more than leaf_size triangles, where no plane ever separates them: a split whose SAH cost
 //    is not below the leaf's (ci * N) is a "bad refine", and the third one on a path makes a
 //    leaf (pbrt-v4 KdTreeAggregate's badRefines rule). SAH stops at its first such split.
+template <class Sink>
 void KdBuilder::decide(Workspace& ws, const NodeTask& t, Decision& d) const {
   const size_t n = t.n;
   d.bad_refines = t.bad_refines;
@@ -731,14 +776,14 @@ void KdBuilder::decide(Workspace& ws, const NodeTask& t, Decision& d) const {
   switch (o_.split) {
     case KdSplit::Middle: d.s = split_middle(t.box, t.depth); break;
     case KdSplit::Median: d.s = split_median(ws, t.events, t.box, t.depth, n); break;
-    case KdSplit::Sah: d.s = split_sah(ws, t.events, t.box, n); break;
+    case KdSplit::Sah: d.s = split_sah<Sink>(ws, t.events, t.box, n); break;
   }
   if (d.s.axis < 0) {
     d.reason = o_.split == KdSplit::Sah ? &KdLeafReasons::no_gain : &KdLeafReasons::thin;
     return;
   }
   classify(ws, t.events, d.s);
-  distribute(ws, t.events, d.s, t.box, d);
+  distribute<Sink>(ws, t.events, d.s, t.box, d);
   if (d.nl == n && d.nr == n) {
     d.s.axis = -1;
     d.reason = &KdLeafReasons::no_progress;
@@ -780,16 +825,77 @@ NodeTask KdBuilder::child_task(NodeTask& t, Decision& d, bool above) const {
   return c;
 }
 
+/// The build_trace.h reason of a leaf counted in `reason`: the guards against explosion (no
+/// progress, bad refines) and a region too thin to halve are "splitting would not separate
+/// the triangles", NoGain, like the SAH's own stop.
+LeafReason leaf_reason(size_t KdLeafReasons::*reason) {
+  if (reason == &KdLeafReasons::few_prims) return LeafReason::FewPrims;
+  if (reason == &KdLeafReasons::max_depth) return LeafReason::MaxDepth;
+  return LeafReason::NoGain;
+}
+
+/// Recording: the Node step of `t` (id = its final pre-order index), with its triangles
+/// ascending (as a leaf lists them); resets the workspace's per-node recording state.
+void KdBuilder::record_node(Workspace& ws, const NodeTask& t, uint32_t id) {
+  BuildRecorder& rec = *recorder_;
+  ws.record = rec.records(t.depth);
+  for (bool& swept : ws.swept) swept = false;
+  std::vector<uint32_t> prims;
+  if (ws.record) {
+    prims.reserve(t.n);
+    for (const Event& e : t.events.axis[0])
+      if (e.type() != kEnd) prims.push_back(e.prim());
+    std::sort(prims.begin(), prims.end());
+  }
+  rec.node(id, parent_, t.depth, t.box, Aabb{}, prims.data(), ws.record ? prims.size() : t.n);
+}
+
+/// Recording: what chose the split of node `id` (sah: the planes of every axis swept; middle,
+/// median: the axis rule's choice), then the Split step: its cost C(B) and the leaf's ci * N,
+/// the children's triangle counts after clipping and how many are in both.
+void KdBuilder::record_split(const Workspace& ws, const NodeTask& t, const Decision& d, uint32_t id) const {
+  BuildRecorder& rec = *recorder_;
+  if (!ws.record) return;
+  const double leaf_cost = o_.ci * double(t.n);
+  double cost = std::nan("");
+  if (o_.split == KdSplit::Sah) {
+    for (int axis = 0; axis < 3; ++axis)
+      if (ws.swept[axis]) rec.candidates(id, axis, ws.candidates[axis].data(), ws.candidates[axis].size());
+    if (d.s.axis >= 0) cost = ws.best_cost;
+  } else if (d.s.axis >= 0 || (d.reason != &KdLeafReasons::few_prims && d.reason != &KdLeafReasons::max_depth)) {
+    const int axis = choose_axis(t.box, t.depth);
+    Vec3 dir(0.0f);
+    dir[axis] = 1.0f;
+    rec.axis(id, axis, dir);
+    if (d.s.axis >= 0) cost = split_cost(t.box, d.s, d.nl, d.nr);
+  }
+  if (d.s.axis >= 0)
+    rec.split(id, d.s.axis, d.s.pos, float(cost), float(leaf_cost), uint32_t(d.nl), uint32_t(d.nr),
+              uint32_t(ws.both));
+}
+
 // Depth-first, writing nodes in pre-order: the below child follows its parent, the above
 // child's index is patched in once the below subtree is done (pbrt's layout). The node's
 // events are freed before the recursion, so only the pending above lists of the current path
-// stay alive, which bounds the build's memory.
+// stay alive, which bounds the build's memory. Recording (Sink = BuildRecorder, a serial
+// build: `out` is the whole tree), a node's id is its index in `out`, final.
+template <class Sink>
 void KdBuilder::build_serial(Workspace& ws, Subtree& out, NodeTask& t) {
   if (!enter_node()) return;
+  [[maybe_unused]] const uint32_t id = uint32_t(out.nodes.size());
+  if constexpr (Sink::kRecords) record_node(ws, t, id);
   Decision d;
-  decide(ws, t, d);
+  decide<Sink>(ws, t, d);
+  if constexpr (Sink::kRecords) {
+    if (d.s.axis >= 0 || d.reason != &KdLeafReasons::few_prims) record_split(ws, t, d, id);
+  }
   if (d.s.axis < 0) {
+    [[maybe_unused]] const size_t offset = out.prim_ids.size();
     make_leaf(ws, out, t, d.reason);
+    if constexpr (Sink::kRecords) {
+      if (!failed())
+        recorder_->leaf(id, leaf_reason(d.reason), out.prim_ids.data() + offset, out.prim_ids.size() - offset);
+    }
     return;
   }
   if (!accept_split(ws, t, d)) return;
@@ -797,10 +903,12 @@ void KdBuilder::build_serial(Workspace& ws, Subtree& out, NodeTask& t) {
   NodeTask right = child_task(t, d, true);
   const size_t self = out.nodes.size();
   out.nodes.push_back(KdNode{});
-  build_serial(ws, out, left);
+  if constexpr (Sink::kRecords) parent_ = id;
+  build_serial<Sink>(ws, out, left);
   if (failed()) return;
   out.nodes[self] = KdNode::make_inner(d.s.axis, d.s.pos, NodeId(out.nodes.size()));
-  build_serial(ws, out, right);
+  if constexpr (Sink::kRecords) parent_ = id;
+  build_serial<Sink>(ws, out, right);
 }
 
 // A node of at least kTaskMinPrims triangles is a part of its own and builds its children as
@@ -810,13 +918,17 @@ void KdBuilder::build_serial(Workspace& ws, Subtree& out, NodeTask& t) {
 std::unique_ptr<Subtree> KdBuilder::build_task(NodeTask t) {
   auto out = std::make_unique<Subtree>();
   Workspace& ws = workspace();
+  if (recorder_) {
+    build_serial<BuildRecorder>(ws, *out, t);
+    return out;
+  }
   if (!parallel_ || t.n < kTaskMinPrims) {
-    build_serial(ws, *out, t);
+    build_serial<NullBuildSink>(ws, *out, t);
     return out;
   }
   if (!enter_node()) return out;
   Decision d;
-  decide(ws, t, d);
+  decide<NullBuildSink>(ws, t, d);
   if (d.s.axis < 0) {
     make_leaf(ws, *out, t, d.reason);
     return out;
@@ -900,12 +1012,22 @@ void KdBuilder::stitch(Subtree& root) {
   });
 }
 
-Result<KdTreeData> KdBuilder::run() {
+// Recording: scene_box, the steps of build_serial<BuildRecorder>(), done.
+Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
+  ACCEL_CHECK(!recorder || !parallel_);
+  recorder_ = recorder;
+  parent_ = kNoBuildNode;
   const std::vector<uint32_t>& prims = scene_.valid_prims();
   out_.max_depth_limit = o_.max_depth > 0 ? std::min(o_.max_depth, kKdMaxDepth) : kd_auto_max_depth(prims.size());
   if (prims.empty()) {
     out_.nodes.push_back(KdNode::make_leaf(0, 0));
     ++out_.leaf_reasons.few_prims;
+    if (recorder) {
+      recorder->scene_box(out_.root_box);
+      recorder->node(0, kNoBuildNode, 0, out_.root_box, Aabb{}, nullptr, 0);
+      recorder->leaf(0, LeafReason::FewPrims, nullptr, 0);
+      recorder->done(1);
+    }
     return std::move(out_);
   }
   if (scene_.triangle_count() > kKdMaxIndex) return make_error("kdtree: scene has too many triangles (limit 2^30)");
@@ -917,6 +1039,7 @@ Result<KdTreeData> KdBuilder::run() {
     out_.root_box.extend(scene_.triangle_bounds(prim));
     add_events(root.events, prim, scene_.triangle_bounds(prim));  // inside the root box: nothing to clip
   }
+  if (recorder) recorder->scene_box(out_.root_box);
   if (build_cancelled(control_)) return cancelled_error();
   auto sort_axis = [&root](int k) { std::sort(root.events.axis[k].begin(), root.events.axis[k].end(), EventLess{}); };
   tbb::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
@@ -936,6 +1059,7 @@ Result<KdTreeData> KdBuilder::run() {
   }
   stitch(*tree);
   ACCEL_CHECK(out_.depth <= kKdMaxDepth);  // the traversal's stack holds kKdMaxDepth entries
+  if (recorder) recorder->done(out_.nodes.size());
   return std::move(out_);
 }
 
@@ -943,9 +1067,10 @@ Result<KdTreeData> KdBuilder::run() {
 
 Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control,
                                  BuildRecorder* recorder) {
-  (void)recorder;  // TODO(#12)
   if (build_cancelled(control)) return cancelled_error();
-  if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0, true, true).run();
+  // Recording builds serially (the steps in depth-first order, the same tree).
+  const bool parallel = recorder == nullptr;
+  if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0, parallel, true).run(recorder);
   // Automatic depth: keep the tree within a size proportional to the scene (at most 64
   // references per triangle, or 4M). Scenes that every plane cuts -- thousands of overlapping
   // coplanar triangles -- would otherwise grow to the absolute budget before failing; there
@@ -958,9 +1083,14 @@ Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& optio
   double reached = 0.0;
   for (int depth = kd_auto_max_depth(n);; depth = std::max(1, depth - 4)) {
     o.max_depth = depth;
-    KdBuilder builder(scene, o, control, reached, true, depth == 1);
-    Result<KdTreeData> tree = builder.run();
-    if (tree || depth == 1 || build_cancelled(control)) return tree;
+    KdBuilder builder(scene, o, control, reached, parallel, depth == 1);
+    // A recording keeps the steps of the attempt returned only (a copy of the recorder as given).
+    std::unique_ptr<BuildRecorder> attempt = recorder ? std::make_unique<BuildRecorder>(*recorder) : nullptr;
+    Result<KdTreeData> tree = builder.run(attempt.get());
+    if (tree || depth == 1 || build_cancelled(control)) {
+      if (recorder) *recorder = std::move(*attempt);
+      return tree;
+    }
     reached = builder.progress_reached();
   }
 }

@@ -151,6 +151,13 @@ struct KdTreeData {
 /// summing to 1). The automatic depth may retry with a lower limit; a retry continues from
 /// the fraction reached, over what is left, so the reports never go back.
 /// With a `recorder`, every construction step is recorded (build_trace.h), serially; the tree is the same.
+/// Steps, depth first, below child first, node ids = the final (pre-order) node indices:
+/// scene_box; per node: node (its region, as node_view reports it, and its triangles), then
+/// split=sah: candidates per axis swept (every plane given a cost, in sweep order, the
+/// empty-space bonus applied), middle/median: axis (the axis rule's choice); then split (C(B),
+/// the leaf cost ci * N, the children's counts after clipping, the triangles in both) or leaf
+/// (FewPrims, MaxDepth, or NoGain for sah's stop, no progress, bad refines and thin regions);
+/// done. Of an automatic-depth build that retries, only the returned attempt's steps are kept.
 Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control = nullptr,
                                  BuildRecorder* recorder = nullptr);
 
