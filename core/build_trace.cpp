@@ -34,6 +34,9 @@ const char* leaf_reason_name(LeafReason reason) {
     case LeafReason::MaxDepth: return "max depth";
     case LeafReason::NoGain: return "no gain";
     case LeafReason::Cluster: return "triangle";
+    case LeafReason::NoProgress: return "no progress";
+    case LeafReason::BadRefines: return "bad refines";
+    case LeafReason::TooThin: return "too thin";
   }
   return "?";
 }

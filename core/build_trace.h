@@ -30,8 +30,11 @@ inline constexpr uint32_t kNoBuildNode = std::numeric_limits<uint32_t>::max();
 enum class LeafReason : uint8_t {
   FewPrims,   ///< at most the maximum primitives per leaf
   MaxDepth,   ///< the depth limit was reached
-  NoGain,     ///< SAH: no split is cheaper than the leaf; octree/kd: splitting would not separate the triangles
+  NoGain,     ///< SAH: no split is cheaper than the leaf; octree: subdividing multiplies the references
   Cluster,    ///< bottom-up / insertion: a triangle enters the tree as a leaf
+  NoProgress, ///< the split would keep every triangle on both sides (kd), or a child keeps all its parent's (octree)
+  BadRefines, ///< kd middle/median: the third split on the path that did not pay by the SAH
+  TooThin,    ///< the node is too thin to put a plane inside / too small to halve in float
 };
 
 enum class BuildEventKind : uint8_t {

@@ -35,6 +35,9 @@ const char* reason_name(LeafReason r) {
     case LeafReason::MaxDepth: return "depth";
     case LeafReason::NoGain: return "nogain";
     case LeafReason::Cluster: return "cluster";
+    case LeafReason::NoProgress: return "noprogress";
+    case LeafReason::BadRefines: return "badrefines";
+    case LeafReason::TooThin: return "thin";
   }
   return "?";
 }
@@ -280,7 +283,7 @@ TEST(KdBuildTrace, StraddlerInBothChildrenOnlyWithoutClipping) {
   // [0,2]x[0,4] its part has y in [8/3, 4], so the split on y at 2 puts it above only with
   // perfect splits; clip=off keeps its box [1,2]x[0,4] there, in both, and the below
   // grandchild [0,2]^2 gets both triangles: its split on x at 1 would be the path's third
-  // whose cost is not below the leaf's (2.5, 2.5, 2 vs 2), a bad-refine leaf (NoGain).
+  // whose cost is not below the leaf's (2.5, 2.5, 2 vs 2), a bad-refine leaf (BadRefines).
   std::vector<Vec3> p = {Vec3(1, 4, 0), Vec3(4, 0, 0), Vec3(4, 4, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   std::vector<UVec3> t = {UVec3(0, 1, 2), UVec3(3, 4, 5)};
   const Scene scene(std::move(p), std::move(t), "straddler");
@@ -301,7 +304,7 @@ TEST(KdBuildTrace, StraddlerInBothChildrenOnlyWithoutClipping) {
   EXPECT_EQ(steps(off),
             "scene_box, node 0<- d0 {0 1}, axis 0 x, split 0 x@2 2|1 both 1, "
             "node 1<0 d1 {0 1}, axis 1 y, split 1 y@2 2|1 both 1, "
-            "node 2<1 d2 {0 1}, axis 2 x, leaf 2 nogain {0 1}, node 3<1 d2 {0}, leaf 3 few {0}, "
+            "node 2<1 d2 {0 1}, axis 2 x, leaf 2 badrefines {0 1}, node 3<1 d2 {0}, leaf 3 few {0}, "
             "node 4<0 d1 {0}, leaf 4 few {0}, done 5");
   expect_box(off, 2, box(Vec3(0, 0, 0), Vec3(2, 2, 0)));
 }

@@ -825,12 +825,13 @@ NodeTask KdBuilder::child_task(NodeTask& t, Decision& d, bool above) const {
   return c;
 }
 
-/// The build_trace.h reason of a leaf counted in `reason`: the guards against explosion (no
-/// progress, bad refines) and a region too thin to halve are "splitting would not separate
-/// the triangles", NoGain, like the SAH's own stop.
+/// The build_trace.h reason of a leaf counted in `reason` (one per KdLeafReasons counter).
 LeafReason leaf_reason(size_t KdLeafReasons::*reason) {
   if (reason == &KdLeafReasons::few_prims) return LeafReason::FewPrims;
   if (reason == &KdLeafReasons::max_depth) return LeafReason::MaxDepth;
+  if (reason == &KdLeafReasons::no_progress) return LeafReason::NoProgress;
+  if (reason == &KdLeafReasons::bad_refines) return LeafReason::BadRefines;
+  if (reason == &KdLeafReasons::thin) return LeafReason::TooThin;
   return LeafReason::NoGain;
 }
 

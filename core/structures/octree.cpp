@@ -364,7 +364,7 @@ class OctreeBuilder {
     for (int axis = 0; axis < 3; ++axis) {
       // At float resolution a half would equal the whole box: splitting cannot separate anything.
       if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis])
-        return leaf(part, self, LeafReason::NoGain, prims, n, &why.tiny_box, share, out);
+        return leaf(part, self, LeafReason::TooThin, prims, n, &why.tiny_box, share, out);
     }
 
     // The children's lists, in the node's order, one after the other in this depth's buffer.
@@ -431,7 +431,7 @@ class OctreeBuilder {
       const bool stuck = size == n && (poor || bounds.contains(child_box));
       const double child_share = share * double(size) / double(refs);
       record_node(id, self, depth + 1, child_box, child, size);
-      return stuck ? leaf(into, id, LeafReason::NoGain, child, size, &into.reasons.inseparable, child_share, value)
+      return stuck ? leaf(into, id, LeafReason::NoProgress, child, size, &into.reasons.inseparable, child_share, value)
                    : build_node(into, id, child_box, depth + 1, child, size, child_share, scr, value);
     };
     if (!parallel_ || n < kParallelChildren) {

@@ -144,7 +144,7 @@ struct OctreeData {
 /// With a `recorder`, every construction step is recorded (build_trace.h), serially; the tree
 /// is the same and the steps' node ids are its ids. Steps: scene_box (the valid triangles'
 /// box), node (root cube, its triangles), then depth-first per node: leaf (reason FewPrims,
-/// MaxDepth, or NoGain for no gain, inseparable and a box too small to halve), or subdivide
+/// MaxDepth, NoGain, NoProgress for inseparable, TooThin for a box too small to halve), or subdivide
 /// (its 8 child ids in octant order) followed by each child's node and own steps, child 0's
 /// subtree first; done (node count).
 Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& options,
