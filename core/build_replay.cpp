@@ -1,6 +1,7 @@
 #include "build_replay.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace accel {
 
@@ -147,6 +148,16 @@ void BuildReplay::apply(const BuildEvent& e) {
       --live_nodes_;
       break;
     }
+    case BuildEventKind::Replace: {
+      const uint32_t old = slot(e.a);
+      if (s == kNoBuildNode || old == kNoBuildNode || nodes_[old].gone) break;
+      const uint32_t up = nodes_[old].parent;
+      if (up != kNoBuildNode) std::replace(nodes_[up].children.begin(), nodes_[up].children.end(), old, s);
+      nodes_[s].parent = up;
+      nodes_[old].parent = kNoBuildNode;
+      remove_subtree(old);
+      break;
+    }
     case BuildEventKind::Fit:
       if (s != kNoBuildNode) {
         nodes_[s].box = e.box;
@@ -155,6 +166,24 @@ void BuildReplay::apply(const BuildEvent& e) {
       break;
     case BuildEventKind::Done: break;
   }
+}
+
+double BuildReplay::sah_cost(double ct, double ci) const {
+  const auto area = [](const ReplayNode& n) {
+    return n.sphere.radius >= 0.0f ? 4.0 * 3.14159265358979323846 * double(n.sphere.radius) * double(n.sphere.radius)
+                                   : double(n.box.area());
+  };
+  double root_area = 0.0;
+  for (const ReplayNode& n : nodes_)
+    if (!n.gone && n.parent == kNoBuildNode) root_area = std::max(root_area, area(n));
+  if (nodes_.empty() || root_area <= 0.0) return std::nan("");
+  double cost = 0.0;
+  for (const ReplayNode& n : nodes_) {
+    if (n.gone) continue;
+    const bool open = n.children.empty();  // a leaf, or a node not split yet: priced as a leaf
+    cost += (open ? ci * double(n.prim_count) : ct) * area(n) / root_area;
+  }
+  return cost;
 }
 
 std::vector<int> BuildReplay::depths() const {

@@ -21,6 +21,7 @@ const char* build_event_kind_name(BuildEventKind kind) {
     case BuildEventKind::Merge: return "merge";
     case BuildEventKind::InsertStep: return "insert_step";
     case BuildEventKind::Collapse: return "collapse";
+    case BuildEventKind::Replace: return "replace";
     case BuildEventKind::Fit: return "fit";
     case BuildEventKind::Unrecorded: return "unrecorded";
     case BuildEventKind::Done: return "done";
@@ -201,6 +202,11 @@ void BuildRecorder::collapse(uint32_t parent, uint32_t child) {
   if (BuildEvent* e = add(BuildEventKind::Collapse, parent)) e->a = child;
 }
 
+void BuildRecorder::replace(uint32_t id, uint32_t old) {
+  if (!known(id) || !known(old)) return;
+  if (BuildEvent* e = add(BuildEventKind::Replace, id)) e->a = old;
+}
+
 void BuildRecorder::fit(uint32_t id, const Aabb& box, const BoundingSphere& sphere) {
   if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Fit, id)) {
@@ -297,6 +303,8 @@ std::string describe_build_event(const BuildTrace& trace, const BuildEvent& e) {
     }
     case BuildEventKind::Collapse:
       return node + " adopts the children of node " + std::to_string(e.a);
+    case BuildEventKind::Replace:
+      return "subtree too deep: node " + std::to_string(e.a) + " replaced by the balanced " + node;
     case BuildEventKind::Fit:
       return e.sphere.radius >= 0.0f ? "fit sphere of " + node + ", radius " + num(e.sphere.radius)
                                      : "fit box of " + node;
@@ -438,6 +446,7 @@ void write_build_trace_jsonl(const BuildTrace& trace, std::ostream& out) {
         out << "],\"choice\":" << e.a;
         break;
       case BuildEventKind::Collapse: out << ",\"child\":" << e.a; break;
+      case BuildEventKind::Replace: out << ",\"replaces\":" << e.a; break;
       case BuildEventKind::Fit:
         write_box(out, "box", e.box);
         if (e.sphere.radius >= 0.0f) {

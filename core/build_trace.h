@@ -50,6 +50,7 @@ enum class BuildEventKind : uint8_t {
   Merge,           ///< bottom-up: node = new cluster of a and b, box, cost = its area
   InsertStep,      ///< insertion: prim sifting at node, box = node's grown box: values = {cost here, cost left, cost right}; a = choice (0 here, 1 left, 2 right)
   Collapse,        ///< wide BVH: node adopts the children of its child a (a disappears)
+  Replace,         ///< node (a subtree just built) takes the place of node a, whose subtree is dropped (depth limit)
   Fit,             ///< node's final bounding volume: box, sphere (sphere tree) -- after the topology
   Unrecorded,      ///< node is below the recorded depth: its subtree (count triangles) was built but not recorded
   Done,            ///< the build finished: count = nodes or cells
@@ -130,6 +131,7 @@ struct NullBuildSink {
   void merge(uint32_t, uint32_t, uint32_t, const Aabb&, float) {}
   void insert_step(uint32_t, uint32_t, int, const Aabb&, const float*, int) {}
   void collapse(uint32_t, uint32_t) {}
+  void replace(uint32_t, uint32_t) {}
   void fit(uint32_t, const Aabb&, const BoundingSphere&) {}
   void done(size_t) {}
 };
@@ -175,6 +177,8 @@ class BuildRecorder {
   /// costs = {make a sibling here, descend left, descend right}, choice 0/1/2.
   void insert_step(uint32_t prim, uint32_t at, int depth, const Aabb& grown, const float* costs, int choice);
   void collapse(uint32_t parent, uint32_t child);
+  /// `id` (the root of a subtree recorded as clusters and merges) replaces `old` and its subtree.
+  void replace(uint32_t id, uint32_t old);
   void fit(uint32_t id, const Aabb& box, const BoundingSphere& sphere);
   void done(size_t nodes);
 

@@ -245,6 +245,34 @@ TEST(BuildRecorder, RecordedBuildOfALargerSceneEqualsTheParallelBuild) {
   }
 }
 
+// 300 identical triangles: insertion grows a chain deeper than the depth bound, which is
+// rebuilt balanced (limit_depth in bvh_builders.cpp): recorded as clusters, merges and a
+// Replace step, so the replay still reconstructs the tree.
+TEST(BuildRecorder, DepthBoundRebuildIsReplayed) {
+  std::vector<Vec3> positions;
+  std::vector<UVec3> triangles;
+  for (uint32_t i = 0; i < 300; ++i) {
+    positions.insert(positions.end(), {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
+    triangles.push_back(UVec3(3 * i, 3 * i + 1, 3 * i + 2));
+  }
+  const Scene same(std::move(positions), std::move(triangles), "identical");
+  for (const char* builder : {"insertion", "bottom_up"}) {
+    for (const char* width : {"width=2", "width=4"}) {
+      const std::vector<std::string> params = {std::string("builder=") + builder, width};
+      auto normal = build_structure("bvh", same, params);
+      ASSERT_TRUE(normal);
+      BuildRecorder recorder;
+      auto recorded = build_structure("bvh", same, params, Kernel::Watertight, nullptr, &recorder);
+      ASSERT_TRUE(recorded);
+      const std::vector<NodeKey> want = structure_nodes(*normal.value(), "bvh");
+      expect_same_nodes(want, structure_nodes(*recorded.value(), "bvh"), builder);
+      BuildReplay replay(recorder.trace());
+      replay.seek(replay.steps());
+      expect_same_nodes(want, replayed_nodes(replay, "bvh"), std::string(builder) + " replay");
+    }
+  }
+}
+
 TEST(BuildRecorder, DepthLimitRecordsTheTopLevelsOnly) {
   auto normal = build_structure("bvh", big_soup(), {"width=2"});
   ASSERT_TRUE(normal);
@@ -295,6 +323,25 @@ TEST(BuildRecorder, StopsAtTheBudgetWithoutAStall) {
   EXPECT_TRUE(recorder.trace().truncated);
   EXPECT_LE(recorder.trace().bytes(), size_t(64) << 10);
   EXPECT_NE(recorder.trace().coverage().find("stopped at the step budget"), std::string::npos);
+}
+
+// The counter "SAH cost so far": the root alone costs ci * N, the finished tree what the
+// structure's statistics say.
+TEST(BuildReplay, SahCostSoFarEndsAtTheTreesCost) {
+  for (const char* builder : {"sah", "binned_sah", "bottom_up"}) {
+    BuildRecorder recorder;
+    auto built = build_structure("bvh", cornell(), {std::string("builder=") + builder, "width=2", "ct=1", "ci=2"},
+                                 Kernel::Watertight, nullptr, &recorder);
+    ASSERT_TRUE(built);
+    BuildReplay replay(recorder.trace());
+    if (std::string(builder) != "bottom_up") {
+      replay.seek(2);  // scene box, root node
+      EXPECT_DOUBLE_EQ(replay.sah_cost(1.0, 2.0), 2.0 * double(cornell().valid_prims().size()));
+    }
+    replay.seek(replay.steps());
+    EXPECT_NEAR(replay.sah_cost(1.0, 2.0), built.value()->build_stats().sah_cost, 1e-6 * replay.sah_cost(1.0, 2.0))
+        << builder;
+  }
 }
 
 TEST(BuildTraceJson, OneLinePerStepAfterAHeader) {

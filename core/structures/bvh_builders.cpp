@@ -827,11 +827,20 @@ void gather_prims(const std::vector<BinaryNode>& nodes, uint32_t i, std::vector<
 }
 
 /// Balanced median-split subtree over prims[begin, end) (height ~ log2 n); returns its root.
+/// The sink sees it as bottom-up steps: each triangle a cluster, each inner node a merge.
+template <class Sink>
 uint32_t build_median_binary(const Scene& scene, std::vector<BinaryNode>& nodes, std::vector<uint32_t>& prims,
-                             size_t begin, size_t end) {
+                             size_t begin, size_t end, Sink& sink) {
   if (end - begin == 1) {
     nodes.push_back(BinaryNode::leaf_of(scene.triangle_bounds(prims[begin]), prims[begin]));
-    return uint32_t(nodes.size() - 1);
+    const uint32_t id = uint32_t(nodes.size() - 1);
+    if constexpr (Sink::kRecords) {
+      Aabb centroid;
+      centroid.extend(scene.centroid(prims[begin]));
+      sink.node(id, kNoBuildNode, 0, nodes[id].box, centroid, &prims[begin], 1);
+      sink.leaf(id, LeafReason::Cluster, &prims[begin], 1);
+    }
+    return id;
   }
   Aabb cb;
   for (size_t i = begin; i < end; ++i) cb.extend(scene.centroid(prims[i]));
@@ -842,10 +851,12 @@ uint32_t build_median_binary(const Scene& scene, std::vector<BinaryNode>& nodes,
                      const float ca = scene.centroid(a)[axis], cb_ = scene.centroid(b)[axis];
                      return ca < cb_ || (ca == cb_ && a < b);
                    });
-  const uint32_t l = build_median_binary(scene, nodes, prims, begin, mid);
-  const uint32_t r = build_median_binary(scene, nodes, prims, mid, end);
+  const uint32_t l = build_median_binary(scene, nodes, prims, begin, mid, sink);
+  const uint32_t r = build_median_binary(scene, nodes, prims, mid, end, sink);
   nodes.push_back(BinaryNode::inner(merge(nodes[l].box, nodes[r].box), l, r));
-  return uint32_t(nodes.size() - 1);
+  const uint32_t id = uint32_t(nodes.size() - 1);
+  if constexpr (Sink::kRecords) sink.merge(id, l, r, nodes[id].box, nodes[id].box.area());
+  return id;
 }
 
 /// Depth bound of limit_depth(): trees up to 2 * kDepthCut high are left alone.
@@ -855,9 +866,11 @@ static_assert(2 * kDepthCut + 2 < uint32_t(kMaxBvhDepth));
 /// Bounds the depth: an adversarial order (e.g. identical triangles) can make insertion
 /// grow a chain. Every subtree hanging at depth kCut that is taller than kCut is rebuilt by
 /// median split, so no leaf is deeper than about kCut + log2(n) + 1. `height` is the
-/// subtree heights of the tree as it is.
+/// subtree heights of the tree as it is. The sink sees each rebuilt subtree, then its
+/// Replace step.
+template <class Sink>
 void limit_depth(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t root,
-                 const std::vector<uint32_t>& height) {
+                 const std::vector<uint32_t>& height, Sink& sink) {
   constexpr uint32_t kCut = kDepthCut;
   std::vector<std::pair<uint32_t, uint32_t>> stack{{root, 0}};  // (node, depth)
   std::vector<uint32_t> prims, gather_stack;
@@ -871,7 +884,8 @@ void limit_depth(const Scene& scene, std::vector<BinaryNode>& nodes, uint32_t ro
         prims.clear();
         gather_prims(nodes, child, prims, gather_stack);
         // build_median_binary appends to `nodes`: take no references across it.
-        const uint32_t rebuilt = build_median_binary(scene, nodes, prims, 0, prims.size());
+        const uint32_t rebuilt = build_median_binary(scene, nodes, prims, 0, prims.size(), sink);
+        sink.replace(rebuilt, child);
         (side == 0 ? nodes[i].left : nodes[i].right) = rebuilt;
       } else if (depth + 1 < kCut) {
         stack.push_back({child, depth + 1});
@@ -891,7 +905,7 @@ BuildTree finalize_binary_tree(const Scene& scene, std::vector<BinaryNode>& node
   SubtreeCosts costs;
   compute_subtree_costs(nodes, root, o, costs);
   if (costs.height[root] > 2 * kDepthCut) {  // rare: only then is the tree walked twice
-    limit_depth(scene, nodes, root, costs.height);
+    limit_depth(scene, nodes, root, costs.height, sink);
     compute_subtree_costs(nodes, root, o, costs);
   }
   const size_t n = nodes.size();

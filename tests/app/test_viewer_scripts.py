@@ -176,6 +176,23 @@ def main():
             c, o, _ = run([args.png_check, "--differ", f"{work}/{a}.png", f"{work}/{b}.png", "30"])
             check(c == 0, f"construct: {a} and {b} look the same: {o}")
 
+    # ---- Every structure: pictures early, midway and at the end of its construction differ.
+    lines = [f"size {W} {H}", f"scene {SCENE}"]
+    structures = ["grid", "octree", "kdtree", "bvh", "bvh builder=bottom_up", "bvh builder=insertion", "spheretree"]
+    for k, s in enumerate(structures):
+        lines += [f"structure {s}", "construct", "build-step 3", f"screenshot {work}/bs{k}_early.png",
+                  "build-step 40", f"screenshot {work}/bs{k}_mid.png",
+                  "build-step end", f"screenshot {work}/bs{k}_end.png"]
+    script = os.path.join(work, "construct_all.txt")
+    with open(script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    code, out, err = viewer(args, script)
+    if check(code == 0, f"construct every structure: viewer exit {code}\n{err}"):
+        for k, s in enumerate(structures):
+            for a, b in (("early", "mid"), ("mid", "end")):
+                c, o, _ = run([args.png_check, "--differ", f"{work}/bs{k}_{a}.png", f"{work}/bs{k}_{b}.png", "30"])
+                check(c == 0, f"construct {s}: build steps {a} and {b} look the same: {o}")
+
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
         ("bad_parse.txt", "size 320 240\n# comment\nfly to the moon\n", r"^accelviz: .*bad_parse\.txt:3: unknown command 'fly'\n$"),

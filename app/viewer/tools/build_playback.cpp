@@ -77,13 +77,22 @@ accel::Result<RecordedBuild> record_structure(const accel::Scene& scene, const S
   if (!info) return info.error();
   auto params = accel::ParamSet::parse(info.value()->params, request.params, request.name);
   if (!params) return params.error();
-  return record_with_retry(
+  double ct = 1.0, ci = 1.0;
+  auto recorded = record_with_retry(
       [&](accel::BuildRecorder& recorder) -> accel::Status {
         auto s = accel::build_structure(*info.value(), scene, params.value(), request.kernel, control, &recorder);
         if (!s) return s.error();
+        const accel::BuildStats stats = s.value()->build_stats();
+        if (stats.sah_ct > 0.0) ct = stats.sah_ct;
+        if (stats.sah_ci > 0.0) ci = stats.sah_ci;
         return {};
       },
       scene.triangle_count(), budget_bytes);
+  if (recorded) {
+    recorded.value().sah_ct = ct;
+    recorded.value().sah_ci = ci;
+  }
+  return recorded;
 }
 
 std::string build_step_line(const BuildTrace& trace, size_t applied) {

@@ -74,6 +74,8 @@ void BuildPlayer::poll() {
   request_ = pending_request_;
   trace_ = result.value().trace;
   attempts_ = result.value().attempts;
+  sah_ct_ = result.value().sah_ct;
+  sah_ci_ = result.value().sah_ci;
   replay_ = std::make_unique<accel::BuildReplay>(*trace_);
   code_kind_ = build_code_kind(request_.name, request_.params);
   player_.load(trace_->events.size());
@@ -200,8 +202,8 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
   } else {
     ImGui::TextDisabled("nothing built yet");
   }
-  if (replay_ && ImGui::BeginTable("bcounters", 4, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerH)) {
-    for (const char* h : {"so far", "nodes", "leaves", "references"}) ImGui::TableSetupColumn(h);
+  if (replay_ && ImGui::BeginTable("bcounters", 5, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerH)) {
+    for (const char* h : {"so far", "nodes", "leaves", "references", "SAH cost"}) ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     ImGui::TableNextRow();
     ImGui::TableSetColumnIndex(0);
@@ -211,6 +213,13 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
       ImGui::TableSetColumnIndex(i + 1);
       ImGui::Text("%zu", values[i]);
     }
+    // The tree as it stands, open nodes priced as leaves (a grid has no tree: "-").
+    ImGui::TableSetColumnIndex(4);
+    const double cost = replay_->sah_cost(sah_ct_, sah_ci_);
+    if (std::isnan(cost))
+      ImGui::TextDisabled("-");
+    else
+      ImGui::Text("%.4g", cost);
     ImGui::EndTable();
   }
   if (view_.nodes_capped) ImGui::TextDisabled("drawing the %zu shallowest nodes", view_.nodes_drawn);

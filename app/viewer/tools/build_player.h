@@ -77,6 +77,7 @@ class BuildPlayer {
   std::shared_ptr<const accel::BuildTrace> trace_;
   std::unique_ptr<accel::BuildReplay> replay_;
   std::vector<accel::RecordAttempt> attempts_;
+  double sah_ct_ = 1.0, sah_ci_ = 1.0;  ///< the structure's SAH constants, for the cost so far
   std::string error_;
   BuildCodeKind code_kind_ = BuildCodeKind::Unknown;
   BuildStepPlayer player_;
