@@ -1,8 +1,11 @@
 #include "panels.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <imgui.h>
+
+#include "tools/ui_colors.h"
 
 namespace viz::ui {
 namespace {
@@ -102,6 +105,35 @@ void note_docked(const PanelPlace& where) {
   if (where.dock == nullptr) return;
   const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   viz::note_docked(*where.dock, ImGui::GetIO().DisplaySize.x, {pos.x, pos.y}, {size.x, size.y});
+}
+
+void code_listing(const char* id, const std::vector<std::string>& lines, int current, ImFont* mono,
+                  int& scrolled) {
+  ImGui::BeginChild(id, ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
+  if (mono) ImGui::PushFont(mono);
+  const float row_h = ImGui::GetTextLineHeightWithSpacing();
+  if (current >= 0 && current != scrolled) {
+    // Keep the current line in view (some listings are longer than the panel).
+    const float y = static_cast<float>(current) * row_h;
+    if (y < ImGui::GetScrollY() + row_h || y > ImGui::GetScrollY() + ImGui::GetWindowHeight() - 2.0f * row_h)
+      ImGui::SetScrollY(std::max(0.0f, y - 0.4f * ImGui::GetWindowHeight()));
+    scrolled = current;
+  }
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const bool is_current = static_cast<int>(i) == current;
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    if (is_current) {
+      dl->AddRectFilled(ImVec2(p.x - 4.0f, p.y - 1.0f),
+                        ImVec2(p.x + ImGui::GetContentRegionAvail().x + ImGui::GetScrollX(), p.y + row_h - 1.0f),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.9f)));
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 1));
+    }
+    ImGui::TextUnformatted(lines[i].empty() ? " " : lines[i].c_str());
+    if (is_current) ImGui::PopStyleColor();
+  }
+  if (mono) ImGui::PopFont();
+  ImGui::EndChild();
 }
 
 }  // namespace viz::ui

@@ -7,6 +7,8 @@
 #include "math.h"
 #include "view_layout.h"
 
+struct ImFont;
+
 namespace viz {
 
 /// What the scene section shows about the loaded scene.
@@ -58,6 +60,11 @@ void place(const PanelPlace& place);
 /// Inside a window's Begin/End: notes the window in place.dock (when given), so a window
 /// along the left or right edge narrows the 3D view.
 void note_docked(const PanelPlace& place);
+/// The body of a pseudo-code panel: a scrolling child `id` listing `lines` in `mono` (may be
+/// null), line `current` (-1: none) highlighted and kept in view; `scrolled` remembers the
+/// line last scrolled to (the panel's state), so the user may scroll away until it changes.
+void code_listing(const char* id, const std::vector<std::string>& lines, int current, ImFont* mono,
+                  int& scrolled);
 
 }  // namespace ui
 }  // namespace viz

@@ -339,30 +339,7 @@ void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
   const PseudoCode& code = build_pseudo_code(code_kind_);
   const int line = build_code_line(code_kind_, replay_ ? replay_->current() : nullptr);
   ImGui::TextDisabled("%s", code.title.c_str());
-  ImGui::BeginChild("bcode", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
-  if (mono) ImGui::PushFont(mono);
-  const float row_h = ImGui::GetTextLineHeightWithSpacing();
-  if (line >= 0 && line != code_scrolled_) {
-    const float y = static_cast<float>(line) * row_h;
-    if (y < ImGui::GetScrollY() + row_h || y > ImGui::GetScrollY() + ImGui::GetWindowHeight() - 2.0f * row_h)
-      ImGui::SetScrollY(std::max(0.0f, y - 0.4f * ImGui::GetWindowHeight()));
-    code_scrolled_ = line;
-  }
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  for (size_t i = 0; i < code.lines.size(); ++i) {
-    const bool current = static_cast<int>(i) == line;
-    const ImVec2 p = ImGui::GetCursorScreenPos();
-    if (current) {
-      dl->AddRectFilled(ImVec2(p.x - 4.0f, p.y - 1.0f),
-                        ImVec2(p.x + ImGui::GetContentRegionAvail().x + ImGui::GetScrollX(), p.y + row_h - 1.0f),
-                        ImGui::ColorConvertFloat4ToU32(ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.9f)));
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 1));
-    }
-    ImGui::TextUnformatted(code.lines[i].empty() ? " " : code.lines[i].c_str());
-    if (current) ImGui::PopStyleColor();
-  }
-  if (mono) ImGui::PopFont();
-  ImGui::EndChild();
+  ui::code_listing("bcode", code.lines, line, mono, code_scrolled_);
   ImGui::End();
 }
 

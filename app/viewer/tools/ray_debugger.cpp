@@ -348,31 +348,7 @@ void RayDebugger::code_panel(const PanelPlace& where, const BuiltStructure* buil
   ui::note_docked(where);
   const PseudoCode& code = pseudo_code(kind);
   ImGui::TextDisabled("%s", code.title.c_str());
-  ImGui::BeginChild("code", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
-  if (mono) ImGui::PushFont(mono);
-  const float row_h = ImGui::GetTextLineHeightWithSpacing();
-  if (highlights_.code_line >= 0 && highlights_.code_line != code_scrolled_) {
-    // Keep the current line in view (the grid's listing is longer than the panel).
-    const float y = static_cast<float>(highlights_.code_line) * row_h;
-    if (y < ImGui::GetScrollY() + row_h || y > ImGui::GetScrollY() + ImGui::GetWindowHeight() - 2.0f * row_h)
-      ImGui::SetScrollY(std::max(0.0f, y - 0.4f * ImGui::GetWindowHeight()));
-    code_scrolled_ = highlights_.code_line;
-  }
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  for (size_t i = 0; i < code.lines.size(); ++i) {
-    const bool current = static_cast<int>(i) == highlights_.code_line;
-    const ImVec2 p = ImGui::GetCursorScreenPos();
-    if (current) {
-      dl->AddRectFilled(ImVec2(p.x - 4.0f, p.y - 1.0f),
-                        ImVec2(p.x + ImGui::GetContentRegionAvail().x + ImGui::GetScrollX(), p.y + row_h - 1.0f),
-                        ImGui::ColorConvertFloat4ToU32(ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.9f)));
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 1));
-    }
-    ImGui::TextUnformatted(code.lines[i].empty() ? " " : code.lines[i].c_str());
-    if (current) ImGui::PopStyleColor();
-  }
-  if (mono) ImGui::PopFont();
-  ImGui::EndChild();
+  ui::code_listing("code", code.lines, highlights_.code_line, mono, code_scrolled_);
   ImGui::End();
 }
 
