@@ -200,9 +200,16 @@ void App::update(float dt) {
     const BuiltStructure* shown = session_.shown();
     ImFont* mono = lecture_mode_ ? fonts_.mono_large : fonts_.mono;
     if (build_.active() || build_.recording()) {  // the construction mode takes the traversal panels' places
-      if (panels_.ray) build_.control_panel(place(layout_.ray), session_.scene_ptr(), session_.current_request());
+      // The construction panel also holds the SAH cost plot: it takes a third of the code
+      // panel's height (in lecture mode's large fonts the plot was cut off).
+      WindowRect control = layout_.ray, code = layout_.code;
+      const float moved = std::round(code.size.y / 3.0f);
+      control.size.y += moved;
+      code.pos.y += moved;
+      code.size.y -= moved;
+      if (panels_.ray) build_.control_panel(place(control), session_.scene_ptr(), session_.current_request());
       if (panels_.steps) build_.steps_panel(place(layout_.steps));
-      if (panels_.code) build_.code_panel(place(layout_.code), mono);
+      if (panels_.code) build_.code_panel(place(code), mono);
     } else {
       if (panels_.ray && ray_.ray_panel(place(layout_.ray), shown)) {
         compare_.set_open(true);
