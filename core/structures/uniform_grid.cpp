@@ -39,25 +39,38 @@ std::string driving_param_text(const GridConfig& c) {
 /// (flat or thin scenes) get a single cell and the others share the cell budget, so a flat
 /// scene gets lambda^3 * N square cells rather than one huge row. Returns real-valued
 /// cells per axis (rounded by fit_resolution).
-DVec3 resolution_cbrt(const DVec3& extent, size_t n_prims, double lambda) {
-  const double target = lambda * lambda * lambda * double(n_prims);
-  bool active[3] = {extent.x > 0.0, extent.y > 0.0, extent.z > 0.0};
+/// The cbrt rule's iteration: the cell edge s, the axes it gives more than one cell, and the
+/// volume s was computed from (the product of those axes' extents; NaN for an empty box).
+struct CbrtRule {
   double s = 0.0;
+  double volume = std::numeric_limits<double>::quiet_NaN();
+  bool active[3] = {false, false, false};
+};
+CbrtRule cbrt_rule(const DVec3& extent, size_t n_prims, double lambda) {
+  const double target = lambda * lambda * lambda * double(n_prims);
+  CbrtRule r;
+  for (int a = 0; a < 3; ++a) r.active[a] = extent[a] > 0.0;
   for (int iter = 0; iter < 3; ++iter) {
     int k = 0;
     double product = 1.0;
     for (int a = 0; a < 3; ++a)
-      if (active[a]) ++k, product *= extent[a];
+      if (r.active[a]) ++k, product *= extent[a];
     if (k == 0) break;
-    s = std::pow(product / std::max(target, 1e-300), 1.0 / k);
+    r.volume = product;
+    r.s = std::pow(product / std::max(target, 1e-300), 1.0 / k);
     bool changed = false;
     for (int a = 0; a < 3; ++a)
-      if (active[a] && extent[a] < s) active[a] = false, changed = true;
+      if (r.active[a] && extent[a] < r.s) r.active[a] = false, changed = true;
     if (!changed) break;
   }
+  return r;
+}
+
+DVec3 resolution_cbrt(const DVec3& extent, size_t n_prims, double lambda) {
+  const CbrtRule r = cbrt_rule(extent, n_prims, lambda);
   DVec3 n(1.0);
   for (int a = 0; a < 3; ++a)
-    if (active[a] && s > 0.0) n[a] = extent[a] / s;
+    if (r.active[a] && r.s > 0.0) n[a] = extent[a] / r.s;
   return n;
 }
 
@@ -313,26 +326,10 @@ std::array<double, 4> resolution_terms(const GridConfig& config, const DVec3& ex
     return v;
   }
   if (config.rule != GridResolutionRule::Cbrt) return v;
-  // The iteration of resolution_cbrt(), keeping its volume and cell edge s.
-  const double target = config.lambda * config.lambda * config.lambda * double(n_prims);
-  bool active[3] = {extent.x > 0.0, extent.y > 0.0, extent.z > 0.0};
-  double s = 0.0, volume = nan;
-  for (int iter = 0; iter < 3; ++iter) {
-    int k = 0;
-    double product = 1.0;
-    for (int a = 0; a < 3; ++a)
-      if (active[a]) ++k, product *= extent[a];
-    if (k == 0) break;
-    volume = product;
-    s = std::pow(product / std::max(target, 1e-300), 1.0 / k);
-    bool changed = false;
-    for (int a = 0; a < 3; ++a)
-      if (active[a] && extent[a] < s) active[a] = false, changed = true;
-    if (!changed) break;
-  }
-  // The last volume is the one s was computed from (the loop stops when no axis drops).
-  v[2] = volume;
-  v[3] = s > 0.0 ? 1.0 / s : nan;
+  // The numbers of the very iteration resolution_cbrt() runs.
+  const CbrtRule r = cbrt_rule(extent, n_prims, config.lambda);
+  v[2] = r.volume;
+  v[3] = r.s > 0.0 ? 1.0 / r.s : nan;
   return v;
 }
 
