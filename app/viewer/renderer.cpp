@@ -390,4 +390,22 @@ void Renderer::end_frame() {
   glDisable(GL_DEPTH_TEST);
 }
 
+void HighlightBatches::upload(std::span<const Segment> segments, std::span<const ColorVertex> triangles,
+                              std::span<const ColorVertex> lines) {
+  segments_.upload(segments);
+  triangles_.upload(triangles, GL_DYNAMIC_DRAW);
+  lines_.upload(lines, GL_DYNAMIC_DRAW);
+}
+
+void HighlightBatches::draw(Renderer& renderer) const {
+  LineStyle thin;
+  thin.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.35f);
+  renderer.draw_lines(lines_, thin);
+  renderer.draw_triangles(triangles_);
+  LineStyle thick;
+  thick.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.4f);
+  thick.depth_bias = 0.001f;
+  renderer.draw_segments(segments_, thick);
+}
+
 }  // namespace viz

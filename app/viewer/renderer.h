@@ -222,4 +222,20 @@ class Renderer {
   FrameView frame_;
 };
 
+/// The highlights of an animation step, as both players draw them: thin lines, filled
+/// triangles, thick segments (the ray debugger's trace step, the build player's build step).
+class HighlightBatches {
+ public:
+  /// Replaces the content (GL_DYNAMIC_DRAW: it changes with every step).
+  void upload(std::span<const Segment> segments, std::span<const ColorVertex> triangles,
+              std::span<const ColorVertex> lines);
+  /// Thin lines with hidden parts faint, the triangles, then the thick segments over them.
+  void draw(Renderer& renderer) const;
+
+ private:
+  SegmentBatch segments_;
+  ColorBatch triangles_{GL_TRIANGLES};
+  ColorBatch lines_{GL_LINES};
+};
+
 }  // namespace viz

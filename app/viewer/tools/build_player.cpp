@@ -347,36 +347,23 @@ void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
 // Drawing
 
 void BuildPlayer::init_gl() {
-  segments_gl_.emplace();
-  triangles_gl_.emplace(GL_TRIANGLES);
-  lines_gl_.emplace(GL_LINES);
+  gl_.emplace();
   upload_ = true;
 }
 
 void BuildPlayer::sync_gl() {
-  if (!segments_gl_ || !upload_) return;
-  segments_gl_->upload(view_.segments);
-  triangles_gl_->upload(view_.triangles, GL_DYNAMIC_DRAW);
-  lines_gl_->upload(view_.lines, GL_DYNAMIC_DRAW);
+  if (!gl_ || !upload_) return;
+  gl_->upload(view_.segments, view_.triangles, view_.lines);
   upload_ = false;
 }
 
 void BuildPlayer::draw(Renderer& renderer) {
-  if (!segments_gl_ || !active_) return;
-  LineStyle thin;
-  thin.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.35f);
-  renderer.draw_lines(*lines_gl_, thin);
-  renderer.draw_triangles(*triangles_gl_);
-  LineStyle thick;
-  thick.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.4f);
-  thick.depth_bias = 0.001f;
-  renderer.draw_segments(*segments_gl_, thick);
+  if (!gl_ || !active_) return;
+  gl_->draw(renderer);
 }
 
 void BuildPlayer::release_gl() {
-  lines_gl_.reset();
-  triangles_gl_.reset();
-  segments_gl_.reset();
+  gl_.reset();
 }
 
 }  // namespace viz

@@ -90,9 +90,7 @@ class BuildPlayer {
   bool follow_step_ = true;
   size_t steps_scrolled_ = ~size_t(0);
   int code_scrolled_ = -2;
-  std::optional<SegmentBatch> segments_gl_;
-  std::optional<ColorBatch> triangles_gl_;
-  std::optional<ColorBatch> lines_gl_;
+  std::optional<HighlightBatches> gl_;
 };
 
 }  // namespace viz

@@ -367,37 +367,24 @@ void RayDebugger::highlight_options() {
 // Drawing
 
 void RayDebugger::init_gl() {
-  segments_gl_.emplace();
-  triangles_gl_.emplace(GL_TRIANGLES);
-  lines_gl_.emplace(GL_LINES);
+  gl_.emplace();
   upload_ = true;
 }
 
 void RayDebugger::sync_gl() {
-  if (!segments_gl_ || !upload_) return;
-  segments_gl_->upload(highlights_.segments);
-  triangles_gl_->upload(highlights_.triangles, GL_DYNAMIC_DRAW);
-  lines_gl_->upload(highlights_.lines, GL_DYNAMIC_DRAW);
+  if (!gl_ || !upload_) return;
+  gl_->upload(highlights_.segments, highlights_.triangles, highlights_.lines);
   upload_ = false;
 }
 
 void RayDebugger::draw(Renderer& renderer) {
-  if (!segments_gl_) return;
+  if (!gl_) return;
   // Highlights of the debug ray's current step (rebuilt only when the step changes).
-  LineStyle thin;
-  thin.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.35f);
-  renderer.draw_lines(*lines_gl_, thin);
-  renderer.draw_triangles(*triangles_gl_);
-  LineStyle thick;
-  thick.hidden_tint = glm::vec4(1.0f, 1.0f, 1.0f, 0.4f);
-  thick.depth_bias = 0.001f;
-  renderer.draw_segments(*segments_gl_, thick);
+  gl_->draw(renderer);
 }
 
 void RayDebugger::release_gl() {
-  lines_gl_.reset();
-  triangles_gl_.reset();
-  segments_gl_.reset();
+  gl_.reset();
 }
 
 }  // namespace viz

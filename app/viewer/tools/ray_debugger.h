@@ -87,9 +87,7 @@ class RayDebugger {
   bool shoot_from_saved_ = false;
   std::optional<accel::PinholeCamera> saved_view_;
   float typed_ray_[6] = {0, 0, 5, 0, 0, -1};
-  std::optional<SegmentBatch> segments_gl_;
-  std::optional<ColorBatch> triangles_gl_;
-  std::optional<ColorBatch> lines_gl_;
+  std::optional<HighlightBatches> gl_;
 };
 
 }  // namespace viz
