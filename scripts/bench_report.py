@@ -9,8 +9,9 @@ Embree's medium build, and errors per structure and kernel.
 --builds (scripts/bench_builds.sh): the build table of DEFAULT.json's rows, then the bvh's
 SAH cost and build time by default (binned SAH) and with SWEEP.json's builder=sah rows.
 
-Rows of all files are merged; an Embree row is kept once per (scene, rays, quality): later
-files timed Embree again only to give their own rows a ratio from the same run. The merged
+Rows of all files are merged; a peer row (Embree or tinybvh) is kept once per (scene, rays,
+structure): later files timed the peers again only to give their own rows a ratio from the
+same run. The merged
 rows go to --out-json (the viewer's chart reads them)."""
 import argparse
 import datetime
@@ -40,7 +41,7 @@ def merge(paths):
     for path in paths:
         with open(path) as f:
             for r in json.load(f):
-                if r["structure"].startswith("embree-"):
+                if r["structure"].startswith(("embree-", "tinybvh-")):  # the peers
                     key = (r["scene"], r["rays"], r["structure"])
                     if key in seen_embree:
                         continue

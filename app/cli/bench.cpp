@@ -2,18 +2,23 @@
 // kernel: build time (best of kBuildReps builds on --threads threads) and its ratio to
 // Embree's medium-quality build, memory, Mrays/s with one and with all threads (tracing only,
 // repeated to >= --min-time seconds, median of 3), and the errors against the
-// double-precision reference. Embree 3 (rtcIntersect1, build quality medium and high) runs
-// the same rays as the baseline.
+// double-precision reference. Two peers run the same rays: Embree 3 (rtcIntersect1, build
+// quality medium and high) is the baseline of the embree_* ratios, and tinybvh (BVH8_CPU over
+// its binned and its spatial-split build, BVH4_CPU) joins it; peer_ratio_* compares each
+// accelviz row with the fastest peer row of its scene.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <utility>
+
 #include <unistd.h>
 
 #include <tbb/blocked_range.h>
@@ -28,8 +33,14 @@
 #include "rays_io.h"
 #include "registry.h"
 #include "stats_format.h"
+#include "tinybvh_baseline.h"
 
 namespace cli {
+
+// Here, not in tinybvh_baseline.cpp: that unit is compiled with -mavx2, so the check itself
+// must run from code the CPU surely executes.
+bool tinybvh_cpu_supported() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -39,6 +50,14 @@ using Clock = std::chrono::steady_clock;
 /// only ever adds time. Embree and our structures get the same count and the same threads,
 /// so embree_build_ratio compares like with like.
 constexpr int kBuildReps = 3;
+
+/// The tinybvh rows, in order: its fastest CPU layout over the binned build, the 4-wide SSE
+/// layout over the same build, and the 8-wide one over the spatial-split build.
+constexpr std::pair<const char*, TinyBvhLayout> kTinyBvhRows[] = {
+    {"tinybvh-bvh8", TinyBvhLayout::Bvh8},
+    {"tinybvh-bvh4", TinyBvhLayout::Bvh4},
+    {"tinybvh-bvh8-hq", TinyBvhLayout::Bvh8Hq},
+};
 
 /// The ratio column's value: empty when either time is missing (no Embree, or a build too
 /// short for the clock).
@@ -63,7 +82,11 @@ struct Row {
   /// The structure's SAH cost (BuildStats::sah_cost; ct/ci per its parameters), empty
   /// when it reports none: to compare builders' quality next to their build times.
   std::optional<double> sah_cost;
+  /// This row's Mrays/s over the fastest peer row's (any embree-* or tinybvh-* row) on the
+  /// same scene and rays (> 1: this row is faster); empty on peer rows and without peers.
+  std::optional<double> peer_ratio_mt, peer_ratio_1t;
   bool is_embree = false;
+  bool is_peer = false;  ///< an embree-* or tinybvh-* row
 };
 
 Row make_row(const std::string& scene, const std::string& structure, const std::string& params,
@@ -192,8 +215,12 @@ std::string fmt(double v, const char* f = "%.3g") {
 std::string markdown(const std::vector<Row>& rows) {
   std::string md =
       "| scene | structure | params | kernel | build ms | Embree build ratio | MB | Mrays/s 1t | Mrays/s mt | "
-      "vs Embree (1t) | vs Embree (mt) | false miss | false hit | wrong tri | max rel t err |\n"
-      "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "vs Embree (1t) | vs Embree (mt) | false miss | false hit | wrong tri | max rel t err | vs peer (1t) | "
+      "vs peer (mt) |\n"
+      "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  auto peer_cell = [](const Row& r, const std::optional<double>& ratio) {
+    return ratio ? fmt(*ratio, "%.2f") : std::string(r.is_peer ? "(peer)" : "-");
+  };
   for (const Row& r : rows) {
     md += "| " + r.scene + " | " + r.structure + " | " + (r.params.empty() ? "default" : r.params) + " | " + r.kernel +
           " | " + fmt(r.build_ms, "%.1f") + " | " +
@@ -203,7 +230,8 @@ std::string markdown(const std::vector<Row>& rows) {
           (r.embree_ratio_1t ? fmt(*r.embree_ratio_1t, "%.2f") : std::string(r.is_embree ? "1 (baseline)" : "")) + " | " +
           (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.2f") : std::string(r.is_embree ? "1 (baseline)" : "")) +
           " | " + std::to_string(r.false_miss) + " | " + std::to_string(r.false_hit) + " | " +
-          std::to_string(r.wrong_prim + r.wrong_t) + " | " + fmt(r.max_rel_t_err, "%.2g") + " |\n";
+          std::to_string(r.wrong_prim + r.wrong_t) + " | " + fmt(r.max_rel_t_err, "%.2g") + " | " +
+          peer_cell(r, r.peer_ratio_1t) + " | " + peer_cell(r, r.peer_ratio_mt) + " |\n";
   }
   return md;
 }
@@ -211,7 +239,8 @@ std::string markdown(const std::vector<Row>& rows) {
 std::string csv(const std::vector<Row>& rows) {
   std::string out =
       "scene,structure,params,kernel,rays,n_rays,build_ms,memory_bytes,mrays_1t,mrays_mt,threads,false_miss,false_hit,"
-      "wrong_prim,wrong_t,max_rel_t_err,mean_rel_t_err,embree_ratio_mt,embree_ratio_1t,embree_build_ratio\n";
+      "wrong_prim,wrong_t,max_rel_t_err,mean_rel_t_err,embree_ratio_mt,embree_ratio_1t,embree_build_ratio,"
+      "peer_ratio_mt,peer_ratio_1t\n";
   auto q = [](const std::string& s) { return "\"" + s + "\""; };
   for (const Row& r : rows)
     out += q(r.scene) + "," + r.structure + "," + q(r.params) + "," + r.kernel + "," + q(r.rays) + "," +
@@ -221,7 +250,9 @@ std::string csv(const std::vector<Row>& rows) {
            std::to_string(r.wrong_t) + "," + fmt(r.max_rel_t_err, "%.6g") + "," + fmt(r.mean_rel_t_err, "%.6g") + "," +
            (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : "") + "," +
            (r.embree_ratio_1t ? fmt(*r.embree_ratio_1t, "%.4f") : "") + "," +
-           (r.embree_build_ratio ? fmt(*r.embree_build_ratio, "%.4f") : "") + "\n";
+           (r.embree_build_ratio ? fmt(*r.embree_build_ratio, "%.4f") : "") + "," +
+           (r.peer_ratio_mt ? fmt(*r.peer_ratio_mt, "%.4f") : "") + "," +
+           (r.peer_ratio_1t ? fmt(*r.peer_ratio_1t, "%.4f") : "") + "\n";
   return out;
 }
 
@@ -244,6 +275,9 @@ std::string json(const std::vector<Row>& rows) {
     if (!r.is_embree)
       out += ", \"embree_ratio_mt\": " + (r.embree_ratio_mt ? fmt(*r.embree_ratio_mt, "%.4f") : std::string("null")) +
              ", \"embree_ratio_1t\": " + (r.embree_ratio_1t ? fmt(*r.embree_ratio_1t, "%.4f") : std::string("null"));
+    if (!r.is_peer)
+      out += ", \"peer_ratio_mt\": " + (r.peer_ratio_mt ? fmt(*r.peer_ratio_mt, "%.4f") : std::string("null")) +
+             ", \"peer_ratio_1t\": " + (r.peer_ratio_1t ? fmt(*r.peer_ratio_1t, "%.4f") : std::string("null"));
     out += std::string("}") + (i + 1 < rows.size() ? "," : "") + "\n";
   }
   return out + "]\n";
@@ -296,9 +330,14 @@ int run_bench(const BenchOptions& o) {
   }
   const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   const bool with_embree = o.embree && embree_available();
+  // tinybvh's unit is AVX2 code throughout (BVH4_CPU included): never call it without AVX2.
+  const bool with_tinybvh = o.tinybvh && tinybvh_available() && tinybvh_cpu_supported();
+  if (o.tinybvh && tinybvh_available() && !with_tinybvh)
+    std::fprintf(stderr, "accelviz-cli: note: this CPU lacks AVX2/FMA; the tinybvh rows are skipped\n");
 
   std::vector<Row> rows;
-  const size_t steps_per_scene = structures.size() * kernels.size() + (with_embree ? 2 : 0) + 1;
+  const size_t steps_per_scene = structures.size() * kernels.size() + (with_embree ? 2 : 0) +
+                                 (with_tinybvh ? std::size(kTinyBvhRows) : 0) + 1;
   const size_t total_steps = o.scenes.size() * steps_per_scene;
   size_t step = 0;
   for (const std::string& scene_spec : o.scenes) {
@@ -329,6 +368,7 @@ int run_bench(const BenchOptions& o) {
         if (std::string(quality) == "medium") embree_medium_build_ms = best_build_ms;
         Row row = make_row(scene_spec, std::string("embree-") + quality, "", "embree", o.rays, rays.size());
         row.is_embree = true;
+        row.is_peer = true;
         row.build_ms = best_build_ms;
         row.embree_build_ratio = build_ratio(embree_medium_build_ms, best_build_ms);
         row.memory_bytes = embree.memory_bytes();
@@ -346,6 +386,57 @@ int run_bench(const BenchOptions& o) {
         scene_rows.push_back(row);
         ++step;
       }
+    }
+    if (with_tinybvh) {
+      // tinybvh has no tmin: a ray with tmin > 0 is traced from t = 0 and its answer scored
+      // as it comes (a hit before tmin counts as an error). Said once per scene on stderr.
+      const size_t with_tmin = size_t(std::count_if(rays.begin(), rays.end(), [](const accel::Ray& r) { return r.tmin > 0.0f; }));
+      if (with_tmin > 0)
+        std::fprintf(stderr, "accelviz-cli: note: %s: %zu rays have tmin > 0; tinybvh has no tmin, so they are traced "
+                     "from t = 0 and scored as they come\n", scene_spec.c_str(), with_tmin);
+      std::vector<float> triangles;
+      triangles.reserve(9 * s.triangle_count());
+      for (const auto& tri : s.triangles())
+        for (int k = 0; k < 3; ++k)
+          for (int c = 0; c < 3; ++c) triangles.push_back(s.positions()[tri[k]][c]);
+      for (const auto& [name, layout] : kTinyBvhRows) {
+        progress(step, total_steps, scene_spec + ": " + name);
+        std::unique_ptr<TinyBvhScene> built;
+        double best_build_ms = std::numeric_limits<double>::infinity();
+        for (int rep = 0; rep < kBuildReps; ++rep) {
+          built.reset();
+          built = std::make_unique<TinyBvhScene>(triangles.data(), s.triangle_count(), layout);
+          best_build_ms = std::min(best_build_ms, built->build_ms());
+        }
+        const TinyBvhScene& bvh = *built;
+        auto query = [&bvh](const accel::Ray& r) {
+          const TinyBvhHit h = bvh.intersect(&r.org.x, &r.dir.x, r.tmax);
+          return h.prim < 0 ? accel::Hit{} : accel::Hit{h.prim, h.t, h.u, h.v};
+        };
+        Row row = make_row(scene_spec, name, "", "tinybvh", o.rays, rays.size());
+        row.is_peer = true;
+        row.build_ms = best_build_ms;
+        row.embree_build_ratio = build_ratio(embree_medium_build_ms, best_build_ms);
+        row.memory_bytes = bvh.memory_bytes();
+        row.threads = threads;
+        row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
+          for (const auto& r : rays) (void)query(r);
+        });
+        std::vector<accel::Hit> hits;
+        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
+          hits = run_parallel(rays.size(), threads, [&](size_t i) { return query(rays[i]); });
+        });
+        score(row, s, rays, hits, ref);
+        if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
+        if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
+        scene_rows.push_back(row);
+        ++step;
+      }
+    }
+    std::optional<double> peer_mt, peer_1t;  // the fastest peer row's, each measure on its own
+    for (const Row& r : scene_rows) {
+      peer_mt = std::max(peer_mt.value_or(0.0), r.mrays_mt);
+      peer_1t = std::max(peer_1t.value_or(0.0), r.mrays_1t);
     }
     for (size_t k = 0; k < structures.size(); ++k) {
       // kBuildReps builds per structure, the last one kept: the kernel only changes the
@@ -382,6 +473,8 @@ int run_bench(const BenchOptions& o) {
         score(row, s, rays, hits, ref);
         if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
         if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
+        if (peer_mt && *peer_mt > 0.0) row.peer_ratio_mt = row.mrays_mt / *peer_mt;
+        if (peer_1t && *peer_1t > 0.0) row.peer_ratio_1t = row.mrays_1t / *peer_1t;
         scene_rows.push_back(row);
         ++step;
       }

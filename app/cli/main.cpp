@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "registry.h"
 #include "scene.h"
+#include "tinybvh_baseline.h"
 
 namespace {
 
@@ -87,6 +88,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--out-csv", bench.out_csv, "write the rows as CSV");
   bench_cmd->add_option("--out-json", bench.out_json, "write the rows as a JSON array");
   bench_cmd->add_flag("!--no-embree", bench.embree, "skip the Embree baseline rows");
+  bench_cmd->add_flag("!--no-tinybvh", bench.tinybvh,
+                      cli::tinybvh_available() ? "skip the tinybvh peer rows (tinybvh-bvh8, tinybvh-bvh4, tinybvh-bvh8-hq)"
+                                               : "skip the tinybvh peer rows (this binary has no tinybvh)");
 
   CLI::App* params_cmd = app.add_subcommand("params", "list the structures and their parameters");
 

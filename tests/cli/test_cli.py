@@ -155,11 +155,40 @@ BENCH_KEYS = {"scene": str, "structure": str, "params": str, "kernel": str, "ray
               "threads": int, "false_miss": int, "false_hit": int, "wrong_prim": int, "max_rel_t_err": (int, float)}
 
 
+PEERS = ("embree-", "tinybvh-")
+TINYBVH_ROWS = ["tinybvh-bvh8", "tinybvh-bvh4", "tinybvh-bvh8-hq"]
+
+
+def has_tinybvh(cli):
+    """Whether this binary runs the tinybvh rows: built with tinybvh (bench --help says so)
+    and the CPU has AVX2 (else bench prints a note and skips them)."""
+    _, help_text, _ = run(cli, "bench", "--help")
+    if "--no-tinybvh" not in help_text or "has no tinybvh" in help_text:
+        return False
+    _, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "grid", "--rays", "random:10:1",
+                    "--min-time", "0.001", "--no-embree")
+    return "lacks AVX2" not in err
+
+
+def check_tinybvh_rows(rows, scenes, what):
+    """The tinybvh rows: three per scene, a build time, memory and counted errors."""
+    tiny = [r for r in rows if r["structure"].startswith("tinybvh-")]
+    check(len(tiny) == 3 * scenes, f"{what}: {len(tiny)} tinybvh rows, expected 3 per scene")
+    check(sorted(set(r["structure"] for r in tiny)) == sorted(TINYBVH_ROWS), f"{what}: tinybvh rows {tiny}")
+    for r in tiny:
+        check(r["kernel"] == "tinybvh" and r["build_ms"] > 0 and r["memory_bytes"] > 0,
+              f"{what}: {r['structure']} kernel {r['kernel']} build_ms {r['build_ms']} MB {r['memory_bytes']}")
+        errors = r["false_miss"] + r["false_hit"] + r["wrong_prim"] + r["wrong_t"]
+        check(isinstance(errors, int) and 0 <= errors <= r["n_rays"], f"{what}: {r['structure']} errors {errors}")
+        check("peer_ratio_mt" not in r, f"{what}: peer row {r['structure']} has a peer_ratio_mt")
+
+
 def test_bench(cli, work):
-    """bench writes one row per scene x structure x kernel (plus Embree rows when built with
-    it) with the keys of issue #6, the same rows as JSON, CSV and Markdown, and the watertight
-    kernel makes no error; bad options fail before any output file is written."""
+    """bench writes one row per scene x structure x kernel (plus Embree and tinybvh rows when
+    built with them) with the keys of issue #6, the same rows as JSON, CSV and Markdown, and the
+    watertight kernel makes no error; bad options fail before any output file is written."""
     import json
+    tinybvh = has_tinybvh(cli)
     out = {ext: os.path.join(work, f"bench.{ext}") for ext in ("json", "csv", "md")}
     args = ["bench", "--scene", "procedural:cornell", "--scene", "procedural:soup", "--structures", "all",
             "--kernel", "watertight,moller", "--rays", "random:2000:1", "--threads", "2", "--min-time", "0.001",
@@ -170,8 +199,12 @@ def test_bench(cli, work):
         return
     with open(out["json"]) as f:
         rows = json.load(f)
-    ours = [r for r in rows if not r["structure"].startswith("embree-")]
+    ours = [r for r in rows if not r["structure"].startswith(PEERS)]
     embree = [r for r in rows if r["structure"].startswith("embree-")]
+    if tinybvh:
+        check_tinybvh_rows(rows, 2, "bench")
+    else:
+        check(not any(r["structure"].startswith("tinybvh-") for r in rows), "bench: tinybvh rows without tinybvh")
     check(len(ours) == 2 * 5 * 2, f"bench: {len(ours)} project rows, expected 2 scenes x 5 structures x 2 kernels")
     check(len(embree) in (0, 4), f"bench: {len(embree)} Embree rows, expected none or medium+high per scene")
     for r in rows:
@@ -193,7 +226,7 @@ def test_bench(cli, work):
         sah = r.get("sah_cost", "missing")
         if r["structure"] in ("bvh", "spheretree"):
             check(isinstance(sah, (int, float)) and sah > 0, f"bench row {r['structure']}: sah_cost {sah!r}")
-        elif r["structure"].startswith("embree-"):
+        elif r["structure"].startswith(PEERS):
             check(sah is None, f"bench row {r['structure']}: sah_cost {sah!r}, expected null")
     for r in embree:
         check(r["build_ms"] > 0, f"bench row {r['scene']} {r['structure']}: Embree build_ms {r['build_ms']}")
@@ -202,6 +235,12 @@ def test_bench(cli, work):
     for r in ours:
         check("embree_ratio_mt" in r, f"bench row {r['structure']}: no embree_ratio_mt key")
         check((r["embree_ratio_mt"] is None) == (not embree), f"bench row {r['structure']}: ratio {r['embree_ratio_mt']}")
+        for key in ("peer_ratio_mt", "peer_ratio_1t"):
+            value = r.get(key, "missing")
+            if embree or tinybvh:
+                check(isinstance(value, (int, float)) and value > 0, f"bench row {r['structure']}: {key} {value!r}")
+            else:
+                check(value is None, f"bench row {r['structure']}: {key} {value!r} without peers")
         if r["kernel"] == "watertight":
             errors = r["false_miss"] + r["false_hit"] + r["wrong_prim"]
             check(errors == 0, f"bench: {r['scene']} {r['structure']} watertight has {errors} errors")
@@ -211,6 +250,11 @@ def test_bench(cli, work):
           f"bench CSV: {len(csv_lines)} lines")
     csv_rows = list(csv.DictReader(csv_lines))
     check("build_ms" in csv_rows[0] and "embree_build_ratio" in csv_rows[0], f"bench CSV header {csv_lines[0]!r}")
+    check(csv_lines[0].endswith(",embree_build_ratio,peer_ratio_mt,peer_ratio_1t"), f"bench CSV header {csv_lines[0]!r}")
+    for r in csv_rows:
+        peer = r["structure"].startswith(PEERS)
+        check((r["peer_ratio_mt"] != "") == (not peer and bool(embree or tinybvh)),
+              f"bench CSV: {r['structure']} peer_ratio_mt {r['peer_ratio_mt']!r}")
     cells = [r.get("embree_build_ratio") for r in csv_rows]
     check(all((c not in ("", None)) == bool(embree) for c in cells), f"bench CSV: embree_build_ratio cells {cells[:4]}")
     with open(out["md"]) as f:
@@ -218,7 +262,10 @@ def test_bench(cli, work):
     check(md == stdout and md.count("\n") == len(rows) + 2, "bench Markdown: not the printed table")
     md_header = [c.strip() for c in md.splitlines()[0].strip("|").split("|")]
     check("build ms" in md_header and "Embree build ratio" in md_header, f"bench Markdown header {md_header}")
+    check(md_header[-2:] == ["vs peer (1t)", "vs peer (mt)"], f"bench Markdown header {md_header}")
     test_bench_without_embree(cli, work)
+    if tinybvh:
+        test_bench_tinybvh_only(cli, work)
     bad_out = os.path.join(work, "bench_bad.json")
     bench = ["bench", "--scene", "procedural:cornell", "--rays", "random:10:1", "--out-json", bad_out]
     expect_bad(cli, bench + ["--structures", "grid,quadtree"], "unknown structure 'quadtree'", bad_out)
@@ -232,24 +279,51 @@ def test_bench(cli, work):
                bad_out)
 
 
+def test_bench_tinybvh_only(cli, work):
+    """--no-embree with tinybvh: the tinybvh rows are the peers, so peer_ratio_* are numbers
+    while the embree_* ratios are null."""
+    import json
+    out = os.path.join(work, "bench_tinybvh.json")
+    code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh", "--rays", "random:500:1",
+                       "--threads", "2", "--min-time", "0.001", "--no-embree", "--out-json", out)
+    check(code == 0, f"bench --no-embree (tinybvh): exit {code}, stderr {err!r}")
+    if code != 0:
+        return
+    with open(out) as f:
+        rows = json.load(f)
+    check_tinybvh_rows(rows, 1, "bench --no-embree")
+    ours = [r for r in rows if not r["structure"].startswith(PEERS)]
+    fastest = max(r["mrays_mt"] for r in rows if r["structure"].startswith("tinybvh-"))
+    for r in ours:
+        check(r["embree_ratio_mt"] is None, f"bench --no-embree {r['structure']}: embree_ratio_mt {r['embree_ratio_mt']}")
+        check(isinstance(r.get("peer_ratio_mt"), (int, float)) and isinstance(r.get("peer_ratio_1t"), (int, float)),
+              f"bench --no-embree {r['structure']}: peer ratios {r.get('peer_ratio_mt')!r} {r.get('peer_ratio_1t')!r}")
+        if isinstance(r.get("peer_ratio_mt"), (int, float)):
+            check(abs(r["peer_ratio_mt"] - r["mrays_mt"] / fastest) <= 1e-3 * max(1.0, r["peer_ratio_mt"]) + 1e-3,
+                  f"bench --no-embree {r['structure']}: peer_ratio_mt {r['peer_ratio_mt']} vs {r['mrays_mt']}/{fastest}")
+
+
 def test_bench_without_embree(cli, work):
-    """--no-embree: no Embree rows, and the build ratio is null / empty / "-" everywhere."""
+    """--no-embree --no-tinybvh: no peer rows, and the build and peer ratios are null / empty /
+    "-" everywhere."""
     import json
     out = {ext: os.path.join(work, f"bench_noembree.{ext}") for ext in ("json", "csv", "md")}
     code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh,grid", "--rays", "random:500:1",
-                       "--threads", "2", "--min-time", "0.001", "--no-embree", "--out-json", out["json"],
+                       "--threads", "2", "--min-time", "0.001", "--no-embree", "--no-tinybvh", "--out-json", out["json"],
                        "--out-csv", out["csv"], "--out-md", out["md"])
     check(code == 0, f"bench --no-embree: exit {code}, stderr {err!r}")
     if code != 0:
         return
     with open(out["json"]) as f:
         rows = json.load(f)
-    check(len(rows) == 2 and not any(r["structure"].startswith("embree-") for r in rows),
+    check(len(rows) == 2 and not any(r["structure"].startswith(PEERS) for r in rows),
           f"bench --no-embree: rows {[r['structure'] for r in rows]}")
     for r in rows:
         check("embree_build_ratio" in r and r["embree_build_ratio"] is None,
               f"bench --no-embree {r['structure']}: embree_build_ratio {r.get('embree_build_ratio')!r}")
         check(isinstance(r.get("build_ms"), (int, float)), f"bench --no-embree {r['structure']}: build_ms")
+        check(r.get("peer_ratio_mt", "missing") is None and r.get("peer_ratio_1t", "missing") is None,
+              f"bench --no-embree {r['structure']}: peer ratios {r.get('peer_ratio_mt')!r} without peers")
     with open(out["csv"]) as f:
         lines = f.read().splitlines()
     cells = [r.get("embree_build_ratio") for r in csv.DictReader(lines)]
