@@ -77,7 +77,7 @@ class TriangleTester {
                                  float* v) const;
   /// Runs a scalar `test(p0, p1, p2, tmax, &hit)` on each lane set in `lanes`.
   template <class Test>
-  static int test_lanes(const TriangleBlock& block, int lanes, float tmax, float* t, float* u, float* v,
+  ACCEL_FORCE_INLINE static int test_lanes(const TriangleBlock& block, int lanes, float tmax, float* t, float* u, float* v,
                         const Test& test);
   // Inline: they run in every structure's innermost loop.
   ACCEL_FORCE_INLINE bool watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
@@ -192,7 +192,7 @@ int TriangleTester::intersect4(const TriangleBlock& block, int lanes, float tmax
 }
 
 template <class Test>
-int TriangleTester::test_lanes(const TriangleBlock& block, int lanes, float tmax, float* t, float* u, float* v,
+ACCEL_FORCE_INLINE int TriangleTester::test_lanes(const TriangleBlock& block, int lanes, float tmax, float* t, float* u, float* v,
                                const Test& test) {
   int mask = 0;
   for (int lane = 0; lane < 4; ++lane) {

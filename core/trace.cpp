@@ -77,4 +77,13 @@ QueryStats TraceRecorder::stats() const {
   return sink.stats;
 }
 
+void RecordingListener::visit(NodeId n, int depth, float t0, float t1) { r_.visit(n, depth, t0, t1); }
+void RecordingListener::enter_cell(NodeId n, float t0, float t1) { r_.enter_cell(n, t0, t1); }
+void RecordingListener::cull(NodeId n, int depth, CullReason why, float t0) { r_.cull(n, depth, why, t0); }
+void RecordingListener::push(NodeId n, int depth, float key) { r_.push(n, depth, key); }
+void RecordingListener::pop(NodeId n, int depth, float key) { r_.pop(n, depth, key); }
+void RecordingListener::test_prim(uint32_t prim, bool hit, float t) { r_.test_prim(prim, hit, t); }
+void RecordingListener::new_closest(uint32_t prim, float t) { r_.new_closest(prim, t); }
+void RecordingListener::done(const Hit& h) { r_.done(h); }
+
 }  // namespace accel

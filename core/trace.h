@@ -152,6 +152,55 @@ class TraceRecorder {
   std::vector<TraceEvent> events_;
 };
 
+/// Receives a traversal's steps through virtual calls: lets a traversal compiled for
+/// another instruction set (structures/wide_bvh_avx2.cpp) report to a recorder compiled for
+/// the baseline, so tests compare the kernels step by step. Not a fast path.
+class StepListener {
+ public:
+  virtual ~StepListener() = default;
+  virtual void visit(NodeId n, int depth, float t0, float t1) = 0;
+  virtual void enter_cell(NodeId n, float t0, float t1) = 0;
+  virtual void cull(NodeId n, int depth, CullReason why, float t0) = 0;
+  virtual void push(NodeId n, int depth, float key) = 0;
+  virtual void pop(NodeId n, int depth, float key) = 0;
+  virtual void test_prim(uint32_t prim, bool hit, float t) = 0;
+  virtual void new_closest(uint32_t prim, float t) = 0;
+  virtual void done(const Hit& h) = 0;
+};
+
+/// A recording sink (cull reasons included) that forwards every step to a StepListener.
+struct ForwardingSink {
+  static constexpr bool kRecords = true;
+  static constexpr bool kObserves = true;
+  StepListener* to;
+  void visit(NodeId n, int depth, float t0, float t1) { to->visit(n, depth, t0, t1); }
+  void enter_cell(NodeId n, float t0, float t1) { to->enter_cell(n, t0, t1); }
+  void cull(NodeId n, int depth, CullReason why, float t0) { to->cull(n, depth, why, t0); }
+  void push(NodeId n, int depth, float key) { to->push(n, depth, key); }
+  void pop(NodeId n, int depth, float key) { to->pop(n, depth, key); }
+  void test_prim(uint32_t prim, bool hit, float t) { to->test_prim(prim, hit, t); }
+  void new_closest(uint32_t prim, float t) { to->new_closest(prim, t); }
+  void done(const Hit& h) { to->done(h); }
+};
+
+/// A StepListener that keeps the steps in a TraceRecorder (defined in trace.cpp, so no
+/// other unit emits a copy of its functions).
+class RecordingListener final : public StepListener {
+ public:
+  explicit RecordingListener(TraceRecorder& recorder) : r_(recorder) {}
+  void visit(NodeId n, int depth, float t0, float t1) override;
+  void enter_cell(NodeId n, float t0, float t1) override;
+  void cull(NodeId n, int depth, CullReason why, float t0) override;
+  void push(NodeId n, int depth, float key) override;
+  void pop(NodeId n, int depth, float key) override;
+  void test_prim(uint32_t prim, bool hit, float t) override;
+  void new_closest(uint32_t prim, float t) override;
+  void done(const Hit& h) override;
+
+ private:
+  TraceRecorder& r_;
+};
+
 /// What every traversal may call on its sink, in the order of a query: visit (enter a node)
 /// or enter_cell (a grid cell), cull, push / pop (stack or queue), test_prim and
 /// new_closest (triangles), done (the answer). kRecords: the sink keeps the steps, so a
@@ -178,8 +227,9 @@ concept TraversalSink = requires(S& sink, NodeId node, int depth, float t, CullR
 template <TraversalSink S>
 inline constexpr bool kObservesNothing = !S::kObserves;
 
-static_assert(TraversalSink<NullSink> && TraversalSink<StatsSink> && TraversalSink<TraceRecorder>,
-              "the three sinks implement the whole contract");
+static_assert(TraversalSink<NullSink> && TraversalSink<StatsSink> && TraversalSink<TraceRecorder> &&
+                  TraversalSink<ForwardingSink>,
+              "the sinks implement the whole contract");
 static_assert(kObservesNothing<NullSink> && !kObservesNothing<StatsSink> && !kObservesNothing<TraceRecorder>,
               "only NullSink is the fast path");
 

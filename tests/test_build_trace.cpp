@@ -185,6 +185,8 @@ std::vector<Config> all_configs() {
     c.push_back({s, {"builder=median", "axis=round_robin"}});
     c.push_back({s, {"builder=binned_sah", "bins=4", "leaf_size=2"}});
   }
+  c.push_back({"bvh", {"width=4"}});  // the default is 8 wide: the 4-wide collapse too
+  c.push_back({"bvh", {"width=4", "builder=bottom_up"}});
   return c;
 }
 

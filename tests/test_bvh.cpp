@@ -24,9 +24,11 @@ std::vector<SuiteCase> bvh_cases(const std::string& structure) {
     for (const char* leaf : {"leaf_size=1", "leaf_size=16"})
       cases.push_back({structure, {std::string("builder=") + builder, leaf}});
   }
-  if (structure == "bvh") {  // the lecture's binary layout beside the default 4-wide one
-    for (const char* traversal : {"dfs", "ordered", "pqueue"})
+  if (structure == "bvh") {  // the lecture's binary layout and the 4-wide one beside the default 8-wide one
+    for (const char* traversal : {"dfs", "ordered", "pqueue"}) {
       cases.push_back({structure, {"width=2", std::string("traversal=") + traversal}});
+      cases.push_back({structure, {"width=4", std::string("traversal=") + traversal}});
+    }
     cases.push_back({structure, {"width=2", "builder=bottom_up", "leaf_size=16"}});
   }
   cases.push_back({structure, {"builder=median", "axis=x"}});
@@ -352,9 +354,10 @@ void expect_valid_tree(const BinaryBvh& bvh, const Scene& scene, int leaf_size) 
   for (uint32_t prim : scene.valid_prims()) EXPECT_EQ(seen.count(prim), 1u) << "prim " << prim;
 }
 
-/// The same for the 4-wide layout: every triangle in exactly one leaf, within the leaf's
-/// box; every child slot's box inside its node's box, and at most four children.
-void expect_valid_wide_tree(const WideBvh& wide, const Scene& scene, int leaf_size) {
+/// The same for the wide layouts: every triangle in exactly one leaf, within the leaf's
+/// box; every child slot's box inside its node's box, and at most W children.
+template <int W>
+void expect_valid_wide_tree(const WideBvhOf<W>& wide, const Scene& scene, int leaf_size) {
   const Structure& bvh = wide;
   std::multiset<uint32_t> seen;
   for (NodeId i = 0; i < wide.size(); ++i) {
@@ -367,9 +370,9 @@ void expect_valid_wide_tree(const WideBvh& wide, const Scene& scene, int leaf_si
       }
       continue;
     }
-    const WideNode& n = wide.wide_node(i);
+    const WideNodeOf<W>& n = wide.wide_node(i);
     int children = 0;
-    for (int slot = 0; slot < 4; ++slot) {
+    for (int slot = 0; slot < W; ++slot) {
       if (n.bounds[0][slot] > n.bounds[3][slot]) continue;  // unused slot (empty box)
       ++children;
       Aabb child;
@@ -390,7 +393,7 @@ TEST(BvhBuilders, EveryBuilderMakesAValidTree) {
   for (const Scene& scene : scenes) {
     for (const char* builder : {"median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion"}) {
       for (int leaf : {1, 4}) {
-        for (const char* width : {"2", "4"}) {
+        for (const char* width : {"2", "4", "8"}) {
           SCOPED_TRACE(scene.name() + " " + builder + " leaf " + std::to_string(leaf) + " width " + width);
           auto bvh = build_structure("bvh", scene, {std::string("builder=") + builder,
                                                     "leaf_size=" + std::to_string(leaf), std::string("width=") + width});
@@ -399,6 +402,8 @@ TEST(BvhBuilders, EveryBuilderMakesAValidTree) {
             expect_valid_tree(*binary, scene, leaf);
           else if (const auto* wide = dynamic_cast<const WideBvh*>(bvh.value().get()))
             expect_valid_wide_tree(*wide, scene, leaf);
+          else if (const auto* wide8 = dynamic_cast<const WideBvh8*>(bvh.value().get()))
+            expect_valid_wide_tree(*wide8, scene, leaf);
           else
             FAIL() << "bvh is neither layout";
           EXPECT_LT(bvh.value()->build_stats().max_depth, kMaxBvhDepth);
@@ -408,8 +413,8 @@ TEST(BvhBuilders, EveryBuilderMakesAValidTree) {
   }
 }
 
-// `width` picks the class at creation: the binary tree for 2, the 4-wide layout for 4 (the
-// default); both are "bvh", report their width and answer alike.
+// `width` picks the class at creation: the binary tree for 2, the 4-wide layout for 4, the
+// 8-wide one for 8 (the default); all are "bvh", report their width and answer alike.
 TEST(BvhWidth, PicksTheLayoutClass) {
   const Scene scene = make_procedural_scene("cornell").value();
   auto binary = build_structure("bvh", scene, {"width=2"});
@@ -420,7 +425,7 @@ TEST(BvhWidth, PicksTheLayoutClass) {
   EXPECT_EQ(dynamic_cast<const WideBvh*>(binary.value().get()), nullptr);
   EXPECT_NE(dynamic_cast<const WideBvh*>(wide.value().get()), nullptr);
   EXPECT_EQ(dynamic_cast<const BinaryBvh*>(wide.value().get()), nullptr);
-  EXPECT_NE(dynamic_cast<const WideBvh*>(fallback.value().get()), nullptr);
+  EXPECT_NE(dynamic_cast<const WideBvh8*>(fallback.value().get()), nullptr);
   for (const auto* s : {binary.value().get(), wide.value().get()}) {
     EXPECT_EQ(s->name(), "bvh");
     const auto extra = s->build_stats().extra;

@@ -264,6 +264,7 @@ std::vector<HardConfig> hard_configs() {
           {"bvh", {"builder=binned_sah", "traversal=pqueue"}},
           {"bvh", {"builder=bottom_up", "traversal=dfs"}},
           {"bvh", {"width=2"}},
+          {"bvh", {"width=4"}},
           {"spheretree", {}}};
 }
 

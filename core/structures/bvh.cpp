@@ -10,8 +10,11 @@ void add_hierarchy_option_lines(const BvhBuildOptions& options, TraversalOrder o
 
 std::unique_ptr<Structure> make_bvh(const ParamSet& params) {
   // The layout is a class, not a branch in every query: width is read once, here.
-  if (hierarchy_options(params).width == 2) return std::make_unique<BinaryBvh>();
-  return std::make_unique<WideBvh>();
+  switch (hierarchy_options(params).width) {
+    case 2: return std::make_unique<BinaryBvh>();
+    case 8: return std::make_unique<WideBvh8>();
+    default: return std::make_unique<WideBvh>();
+  }
 }
 
 BuildStats BinaryBvh::compute_stats() const {

@@ -5,10 +5,12 @@
 #include <tbb/parallel_for.h>
 
 #include "check.h"
+#include "structures/wide_bvh_isa.h"
 
 namespace accel {
 
-void WideBvh::clear() {
+template <int W>
+void WideBvhOf<W>::clear() {
   nodes_.clear();
   entries_.clear();
   boxes_.clear();
@@ -19,10 +21,12 @@ void WideBvh::clear() {
 }
 
 namespace {
+template <int W>
 void record_collapse(const BuildTree& tree, BuildRecorder& recorder);
 }  // namespace
 
-Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
+template <int W>
+Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   // Progress as in the binary layouts (hierarchy.h): the builder reports the triangles it
   // has placed as [0, 0.8] and stops when cancelled; then the collapse (parallel, a small
   // share of the build) ends at 1.
@@ -30,9 +34,19 @@ Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildCont
   if (build_cancelled(control)) return cancelled_error();
   const HierarchyOptions options = hierarchy_options(params);
   options_ = options.build;
-  // The 4-wide layout tests a leaf's triangles four at a time: the SAH builders know it.
+  // The wide layouts test a leaf's triangles four at a time: the SAH builders know it.
   options_.prims_per_test = 4;
   order_ = options.traversal;
+  // The fast path of an 8-wide tree runs the best kernel this CPU has; the priority queue
+  // keeps the SSE2 one (its heap, not the box test, is what it spends its time on).
+  fast_ = nullptr;
+  fast_isa_ = Isa::Sse2;
+  if constexpr (W == 8) {
+    if (order_ != TraversalOrder::PriorityQueue) {
+      fast_isa_ = active_isa();
+      fast_ = fast_wide8_traversal(fast_isa_);
+    }
+  }
   ProgressSpan tree_span(control, 0.0, 0.8);
   const BuildTree tree = build_bvh_tree(scene, options_, &tree_span, recorder);
   if (build_cancelled(control)) return cancelled_error();
@@ -40,7 +54,7 @@ Status WideBvh::build_impl(const Scene& scene, const ParamSet& params, BuildCont
   if (build_cancelled(control)) return cancelled_error();  // e.g. cancelled from the callback
   collapse(scene, tree);
   if (recorder) {
-    if (!tree.empty()) record_collapse(tree, *recorder);
+    if (!tree.empty()) record_collapse<W>(tree, *recorder);
     recorder->done(entries_.size());
   }
   return {};
@@ -73,16 +87,16 @@ std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
 }
 
 /// The children of wide node `src`: it opens its largest inner child in place (that
-/// child's two children take its slot, keeping tree order) until there are four children
-/// or only leaves are left. Returns how many (2..4). `sink` sees each opening (a Collapse
+/// child's two children take its slot, keeping tree order) until there are W children or
+/// only leaves are left. Returns how many (2..W). `sink` sees each opening (a Collapse
 /// step: the wide node adopts its child's children).
-template <class Sink>
-int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[4], Sink& sink) {
+template <int W, class Sink>
+int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[W], Sink& sink) {
   const BuildNode& b = tree.nodes[src];
   kids[0] = b.left;
   kids[1] = b.right;
   int n = 2;
-  while (n < 4) {
+  while (n < W) {
     int widest = -1;
     float widest_area = -1.0f;
     for (int k = 0; k < n; ++k) {
@@ -105,24 +119,26 @@ int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[4], Sink& s
 
 /// Records the collapse steps: the same choices the collapse makes (wide_children), node by
 /// node from the root, each wide node's openings in order.
+template <int W>
 void record_collapse(const BuildTree& tree, BuildRecorder& recorder) {
   std::vector<uint32_t> stack{tree.root};
   while (!stack.empty()) {
     const uint32_t src = stack.back();
     stack.pop_back();
     if (tree.nodes[src].count) continue;
-    uint32_t kids[4];
-    const int n = wide_children(tree, src, kids, recorder);
+    uint32_t kids[W];
+    const int n = wide_children<W>(tree, src, kids, recorder);
     for (int s = n; s-- > 0;) stack.push_back(kids[s]);
   }
 }
 
 }  // namespace
 
-/// One emitted subtree, numbered from 0: the arrays of WideBvh for that subtree alone.
-struct WideBvh::Layout {
-  std::vector<WideNode> nodes;
-  std::vector<std::array<NodeId, 4>> child_ids;
+/// One emitted subtree, numbered from 0: the arrays of WideBvhOf for that subtree alone.
+template <int W>
+struct WideBvhOf<W>::Layout {
+  std::vector<Node> nodes;
+  std::vector<std::array<NodeId, W>> child_ids;
   std::vector<Entry> entries;
   std::vector<Aabb> boxes;
   std::vector<uint16_t> depth;
@@ -140,13 +156,13 @@ struct WideBvh::Layout {
       entries[id] = {add_blocks(scene, tree.prims.data() + b.first, b.count), b.count};
       return id;
     }
-    uint32_t kids[4];
+    uint32_t kids[W];
     NullBuildSink no_steps;
-    const int n = wide_children(tree, src, kids, no_steps);
+    const int n = wide_children<W>(tree, src, kids, no_steps);
     const uint32_t w = uint32_t(nodes.size());
     entries[id] = {w, 0};
     nodes.push_back(empty_node());
-    child_ids.push_back({kNoNode, kNoNode, kNoNode, kNoNode});
+    child_ids.push_back(no_children());
     for (int s = 0; s < n; ++s) {
       const NodeId child = emit(scene, tree, kids[s], depth_of_src + 1);  // may reallocate: index, not reference
       set_slot(nodes[w], s, tree.nodes[kids[s]].box, ref_of(child));
@@ -159,10 +175,10 @@ struct WideBvh::Layout {
     return entries[id].leaf() ? leaf_ref(entries[id].index, entries[id].count) : entries[id].index;
   }
 
-  /// A node whose four slots are unused (empty boxes, empty leaves).
-  static WideNode empty_node() {
-    WideNode node;
-    for (int s = 0; s < 4; ++s) {
+  /// A node whose W slots are unused (empty boxes, empty leaves).
+  static Node empty_node() {
+    Node node;
+    for (int s = 0; s < W; ++s) {
       for (int axis = 0; axis < 3; ++axis) {
         node.bounds[axis][s] = kInf;
         node.bounds[3 + axis][s] = -kInf;
@@ -171,7 +187,12 @@ struct WideBvh::Layout {
     }
     return node;
   }
-  static void set_slot(WideNode& node, int s, const Aabb& box, ChildRef ref) {
+  static std::array<NodeId, W> no_children() {
+    std::array<NodeId, W> ids;
+    ids.fill(kNoNode);
+    return ids;
+  }
+  static void set_slot(Node& node, int s, const Aabb& box, ChildRef ref) {
     for (int axis = 0; axis < 3; ++axis) {
       node.bounds[axis][s] = box.min[axis];
       node.bounds[3 + axis][s] = box.max[axis];
@@ -199,7 +220,8 @@ struct WideBvh::Layout {
   }
 };
 
-void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
+template <int W>
+void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
   clear();
   if (tree.empty()) return;
   prim_count_ = tree.prims.size();
@@ -210,8 +232,8 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
   struct TopNode {
     uint32_t src;
     int depth, n;
-    uint32_t kids[4];
-    int32_t child[4];  ///< >= 0: index into `top`; < 0: task -child - 1
+    uint32_t kids[W];
+    int32_t child[W];  ///< >= 0: index into `top`; < 0: task -child - 1
   };
   struct Task {
     uint32_t src;
@@ -224,7 +246,7 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
     top.push_back({src, depth, 0, {}, {}});
     TopNode node = top.back();
     NullBuildSink no_steps;
-    node.n = wide_children(tree, src, node.kids, no_steps);
+    node.n = wide_children<W>(tree, src, node.kids, no_steps);
     for (int s = 0; s < node.n; ++s) {
       const uint32_t kid = node.kids[s];
       if (!tree.nodes[kid].count && size[kid] >= kCollapseTaskNodes) {
@@ -298,7 +320,7 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
     boxes_[id] = tree.nodes[node.src].box;
     depth_[id] = uint16_t(node.depth);
     nodes_[w] = Layout::empty_node();
-    child_ids_[w] = {kNoNode, kNoNode, kNoNode, kNoNode};
+    child_ids_[w] = Layout::no_children();
     for (int s = 0; s < node.n; ++s) {
       NodeId child;
       if (node.child[s] >= 0) {
@@ -324,9 +346,9 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
       depth_[at.entry + i] = part.depth[i];
     }
     for (size_t w = 0; w < part.nodes.size(); ++w) {
-      WideNode node = part.nodes[w];
-      std::array<NodeId, 4> ids = part.child_ids[w];
-      for (int s = 0; s < 4; ++s) {
+      Node node = part.nodes[w];
+      std::array<NodeId, W> ids = part.child_ids[w];
+      for (int s = 0; s < W; ++s) {
         if (ids[s] == kNoNode) continue;
         node.ref[s] = relocate(node.ref[s]);
         ids[s] += at.entry;
@@ -343,11 +365,13 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
   }
 }
 
-void WideBvh::for_each_node(const std::function<void(const NodeView&)>& fn) const {
+template <int W>
+void WideBvhOf<W>::for_each_node(const std::function<void(const NodeView&)>& fn) const {
   for (NodeId i = 0; i < entries_.size(); ++i) fn(node_view(i));
 }
 
-NodeView WideBvh::node_view(NodeId id) const {
+template <int W>
+NodeView WideBvhOf<W>::node_view(NodeId id) const {
   NodeView v;
   if (id >= entries_.size()) return v;
   v.id = id;
@@ -358,19 +382,22 @@ NodeView WideBvh::node_view(NodeId id) const {
   return v;
 }
 
-std::vector<uint32_t> WideBvh::node_prims(NodeId id) const {
+template <int W>
+std::vector<uint32_t> WideBvhOf<W>::node_prims(NodeId id) const {
   if (id >= entries_.size() || !entries_[id].leaf()) return {};
   std::vector<uint32_t> prims;
   for (uint32_t k = 0; k < entries_[id].count; ++k) prims.push_back(blocks_[entries_[id].index + k / 4].prim[k % 4]);
   return prims;
 }
 
-size_t WideBvh::memory_bytes() const {
-  return nodes_.size() * (sizeof(WideNode) + sizeof(child_ids_[0])) + entries_.size() * sizeof(Entry) +
+template <int W>
+size_t WideBvhOf<W>::memory_bytes() const {
+  return nodes_.size() * (sizeof(Node) + sizeof(child_ids_[0])) + entries_.size() * sizeof(Entry) +
          blocks_.size() * sizeof(TriangleBlock);
 }
 
-BuildStats WideBvh::compute_stats() const {
+template <int W>
+BuildStats WideBvhOf<W>::compute_stats() const {
   BuildStats s;
   s.nodes = entries_.size();
   s.prims = prim_count_;
@@ -394,8 +421,42 @@ BuildStats WideBvh::compute_stats() const {
     s.sah_cost = cost;
   }
   add_hierarchy_option_lines(options_, order_, &s);
-  s.extra.push_back({"width", "4"});
+  s.extra.push_back({"kernel isa", isa_name(fast_isa())});
+  s.extra.push_back({"width", std::to_string(W)});
   return s;
+}
+
+template class WideBvhOf<4>;
+template class WideBvhOf<8>;
+
+FastWideTraversal fast_wide8_traversal(Isa isa) {
+  switch (isa) {
+    case Isa::Sse2: return nullptr;
+    case Isa::Avx2: return &wide8_fast_avx2;
+    case Isa::Avx512: return &wide8_fast_avx512;
+  }
+  return nullptr;
+}
+
+int wide8_children_mask(Isa isa, const WideNode8& node, const BoxTester& ray, float tmin, float tmax,
+                        float t_enter[8], float t_exit[8]) {
+  switch (isa) {
+    case Isa::Avx2: return wide8_mask_avx2(node, ray, tmin, tmax, t_enter, t_exit);
+    case Isa::Avx512: return wide8_mask_avx512(node, ray, tmin, tmax, t_enter, t_exit);
+    case Isa::Sse2: break;
+  }
+  return intersect_children(node, WideRayFor<Sse2Tag>(ray), tmin, tmax, t_enter, t_exit);
+}
+
+Hit wide8_traverse_observed(Isa isa, const WideBvh8& bvh, const Ray& ray, StepListener& listener) {
+  if (bvh.order() == TraversalOrder::PriorityQueue) isa = Isa::Sse2;  // the queue has SSE2 kernels only
+  switch (isa) {
+    case Isa::Avx2: return wide8_observed_avx2(bvh, ray, listener);
+    case Isa::Avx512: return wide8_observed_avx512(bvh, ray, listener);
+    case Isa::Sse2: break;
+  }
+  ForwardingSink sink{&listener};
+  return bvh.traverse_with<Sse2Tag>(ray, sink);
 }
 
 }  // namespace accel

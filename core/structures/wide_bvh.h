@@ -1,14 +1,15 @@
 #pragma once
-// The AABB tree's 4-wide layout as a structure of its own (WideBvh: bvh width=4, the
-// default; bvh.h has the parameters, the factory and the binary layout): the binary tree of
-// any builder collapsed into nodes of up to four children, whose four boxes are tested
-// against the ray at once with SSE, and the leaves' triangles copied in leaf order so a leaf
-// reads one contiguous block. This is how production tracers lay out a BVH for single rays
+// The AABB tree's wide layouts as a structure of their own (WideBvhOf<W>: bvh width=4 and
+// width=8; bvh.h has the parameters, the factory and the binary layout): the binary tree of
+// any builder collapsed into nodes of up to W children, whose W boxes are tested against
+// the ray at once, and the leaves' triangles copied in leaf order so a leaf reads one
+// contiguous block. The 4-wide nodes use SSE2 (every x86-64 CPU); the 8-wide nodes use the
+// AVX-512 or AVX2 kernel this CPU runs (wide_bvh_isa.h), or SSE2 on two halves. This is how production tracers lay out a BVH for single rays
 // (Dammertz et al. 2008, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of
 // Incoherent Rays"; Wald et al. 2008, "Getting Rid of Packets"). The node order, the
 // recorder calls and the cull rules are those of hierarchy.h's traversals, so the viewer
-// animates this very loop. Index:
-//   [SECTION] Node layout and the 4-wide slab test
+// animates this very loop, whichever kernel runs it. Index:
+//   [SECTION] Node layout and the SSE2 slab test
 //   [SECTION] WideBvh: build, views, stats
 //   [SECTION] Traversals: stack (dfs / ordered) and priority queue
 #include <emmintrin.h>  // SSE2 only: every x86-64 CPU has it, so no -m flag is needed
@@ -17,8 +18,10 @@
 
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <vector>
 
+#include "isa.h"
 #include "structures/bvh_builders.h"
 #include "structures/hierarchy.h"
 
@@ -38,21 +41,32 @@ inline uint32_t ref_first(ChildRef r) { return uint32_t(r); }
 inline uint32_t ref_count(ChildRef r) { return uint32_t(r >> 32) & 0xffffu; }
 inline ChildRef leaf_ref(uint32_t first, uint32_t count) { return kLeafBit | ChildRef(count) << 32 | first; }
 
-/// An inner node of the 4-wide tree: its children's boxes in structure-of-arrays form (one
-/// SSE register per bound) and references. An unused slot has an empty box (min = +inf,
-/// max = -inf), which every ray misses. Two cache lines; the children's node ids, needed
-/// only when a traversal is observed, are kept apart (WideBvh::child_ids_).
-struct alignas(64) WideNode {
-  float bounds[6][4];  ///< rows: min x, min y, min z, max x, max y, max z; columns: child slots
-  ChildRef ref[4];     ///< see ChildRef; an empty leaf for an unused slot
+/// An inner node of the W-wide tree: its children's boxes in structure-of-arrays form (one
+/// SIMD register per bound) and references. An unused slot has an empty box (min = +inf,
+/// max = -inf), which every ray misses. Two cache lines for W = 4, four for W = 8; the
+/// children's node ids, needed only when a traversal is observed, are kept apart
+/// (WideBvhOf::child_ids_).
+template <int W>
+struct alignas(64) WideNodeOf {
+  static constexpr int kWidth = W;
+  float bounds[6][W];  ///< rows: min x, min y, min z, max x, max y, max z; columns: child slots
+  ChildRef ref[W];     ///< see ChildRef; an empty leaf for an unused slot
 };
+using WideNode = WideNodeOf<4>;
+using WideNode8 = WideNodeOf<8>;
 
-static_assert(sizeof(WideNode) == 128, "a 4-wide node should stay two cache lines");
+static_assert(sizeof(WideNodeOf<4>) == 128, "a 4-wide node should stay two cache lines");
+static_assert(sizeof(WideNodeOf<8>) == 256, "an 8-wide node should stay four cache lines");
 
-/// Per-ray constants of the 4-wide slab test, taken from BoxTester so both tests share the
-/// reciprocal direction (-0.0 -> -inf) and the choice of near and far slab.
-struct WideRay {
-  explicit WideRay(const BoxTester& box_ray) {
+/// Per-ray constants of the wide slab test for instruction set `Tag` (the AVX ones are in
+/// wide_bvh_isa.h), taken from BoxTester so every test shares the reciprocal direction
+/// (-0.0 -> -inf) and the choice of near and far slab.
+template <class Tag>
+struct WideRayFor;
+
+template <>
+struct WideRayFor<Sse2Tag> {
+  explicit WideRayFor(const BoxTester& box_ray) {
     for (int axis = 0; axis < 3; ++axis) {
       org[axis] = _mm_set1_ps(box_ray.org[axis]);
       inv_dir[axis] = _mm_set1_ps(box_ray.inv_dir[axis]);
@@ -64,18 +78,22 @@ struct WideRay {
   int near_row[3], far_row[3];
 };
 
-/// BoxTester::intersect on the four child boxes of `node` at once, lane by lane with the
-/// same float operations in the same order, so exactly the boxes the binary tree would
-/// accept are accepted (conservative far distance, NaN-safe). Returns the mask of hit slots
-/// and writes each slot's clipped [t_enter, t_exit].
-ACCEL_FORCE_INLINE int intersect_children(const WideNode& node, const WideRay& r, float tmin, float tmax,
-                                          float* t_enter, float* t_exit) {
+/// BoxTester::intersect on four child boxes of `node` at once (slots [first, first + 4)),
+/// lane by lane with the same float operations in the same order, so exactly the boxes the
+/// binary tree would accept are accepted (conservative far distance, NaN-safe; no fused
+/// multiply-add, which would break the bound: the project compiles with -ffp-contract=off).
+/// Returns the mask of hit slots and writes each slot's clipped [t_enter, t_exit].
+template <int W>
+ACCEL_FORCE_INLINE int intersect_four(const WideNodeOf<W>& node, int first, const WideRayFor<Sse2Tag>& r, float tmin,
+                                      float tmax, float* t_enter, float* t_exit) {
   const __m128 widen = _mm_set1_ps(1.0f + 2.0f * gamma_bound(3));
   __m128 t0 = _mm_set1_ps(tmin), t1 = _mm_set1_ps(tmax);
   for (int axis = 0; axis < 3; ++axis) {
-    const __m128 t_near = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.near_row[axis]]), r.org[axis]), r.inv_dir[axis]);
+    const __m128 t_near =
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.near_row[axis]] + first), r.org[axis]), r.inv_dir[axis]);
     const __m128 t_far = _mm_mul_ps(
-        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[axis]]), r.org[axis]), r.inv_dir[axis]), widen);
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[axis]] + first), r.org[axis]), r.inv_dir[axis]),
+        widen);
     // maxps/minps return the second operand when either is NaN: a NaN slab distance (origin
     // on the slab plane, zero direction) leaves the interval unchanged, as in BoxTester.
     t0 = _mm_max_ps(t_near, t0);
@@ -86,17 +104,38 @@ ACCEL_FORCE_INLINE int intersect_children(const WideNode& node, const WideRay& r
   return _mm_movemask_ps(_mm_cmple_ps(t0, t1));
 }
 
+/// The SSE2 kernel of a W-wide node: the mask of hit slots (bit s = slot s) and each slot's
+/// [t_enter, t_exit]; an 8-wide node is tested as two halves.
+template <int W>
+ACCEL_FORCE_INLINE int intersect_children(const WideNodeOf<W>& node, const WideRayFor<Sse2Tag>& r, float tmin,
+                                          float tmax, float* t_enter, float* t_exit) {
+  int mask = 0;
+  for (int first = 0; first < W; first += 4)
+    mask |= intersect_four(node, first, r, tmin, tmax, t_enter + first, t_exit + first) << first;
+  return mask;
+}
+
 // ============================================================================
-// [SECTION] WideBvh: build, views, stats
+// [SECTION] WideBvhOf: build, views, stats
 // ============================================================================
 
-/// The collapsed tree, registered as "bvh" with width=4 (same parameters, builders and
+template <int W>
+class WideBvhOf;
+/// The fast traversal (nothing observed) of an 8-wide tree with the AVX2 or AVX-512 kernel;
+/// defined in wide_bvh_avx2.cpp / wide_bvh_avx512.cpp, compiled with those flags.
+using FastWideTraversal = Hit (*)(const WideBvhOf<8>& bvh, const Ray& ray);
+
+/// The collapsed tree, registered as "bvh" with width=4 or 8 (same parameters, builders and
 /// traversal orders as BinaryBvh). Node ids number every node, inner and leaf, in
 /// depth-first order (root 0), as in the binary layout, so the viewer draws and highlights
 /// them alike.
-class WideBvh final : public StructureWithTraversal<WideBvh> {
+template <int W>
+class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
+  static_assert(W == 4 || W == 8, "4 (SSE2) or 8 (AVX2, AVX-512, or SSE2 in halves) children per node");
+
  public:
-  /// What a node id stands for. Inner node: `index` is its WideNode, `count` is 0. Leaf:
+  using Node = WideNodeOf<W>;
+  /// What a node id stands for. Inner node: `index` is its Node, `count` is 0. Leaf:
   /// `count` > 0 triangles in the triangle blocks from block `index` on.
   struct Entry {
     uint32_t index = 0;
@@ -104,7 +143,7 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
     bool leaf() const { return count != 0; }
   };
 
-  /// The registry name both layouts share.
+  /// The registry name every layout shares.
   std::string name() const override { return "bvh"; }
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;
@@ -112,19 +151,34 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
 
   /// Number of nodes, inner and leaf.
   size_t size() const { return entries_.size(); }
-  /// The WideNode of inner node `id` (for tests of the tree's shape).
-  const WideNode& wide_node(NodeId id) const { return nodes_[entries_[id].index]; }
+  /// The Node of inner node `id` (for tests of the tree's shape).
+  const Node& wide_node(NodeId id) const { return nodes_[entries_[id].index]; }
   /// Nodes, entries, triangle references and the leaf-ordered triangle copies.
   size_t memory_bytes() const;
+  /// The kernel the fast path (nothing observed) runs: for 8-wide trees the best the CPU
+  /// has (isa.h, capped by ACCEL_ISA), SSE2 for 4-wide ones. Observed traversals (counters,
+  /// the recorder) run SSE2 kernels, which take the same decisions bit for bit
+  /// (tests/test_wide_isa.cpp), so the viewer animates the query the fast path makes.
+  Isa fast_isa() const { return fast_ ? fast_isa_ : Isa::Sse2; }
+  TraversalOrder order() const { return order_; }
 
   /// The one query, visiting nodes in the traversal order chosen at build time.
   template <TraversalSink Sink>
-  Hit traverse(const Ray& ray, Sink& sink) const;
+  Hit traverse(const Ray& ray, Sink& sink) const {
+    if constexpr (kObservesNothing<Sink> && W == 8) {
+      if (fast_) return fast_(*this, ray);
+    }
+    return traverse_with<Sse2Tag>(ray, sink);
+  }
+  /// The same query with the kernels of instruction set `Tag` (the ISA units instantiate
+  /// it with their tag; everything else with Sse2Tag).
+  template <class Tag, TraversalSink Sink>
+  Hit traverse_with(const Ray& ray, Sink& sink) const;
 
  protected:
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
   /// The node counters, the SAH cost (ct per inner node, the options' leaf cost per leaf, by
-  /// area relative to the root) and the builder, traversal and width lines.
+  /// area relative to the root) and the builder, traversal, width and kernel lines.
   BuildStats compute_stats() const override;
   /// Same nodes, new boxes bottom-up, the leaves' triangle blocks re-copied from the moved
   /// vertices; subtrees in parallel (wide_bvh_refit.cpp).
@@ -135,16 +189,35 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   void refit_subtree(const Scene& scene, NodeId node, NodeId end);
   void refit_node(const Scene& scene, NodeId node);
   /// Collapses a builder's binary tree: each inner node adopts the children of its largest
-  /// inner child (by surface area, the child most rays enter) until it has four.
+  /// inner child (by surface area, the child most rays enter) until it has W.
   void collapse(const Scene& scene, const BuildTree& tree);
   void clear();
   struct Layout;  // a subtree being emitted by one task (wide_bvh.cpp)
 
+  /// A pending node of an observed traversal: its id and interval are reported.
   struct Pending {
     ChildRef ref;
-    NodeId node;   ///< for the sink only (kNoNode in the fast path)
+    NodeId node;
     float t0, t1;  ///< the ray's interval inside the node's box
   };
+  /// A pending node of the fast path: the reference and the entry distance, 16 bytes
+  /// instead of 24, as nothing reads the id or the exit distance.
+  struct FastPending {
+    ChildRef ref;
+    float t0;
+  };
+  template <TraversalSink Sink>
+  using PendingFor = std::conditional_t<kObservesNothing<Sink>, FastPending, Pending>;
+  template <TraversalSink Sink>
+  static PendingFor<Sink> pending(ChildRef ref, NodeId node, float t0, float t1) {
+    if constexpr (kObservesNothing<Sink>) return {ref, t0};
+    else return {ref, node, t0, t1};
+  }
+  static NodeId node_of(const FastPending&) { return kNoNode; }
+  static NodeId node_of(const Pending& p) { return p.node; }
+  static float exit_of(const FastPending&) { return 0.0f; }
+  static float exit_of(const Pending& p) { return p.t1; }
+
   /// Node id of a child for the sink; the fast path never reads the id table.
   template <TraversalSink Sink>
   NodeId child_id(uint32_t wide, int slot) const {
@@ -160,19 +233,18 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   void prefetch(ChildRef r) const {
     const char* p = ref_is_leaf(r) ? reinterpret_cast<const char*>(&blocks_[ref_first(r)])
                                    : reinterpret_cast<const char*>(&nodes_[r]);
-    _mm_prefetch(p, _MM_HINT_T0);
-    _mm_prefetch(p + 64, _MM_HINT_T0);
-    if (ref_is_leaf(r)) _mm_prefetch(p + 128, _MM_HINT_T0);
+    const int lines = ref_is_leaf(r) ? 3 : int(sizeof(Node) / 64);
+    for (int k = 0; k < lines; ++k) _mm_prefetch(p + 64 * k, _MM_HINT_T0);
   }
-  // Each pop pushes at most four children in place of one node: 3 per level, plus slack.
-  static constexpr int kStackSize = 3 * kMaxBvhDepth + 4;
+  // Each pop pushes at most W children in place of one node: W - 1 per level, plus slack.
+  static constexpr int kStackSize = (W - 1) * kMaxBvhDepth + W;
 
-  template <TraversalSink Sink>
-  void report_misses(uint32_t wide, int hit_mask, const WideRay& wray, float tmin, Sink& sink) const;
+  template <class Tag, TraversalSink Sink>
+  void report_misses(uint32_t wide, int hit_mask, const WideRayFor<Tag>& wray, float tmin, Sink& sink) const;
   /// Tests a leaf's triangles four at a time. Lanes are taken in order with the same rule
   /// as test_triangle (first hit, then strictly closer), so ties resolve as in the binary tree.
   template <TraversalSink Sink>
-  void test_leaf(ChildRef r, const TriangleTester& tester, Hit& closest, Sink& sink) const {
+  ACCEL_FORCE_INLINE void test_leaf(ChildRef r, const TriangleTester& tester, Hit& closest, Sink& sink) const {
     const TriangleBlock* block = blocks_.data() + ref_first(r);
     for (uint32_t left = ref_count(r); left > 0; left -= std::min(left, 4u), ++block) {
       const int lanes = left >= 4 ? 0xf : (1 << left) - 1;
@@ -191,19 +263,19 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   }
   template <TraversalSink Sink>
   bool enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink, Pending* root) const;
-  template <TraversalSink Sink>
-  void traverse_stack(const Ray& ray, const WideRay& wray, const TriangleTester& tester, bool nearest_first,
-                      Pending root, Hit& closest, Sink& sink) const;
-  template <TraversalSink Sink>
-  void traverse_pqueue(const Ray& ray, const WideRay& wray, const TriangleTester& tester, Pending root,
+  template <class Tag, TraversalSink Sink>
+  void traverse_stack(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester, bool nearest_first,
+                      const Pending& root, Hit& closest, Sink& sink) const;
+  template <class Tag, TraversalSink Sink>
+  void traverse_pqueue(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester, Pending root,
                        Hit& closest, Sink& sink) const;
 
   ChildRef ref_of(NodeId id) const {
     return entries_[id].leaf() ? leaf_ref(entries_[id].index, entries_[id].count) : entries_[id].index;
   }
 
-  std::vector<WideNode> nodes_;
-  std::vector<std::array<NodeId, 4>> child_ids_;  ///< by WideNode: the children's node ids, kNoNode if unused
+  std::vector<Node> nodes_;
+  std::vector<std::array<NodeId, W>> child_ids_;  ///< by Node: the children's node ids, kNoNode if unused
   std::vector<Entry> entries_;     ///< by node id
   std::vector<Aabb> boxes_;        ///< by node id: the node's own box (the root's is tested alone)
   std::vector<uint16_t> depth_;    ///< by node id
@@ -211,21 +283,31 @@ class WideBvh final : public StructureWithTraversal<WideBvh> {
   size_t prim_count_ = 0;
   BvhBuildOptions options_;
   TraversalOrder order_ = TraversalOrder::Ordered;
+  FastWideTraversal fast_ = nullptr;  ///< set for 8-wide trees on AVX2 / AVX-512 CPUs (stack orders)
+  Isa fast_isa_ = Isa::Sse2;
 };
+
+/// The 4-wide SSE2 layout (width=4) and the 8-wide one (width=8).
+using WideBvh = WideBvhOf<4>;
+using WideBvh8 = WideBvhOf<8>;
+extern template class WideBvhOf<4>;
+extern template class WideBvhOf<8>;
 
 // ============================================================================
 // [SECTION] Traversals
 // ============================================================================
 
-template <TraversalSink Sink>
-void WideBvh::report_misses(uint32_t wide, int hit_mask, const WideRay& wray, float tmin, Sink& sink) const {
+template <int W>
+template <class Tag, TraversalSink Sink>
+void WideBvhOf<W>::report_misses(uint32_t wide, int hit_mask, const WideRayFor<Tag>& wray, float tmin,
+                                 Sink& sink) const {
   if constexpr (kObservesNothing<Sink>) {
     return;  // nothing to count: the fast path skips the loop entirely
   } else {
     int beyond_mask = 0;
-    float a[4], b[4];
+    alignas(32) float a[W], b[W];
     if constexpr (Sink::kRecords) beyond_mask = intersect_children(nodes_[wide], wray, tmin, kInf, a, b);
-    for (int s = 0; s < 4; ++s) {
+    for (int s = 0; s < W; ++s) {
       const NodeId child = child_ids_[wide][s];
       if ((hit_mask >> s) & 1 || child == kNoNode) continue;
       const bool beyond = (beyond_mask >> s) & 1;
@@ -235,9 +317,10 @@ void WideBvh::report_misses(uint32_t wide, int hit_mask, const WideRay& wray, fl
   }
 }
 
+template <int W>
 template <TraversalSink Sink>
-bool WideBvh::enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink,
-                         Pending* root) const {
+bool WideBvhOf<W>::enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink,
+                              Pending* root) const {
   float t0, t1;
   if (box_ray.intersect(boxes_[0], ray.tmin, closest.t, &t0, &t1)) {
     *root = {ref_of(0), 0, t0, t1};
@@ -248,63 +331,89 @@ bool WideBvh::enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& cl
   return false;
 }
 
-template <TraversalSink Sink>
-Hit WideBvh::traverse(const Ray& ray, Sink& sink) const {
+template <int W>
+template <class Tag, TraversalSink Sink>
+Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
   Hit closest = no_hit(ray);
   if (!entries_.empty()) {
-    const TriangleTester tester(ray, kernel_);
+    const TriangleTester tester(ray, this->kernel_);
     const BoxTester box_ray(ray);
     Pending root;
     if (enter_root(ray, box_ray, closest, sink, &root)) {
-      const WideRay wray(box_ray);
-      if (order_ == TraversalOrder::PriorityQueue)
-        traverse_pqueue(ray, wray, tester, root, closest, sink);
-      else
-        traverse_stack(ray, wray, tester, order_ == TraversalOrder::Ordered, root, closest, sink);
+      const WideRayFor<Tag> wray(box_ray);
+      // The priority queue runs on SSE2 kernels only (its heap, not the box test, is what
+      // it spends its time on): its std::vector code is compiled once, for the baseline,
+      // and no ISA unit emits a copy of it. The ISA units are only called for stack orders.
+      if constexpr (std::is_same_v<Tag, Sse2Tag>) {
+        if (order_ == TraversalOrder::PriorityQueue) {
+          traverse_pqueue<Tag>(ray, wray, tester, root, closest, sink);
+          return finish_query(closest, sink);
+        }
+      }
+      traverse_stack<Tag>(ray, wray, tester, order_ == TraversalOrder::Ordered, root, closest, sink);
     }
   }
   return finish_query(closest, sink);
 }
 
-/// Depth-first. All four child boxes are tested at their parent; the loop descends
-/// straight into the first hit child (the nearest one when `nearest_first`, i.e. ordered;
-/// the first in tree order for dfs) and pushes the others, farthest first. A popped node
-/// entered beyond the closest hit found meanwhile is skipped. Descending without a push and
-/// pop is what makes the wide layout pay off (the child was tested against the current
-/// closest hit a moment ago).
-template <TraversalSink Sink>
-void WideBvh::traverse_stack(const Ray& ray, const WideRay& wray, const TriangleTester& tester, bool nearest_first,
-                             Pending root, Hit& closest, Sink& sink) const {
-  Pending stack[kStackSize];
+/// Depth-first. All W child boxes are tested at their parent; the loop descends straight
+/// into the first hit child (the nearest one when `nearest_first`, i.e. ordered; the first
+/// in tree order for dfs) and pushes the others, farthest first. A popped node entered
+/// beyond the closest hit found meanwhile is skipped. Descending without a push and pop is
+/// what makes the wide layout pay off (the child was tested against the current closest hit
+/// a moment ago). One and two hit children, the common cases, take short paths; more are
+/// sorted by a stable insertion sort, so equal distances keep tree order as in the binary
+/// traversal. The observed and the fast path run this same code (only the pending entries
+/// differ in size), so they visit the same nodes in the same order.
+template <int W>
+template <class Tag, TraversalSink Sink>
+void WideBvhOf<W>::traverse_stack(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester,
+                                  bool nearest_first, const Pending& root, Hit& closest, Sink& sink) const {
+  using Item = PendingFor<Sink>;
+  Item stack[kStackSize];
   int top = 0;
-  Pending cur = root;
+  Item cur = pending<Sink>(root.ref, root.node, root.t0, root.t1);
   for (;;) {
-    sink.visit(cur.node, node_depth<Sink>(cur.node), cur.t0, cur.t1);
+    sink.visit(node_of(cur), node_depth<Sink>(node_of(cur)), cur.t0, exit_of(cur));
     if (ref_is_leaf(cur.ref)) {
       test_leaf(cur.ref, tester, closest, sink);
     } else {
       const uint32_t w = uint32_t(cur.ref);
-      const WideNode& n = nodes_[w];
-      alignas(16) float t0[4], t1[4];
-      const int mask = intersect_children(n, wray, ray.tmin, closest.t, t0, t1);
-      report_misses(w, mask, wray, ray.tmin, sink);
+      const Node& n = nodes_[w];
+      alignas(32) float t0[W], t1[W];
+      int mask = intersect_children(n, wray, ray.tmin, closest.t, t0, t1);
+      report_misses<Tag>(w, mask, wray, ray.tmin, sink);
+      const auto child = [&](int s) { return pending<Sink>(n.ref[s], child_id<Sink>(w, s), t0[s], t1[s]); };
+      const auto push = [&](int s) {
+        stack[top++] = child(s);
+        prefetch(n.ref[s]);
+        sink.push(child_id<Sink>(w, s), node_depth<Sink>(child_id<Sink>(w, s)), t0[s]);
+      };
       if (mask != 0) {
-        // Hit slots in tree order, then (ordered) a stable insertion sort by entry distance,
-        // so equal distances keep tree order as in the binary traversal.
-        int slot[4], hits = 0;
-        for (int m = mask; m; m &= m - 1) slot[hits++] = __builtin_ctz(unsigned(m));
-        if (nearest_first && hits > 1) {
+        const int first = __builtin_ctz(unsigned(mask));
+        mask &= mask - 1;
+        if (mask == 0) {  // one hit child: descend, nothing to order
+          cur = child(first);
+          continue;
+        }
+        const int second = __builtin_ctz(unsigned(mask));
+        mask &= mask - 1;
+        if (mask == 0) {  // two: the nearer first (ties: tree order), the other pushed
+          const bool swap = nearest_first && t0[second] < t0[first];
+          push(swap ? first : second);
+          cur = child(swap ? second : first);
+          continue;
+        }
+        int slot[W], hits = 2;
+        slot[0] = first;
+        slot[1] = second;
+        for (; mask; mask &= mask - 1) slot[hits++] = __builtin_ctz(unsigned(mask));
+        if (nearest_first) {
           for (int i = 1; i < hits; ++i)
             for (int j = i; j > 0 && t0[slot[j]] < t0[slot[j - 1]]; --j) std::swap(slot[j], slot[j - 1]);
         }
-        for (int i = hits - 1; i > 0; --i) {  // the rest, farthest (or last in tree order) first
-          const int s = slot[i];
-          const NodeId child = child_id<Sink>(w, s);
-          stack[top++] = {n.ref[s], child, t0[s], t1[s]};
-          prefetch(n.ref[s]);
-          sink.push(child, node_depth<Sink>(child), t0[s]);
-        }
-        cur = {n.ref[slot[0]], child_id<Sink>(w, slot[0]), t0[slot[0]], t1[slot[0]]};
+        for (int i = hits - 1; i > 0; --i) push(slot[i]);  // the rest, farthest (or last in tree order) first
+        cur = child(slot[0]);
         continue;
       }
     }
@@ -312,18 +421,19 @@ void WideBvh::traverse_stack(const Ray& ray, const WideRay& wray, const Triangle
     for (;;) {
       if (top == 0) return;
       cur = stack[--top];
-      sink.pop(cur.node, node_depth<Sink>(cur.node), cur.t0);
+      sink.pop(node_of(cur), node_depth<Sink>(node_of(cur)), cur.t0);
       if (cur.t0 <= closest.t) break;
-      sink.cull(cur.node, node_depth<Sink>(cur.node), CullReason::BeyondClosestHit, cur.t0);
+      sink.cull(node_of(cur), node_depth<Sink>(node_of(cur)), CullReason::BeyondClosestHit, cur.t0);
     }
   }
 }
 
-/// The lecture's priority queue by entry distance, over 4-wide nodes: stops when the
-/// nearest pending node is farther than the closest hit.
-template <TraversalSink Sink>
-void WideBvh::traverse_pqueue(const Ray& ray, const WideRay& wray, const TriangleTester& tester, Pending root,
-                              Hit& closest, Sink& sink) const {
+/// The lecture's priority queue by entry distance, over wide nodes: stops when the nearest
+/// pending node is farther than the closest hit.
+template <int W>
+template <class Tag, TraversalSink Sink>
+void WideBvhOf<W>::traverse_pqueue(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester,
+                                   Pending root, Hit& closest, Sink& sink) const {
   thread_local std::vector<Pending> heap;  // outgrows any fixed stack; reused, not allocated per ray
   heap.clear();
   // Ties broken by the child reference, which the fast path has too (node ids it has not).
@@ -354,11 +464,11 @@ void WideBvh::traverse_pqueue(const Ray& ray, const WideRay& wray, const Triangl
       continue;
     }
     const uint32_t w = uint32_t(p.ref);
-    const WideNode& n = nodes_[w];
-    alignas(16) float t0[4], t1[4];
+    const Node& n = nodes_[w];
+    alignas(32) float t0[W], t1[W];
     const int mask = intersect_children(n, wray, ray.tmin, closest.t, t0, t1);
-    report_misses(w, mask, wray, ray.tmin, sink);
-    for (int s = 0; s < 4; ++s)
+    report_misses<Tag>(w, mask, wray, ray.tmin, sink);
+    for (int s = 0; s < W; ++s)
       if ((mask >> s) & 1) push({n.ref[s], child_id<Sink>(w, s), t0[s], t1[s]});
   }
 }

@@ -1,4 +1,4 @@
-// WideBvh::refit: the 4-wide tree's boxes recomputed bottom-up from moved vertices, the
+// WideBvhOf::refit: the wide trees' boxes recomputed bottom-up from moved vertices, the
 // leaves' triangle copies refreshed, the topology untouched (wide_bvh.h).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -15,7 +15,8 @@ constexpr NodeId kRefitGrain = 1024;
 
 }  // namespace
 
-Status WideBvh::refit_impl(const Scene& scene) {
+template <int W>
+Status WideBvhOf<W>::refit_impl(const Scene& scene) {
   // The first held triangle that may not stay, by block (the lowest, whatever the thread count).
   const size_t bad_at = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, blocks_.size(), 4096), blocks_.size(),
@@ -30,12 +31,13 @@ Status WideBvh::refit_impl(const Scene& scene) {
   if (bad_at < blocks_.size())
     for (uint32_t prim : blocks_[bad_at].prim)
       if (bad == ~0u && prim != TriangleBlock::kNoPrim && !refit_keeps(scene, prim)) bad = prim;
-  if (Status s = check_refit_prims(name(), scene, prim_count_, bad); !s) return s;
+  if (Status s = check_refit_prims(this->name(), scene, prim_count_, bad); !s) return s;
   if (!entries_.empty()) refit_subtree(scene, 0, NodeId(entries_.size()));
   return {};
 }
 
-void WideBvh::refit_subtree(const Scene& scene, NodeId node, NodeId end) {
+template <int W>
+void WideBvhOf<W>::refit_subtree(const Scene& scene, NodeId node, NodeId end) {
   if (end - node <= kRefitGrain) {
     // Children have larger ids than their parent: a reverse sweep is bottom-up.
     for (NodeId k = end; k-- > node;) refit_node(scene, k);
@@ -43,14 +45,15 @@ void WideBvh::refit_subtree(const Scene& scene, NodeId node, NodeId end) {
   }
   // More than one node: an inner node whose children, in slot order, start its consecutive
   // subtrees (emit() fills the slots from 0 and numbers each child's subtree in turn).
-  const std::array<NodeId, 4>& kids = child_ids_[entries_[node].index];
+  const std::array<NodeId, W>& kids = child_ids_[entries_[node].index];
   int n = 0;
-  while (n < 4 && kids[n] != kNoNode) ++n;
+  while (n < W && kids[n] != kNoNode) ++n;
   tbb::parallel_for(0, n, [&](int s) { refit_subtree(scene, kids[s], s + 1 < n ? kids[s + 1] : end); });
   refit_node(scene, node);
 }
 
-void WideBvh::refit_node(const Scene& scene, NodeId id) {
+template <int W>
+void WideBvhOf<W>::refit_node(const Scene& scene, NodeId id) {
   const Entry e = entries_[id];
   Aabb box;
   if (e.leaf()) {
@@ -70,9 +73,9 @@ void WideBvh::refit_node(const Scene& scene, NodeId id) {
     }
   } else {
     // Each used slot takes its child's new box; unused slots stay empty boxes.
-    WideNode& node = nodes_[e.index];
-    const std::array<NodeId, 4>& kids = child_ids_[e.index];
-    for (int s = 0; s < 4; ++s) {
+    Node& node = nodes_[e.index];
+    const std::array<NodeId, W>& kids = child_ids_[e.index];
+    for (int s = 0; s < W; ++s) {
       if (kids[s] == kNoNode) continue;
       const Aabb& child = boxes_[kids[s]];
       box.extend(child);
@@ -84,5 +87,14 @@ void WideBvh::refit_node(const Scene& scene, NodeId id) {
   }
   boxes_[id] = box;
 }
+
+// The class is instantiated in wide_bvh.cpp (extern template in wide_bvh.h); its members
+// defined here are instantiated here.
+template Status WideBvhOf<4>::refit_impl(const Scene&);
+template Status WideBvhOf<8>::refit_impl(const Scene&);
+template void WideBvhOf<4>::refit_subtree(const Scene&, NodeId, NodeId);
+template void WideBvhOf<8>::refit_subtree(const Scene&, NodeId, NodeId);
+template void WideBvhOf<4>::refit_node(const Scene&, NodeId);
+template void WideBvhOf<8>::refit_node(const Scene&, NodeId);
 
 }  // namespace accel
