@@ -263,8 +263,10 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   }
   template <TraversalSink Sink>
   bool enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink, Pending* root) const;
+  /// `wray` by value: a local copy the compiler keeps in registers (through a reference,
+  /// every store of the loop might alias it and force a reload).
   template <class Tag, TraversalSink Sink>
-  void traverse_stack(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester, bool nearest_first,
+  void traverse_stack(const Ray& ray, const WideRayFor<Tag> wray, const TriangleTester& tester, bool nearest_first,
                       const Pending& root, Hit& closest, Sink& sink) const;
   template <class Tag, TraversalSink Sink>
   void traverse_pqueue(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester, Pending root,
@@ -367,11 +369,12 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
 /// differ in size), so they visit the same nodes in the same order.
 template <int W>
 template <class Tag, TraversalSink Sink>
-void WideBvhOf<W>::traverse_stack(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester,
+void WideBvhOf<W>::traverse_stack(const Ray& ray, const WideRayFor<Tag> wray, const TriangleTester& tester,
                                   bool nearest_first, const Pending& root, Hit& closest, Sink& sink) const {
   using Item = PendingFor<Sink>;
   Item stack[kStackSize];
   int top = 0;
+  const float tmin = ray.tmin;  // a local: the loop's stores cannot alias it
   Item cur = pending<Sink>(root.ref, root.node, root.t0, root.t1);
   for (;;) {
     sink.visit(node_of(cur), node_depth<Sink>(node_of(cur)), cur.t0, exit_of(cur));
@@ -381,8 +384,8 @@ void WideBvhOf<W>::traverse_stack(const Ray& ray, const WideRayFor<Tag>& wray, c
       const uint32_t w = uint32_t(cur.ref);
       const Node& n = nodes_[w];
       alignas(32) float t0[W], t1[W];
-      int mask = intersect_children(n, wray, ray.tmin, closest.t, t0, t1);
-      report_misses<Tag>(w, mask, wray, ray.tmin, sink);
+      int mask = intersect_children(n, wray, tmin, closest.t, t0, t1);
+      report_misses<Tag>(w, mask, wray, tmin, sink);
       const auto child = [&](int s) { return pending<Sink>(n.ref[s], child_id<Sink>(w, s), t0[s], t1[s]); };
       const auto push = [&](int s) {
         stack[top++] = child(s);
