@@ -4,7 +4,9 @@
 # (the Avx2Tag / Avx512Tag template argument or the _avx2 / _avx512 suffix). A weak copy of
 # a shared inline function (a std::vector member, a header helper) compiled with AVX
 # instructions could otherwise be the one the linker keeps for the SSE2 path, and crash an
-# older CPU.
+# older CPU. Also: neither unit may contain a fused multiply-add (vfmadd..., vfmsub...,
+# vfnmadd..., vfnmsub...): it would round the slab or triangle test differently from the
+# SSE2 kernel and can break the slab test's conservative bound (-ffp-contract=off).
 set -euo pipefail
 lib="$1"
 status=0
@@ -24,6 +26,12 @@ for isa in avx2 avx512; do
     status=1
   else
     echo "isa_symbols: $member: $(wc -l <<<"$syms") symbols, all named for $isa"
+  fi
+  fused="$(objdump -d "$lib" 2>/dev/null | awk -v m="$member:" '
+      /file format/ {cur = $1; next} cur == m && /vf(n)?m(add|sub)/ {n++} END {print n + 0}')"
+  if [[ "$fused" != 0 ]]; then
+    echo "isa_symbols: $member contains $fused fused multiply-add instructions" >&2
+    status=1
   fi
 done
 exit $status
