@@ -263,10 +263,10 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   }
   template <TraversalSink Sink>
   bool enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink, Pending* root) const;
-  /// `wray` by value: a local copy the compiler keeps in registers (through a reference,
-  /// every store of the loop might alias it and force a reload).
+  /// Makes its SIMD ray constants itself: a local the compiler keeps in registers or its
+  /// own frame (through a reference, every store of the loop might alias them).
   template <class Tag, TraversalSink Sink>
-  void traverse_stack(const Ray& ray, const WideRayFor<Tag> wray, const TriangleTester& tester, bool nearest_first,
+  void traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester, bool nearest_first,
                       const Pending& root, Hit& closest, Sink& sink) const;
   template <class Tag, TraversalSink Sink>
   void traverse_pqueue(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester, Pending root,
@@ -342,17 +342,16 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
     const BoxTester box_ray(ray);
     Pending root;
     if (enter_root(ray, box_ray, closest, sink, &root)) {
-      const WideRayFor<Tag> wray(box_ray);
       // The priority queue runs on SSE2 kernels only (its heap, not the box test, is what
       // it spends its time on): its std::vector code is compiled once, for the baseline,
       // and no ISA unit emits a copy of it. The ISA units are only called for stack orders.
       if constexpr (std::is_same_v<Tag, Sse2Tag>) {
         if (order_ == TraversalOrder::PriorityQueue) {
-          traverse_pqueue<Tag>(ray, wray, tester, root, closest, sink);
+          traverse_pqueue<Tag>(ray, WideRayFor<Tag>(box_ray), tester, root, closest, sink);
           return finish_query(closest, sink);
         }
       }
-      traverse_stack<Tag>(ray, wray, tester, order_ == TraversalOrder::Ordered, root, closest, sink);
+      traverse_stack<Tag>(ray, box_ray, tester, order_ == TraversalOrder::Ordered, root, closest, sink);
     }
   }
   return finish_query(closest, sink);
@@ -369,8 +368,9 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
 /// differ in size), so they visit the same nodes in the same order.
 template <int W>
 template <class Tag, TraversalSink Sink>
-void WideBvhOf<W>::traverse_stack(const Ray& ray, const WideRayFor<Tag> wray, const TriangleTester& tester,
+void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester,
                                   bool nearest_first, const Pending& root, Hit& closest, Sink& sink) const {
+  const WideRayFor<Tag> wray(box_ray);
   using Item = PendingFor<Sink>;
   Item stack[kStackSize];
   int top = 0;
