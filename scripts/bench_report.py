@@ -188,16 +188,24 @@ def error_table(rows):
            "(a ray counts once: a false miss, a false hit, a wrong triangle that is not a tie, or the right "
            "triangle at a wrong t):\n",
            "| structure | kernel | rays | false miss | false hit | wrong tri | wrong t | max rel t err | "
-           "Mrays/s mt vs Embree (geo. mean) |",
-           "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+           "Mrays/s mt vs Embree (geo. mean) | Mrays/s mt vs fastest peer (geo. mean) |",
+           "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    peers = {}  # (scene, rays) -> the fastest peer row with all threads
+    for r in rows:
+        if is_peer(r):
+            key = (r["scene"], r["rays"])
+            if key not in peers or r["mrays_mt"] > peers[key]["mrays_mt"]:
+                peers[key] = r
     for structure, kernel in keys:
         sel = [r for r in rows if r["structure"] == structure and r["kernel"] == kernel]
         ratio = geomean([r.get("embree_ratio_mt") for r in sel])
         ratio_cell = "baseline" if structure.startswith("embree-") else ("" if math.isnan(ratio) else f"{ratio:.2f}")
+        peer = geomean([peer_ratio(r, peers.get((r["scene"], r["rays"])), "mt") for r in sel])
+        peer_cell = "peer" if any(is_peer(r) for r in sel) else ("" if math.isnan(peer) else f"{peer:.2f}")
         out.append(f"| {structure} | {kernel} | {sum(r['n_rays'] for r in sel):,} | {sum(r['false_miss'] for r in sel)} | "
                    f"{sum(r['false_hit'] for r in sel)} | {sum(r['wrong_prim'] for r in sel)} | "
                    f"{sum(r.get('wrong_t', 0) for r in sel)} | "
-                   f"{max(r['max_rel_t_err'] for r in sel):.2g} | {ratio_cell} |")
+                   f"{max(r['max_rel_t_err'] for r in sel):.2g} | {ratio_cell} | {peer_cell} |")
     return out
 
 

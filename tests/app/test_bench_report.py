@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """scripts/bench_report.py on small synthetic bench JSON files: the speed table's Embree and
-fastest-peer columns and geometric means, with tinybvh rows and peer_ratio_* keys, and with
+fastest-peer columns and geometric means, the error table's ratio columns, with tinybvh rows and peer_ratio_* keys, and with
 an older file that has neither (its peer columns fall back to the Embree rows)."""
 import json
 import os
@@ -67,6 +67,11 @@ class BenchReport(unittest.TestCase):
                       "threads); all threads min 0.50, max 0.80. Fastest peer with all threads: tinybvh-bvh8 on 1, "
                       "embree-medium on 1.", text)
         self.assertIn("bvh / Embree over the 2 meshes", text)
+        # The error table: geometric mean of the rows' peer_ratio_mt, (0.4 * 0.8 * 0.5)^(1/3).
+        errors = next(l for l in text.splitlines() if l.startswith("| bvh | watertight |"))
+        self.assertTrue(errors.endswith("| 0.54 |"), errors)
+        tiny = next(l for l in text.splitlines() if l.startswith("| tinybvh-bvh8 | tinybvh |"))
+        self.assertTrue(tiny.endswith("| 2.00 | peer |"), tiny)
 
     def test_old_file_without_peer_keys(self):
         rows = [row("a.obj", "embree-medium", "embree", 10.0, 5.0),
@@ -76,6 +81,8 @@ class BenchReport(unittest.TestCase):
         self.assertEqual(a[-3], "5.00 / 10.00 (embree-medium)")
         self.assertEqual(a[-2:], ["0.80", "0.50"])  # computed from the Embree row
         self.assertIn("bvh / the fastest peer over the 1 meshes: geometric mean 0.80 (1 thread), 0.50", text)
+        errors = next(l for l in text.splitlines() if l.startswith("| bvh | watertight |"))
+        self.assertTrue(errors.endswith("| 0.50 | 0.50 |"), errors)
 
     def test_no_peers(self):
         text = report([row("a.obj", "bvh", "watertight", 5.0, 4.0, embree_ratio_mt=None, peer_ratio_mt=None,
