@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Summary tables of `accelviz-cli bench` JSON files (as scripts/bench_shared.sh writes them):
-throughput per mesh and structure against Embree, build time per mesh and structure against
+throughput per mesh and structure against Embree and against the fastest peer (Embree or
+tinybvh), build time per mesh and structure against
 Embree's medium build, and errors per structure and kernel.
 
     scripts/bench_report.py A.json [B.json ...] [--out-json ALL.json] > report.md
@@ -41,7 +42,7 @@ def merge(paths):
     for path in paths:
         with open(path) as f:
             for r in json.load(f):
-                if r["structure"].startswith(("embree-", "tinybvh-")):  # the peers
+                if is_peer(r):
                     key = (r["scene"], r["rays"], r["structure"])
                     if key in seen_embree:
                         continue
@@ -54,15 +55,42 @@ def mesh(scene):
     return os.path.basename(scene)
 
 
+def is_peer(r):
+    return r["structure"].startswith(PEER_PREFIXES)
+
+
+PEER_PREFIXES = ("embree-", "tinybvh-")
+
+
+def fastest_peer(rows, key):
+    """The peer row (Embree or tinybvh) with the highest `key` (mrays_1t or mrays_mt), or None."""
+    return max((r for r in rows if is_peer(r)), key=lambda r: r[key], default=None)
+
+
+def peer_ratio(r, peer, key):
+    """r's ratio over the fastest peer: the bench's own peer_ratio_* (timed in r's run) when the
+    file has it, else r / the merged table's fastest peer row (files older than the key)."""
+    stored = r.get("peer_ratio_" + key)
+    if stored is not None:
+        return stored
+    if "peer_ratio_" + key in r:  # null: that run had no peer
+        return None
+    return r["mrays_" + key] / peer["mrays_" + key] if peer and peer["mrays_" + key] > 0 else None
+
+
 def speed_table(rows, rays):
     structures = ["bvh", "kdtree", "octree", "grid", "spheretree"]
     sel = [r for r in rows if r["rays"] == rays]
     scenes = list(dict.fromkeys(r["scene"] for r in sel))
     out = [f"\nRays `{rays}`, watertight kernel, Mrays/s with 1 thread / all threads "
-           f"({sel[0]['threads']}); ratio = bvh / the faster Embree row:\n",
-           "| mesh | Embree 1t / mt | " + " | ".join(structures) + " | bvh / Embree 1t | bvh / Embree mt |",
-           "|---|---:|" + "---:|" * len(structures) + "---:|---:|"]
+           f"({sel[0]['threads']}); ratio = bvh / the faster Embree row; the fastest peer row (Embree or "
+           "tinybvh, each measure on its own) and the fastest bvh row's peer_ratio (bvh / the fastest peer, "
+           "timed in the bvh row's run):\n",
+           "| mesh | Embree 1t / mt | " + " | ".join(structures) + " | bvh / Embree 1t | bvh / Embree mt | "
+           "fastest peer 1t / mt | bvh / peer 1t | bvh / peer mt |",
+           "|---|---:|" + "---:|" * len(structures) + "---:|---:|---|---:|---:|"]
     ratios_1t, ratios_mt = [], []
+    peer_ratios_1t, peer_ratios_mt, fastest_names = [], [], []
     for scene in scenes:
         here = [r for r in sel if r["scene"] == scene]
         embree = [r for r in here if r["structure"].startswith("embree-")]
@@ -81,13 +109,35 @@ def speed_table(rows, rays):
         ratios_mt.append(rmt)
         fmt = lambda x: f"{x:.2f}" if x else ""
         embree_cell = f"{e1:.2f} / {emt:.2f}" if e1 else ""
-        out.append(f"| {mesh(scene)} | {embree_cell} | " + " | ".join(cells) + f" | {fmt(r1)} | {fmt(rmt)} |")
+        # The fastest peer, and the fastest watertight bvh row (of any parameters) against it.
+        p1, pmt = fastest_peer(here, "mrays_1t"), fastest_peer(here, "mrays_mt")
+        if p1 and pmt:
+            names = (f"({p1['structure']})" if p1 is pmt else f"({p1['structure']} / {pmt['structure']})")
+            peer_cell = f"{p1['mrays_1t']:.2f} / {pmt['mrays_mt']:.2f} {names}"
+            fastest_names.append(pmt["structure"])
+        else:
+            peer_cell = ""
+        bvh_rows = [r for r in here if r["structure"] == "bvh" and r["kernel"] == "watertight"]
+        best = max(bvh_rows, key=lambda r: r["mrays_mt"], default=None)
+        q1 = peer_ratio(best, p1, "1t") if best else None
+        qmt = peer_ratio(best, pmt, "mt") if best else None
+        peer_ratios_1t.append(q1)
+        peer_ratios_mt.append(qmt)
+        out.append(f"| {mesh(scene)} | {embree_cell} | " + " | ".join(cells) + f" | {fmt(r1)} | {fmt(rmt)} | "
+                   f"{peer_cell} | {fmt(q1)} | {fmt(qmt)} |")
     valid_1t = [r for r in ratios_1t if r]
     valid_mt = [r for r in ratios_mt if r]
     if valid_mt:
         out.append(f"\nbvh / Embree over the {len(valid_mt)} meshes: geometric mean {geomean(valid_1t):.2f} "
                    f"(1 thread), {geomean(valid_mt):.2f} (all threads); all threads min {min(valid_mt):.2f}, "
                    f"max {max(valid_mt):.2f}.")
+    valid_1t = [r for r in peer_ratios_1t if r]
+    valid_mt = [r for r in peer_ratios_mt if r]
+    if valid_mt:
+        counts = ", ".join(f"{name} on {fastest_names.count(name)}" for name in dict.fromkeys(fastest_names))
+        out.append(f"\nbvh / the fastest peer over the {len(valid_mt)} meshes: geometric mean {geomean(valid_1t):.2f} "
+                   f"(1 thread), {geomean(valid_mt):.2f} (all threads); all threads min {min(valid_mt):.2f}, "
+                   f"max {max(valid_mt):.2f}. Fastest peer with all threads: {counts}.")
     return out
 
 
@@ -138,16 +188,24 @@ def error_table(rows):
            "(a ray counts once: a false miss, a false hit, a wrong triangle that is not a tie, or the right "
            "triangle at a wrong t):\n",
            "| structure | kernel | rays | false miss | false hit | wrong tri | wrong t | max rel t err | "
-           "Mrays/s mt vs Embree (geo. mean) |",
-           "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+           "Mrays/s mt vs Embree (geo. mean) | Mrays/s mt vs fastest peer (geo. mean) |",
+           "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    peers = {}  # (scene, rays) -> the fastest peer row with all threads
+    for r in rows:
+        if is_peer(r):
+            key = (r["scene"], r["rays"])
+            if key not in peers or r["mrays_mt"] > peers[key]["mrays_mt"]:
+                peers[key] = r
     for structure, kernel in keys:
         sel = [r for r in rows if r["structure"] == structure and r["kernel"] == kernel]
         ratio = geomean([r.get("embree_ratio_mt") for r in sel])
         ratio_cell = "baseline" if structure.startswith("embree-") else ("" if math.isnan(ratio) else f"{ratio:.2f}")
+        peer = geomean([peer_ratio(r, peers.get((r["scene"], r["rays"])), "mt") for r in sel])
+        peer_cell = "peer" if any(is_peer(r) for r in sel) else ("" if math.isnan(peer) else f"{peer:.2f}")
         out.append(f"| {structure} | {kernel} | {sum(r['n_rays'] for r in sel):,} | {sum(r['false_miss'] for r in sel)} | "
                    f"{sum(r['false_hit'] for r in sel)} | {sum(r['wrong_prim'] for r in sel)} | "
                    f"{sum(r.get('wrong_t', 0) for r in sel)} | "
-                   f"{max(r['max_rel_t_err'] for r in sel):.2g} | {ratio_cell} |")
+                   f"{max(r['max_rel_t_err'] for r in sel):.2g} | {ratio_cell} | {peer_cell} |")
     return out
 
 

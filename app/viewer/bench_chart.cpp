@@ -87,9 +87,12 @@ std::string parse_row(const Json& object, BenchRow& row) {
     row.*f.member = it->get<double>();
   }
   if (row.n_rays == 0) return "'n_rays' must be at least 1, got 0";
-  // Optional: the bench omits them on Embree rows and writes null without Embree.
+  // Optional: the bench omits the embree ratios on Embree rows and the peer ratios on peer
+  // rows, writes null without them; older files have no peer (or 1t) keys at all.
   for (const auto& [key, member] : {std::pair{"embree_ratio_mt", &BenchRow::embree_ratio_mt},
-                                    std::pair{"embree_ratio_1t", &BenchRow::embree_ratio_1t}}) {
+                                    std::pair{"embree_ratio_1t", &BenchRow::embree_ratio_1t},
+                                    std::pair{"peer_ratio_mt", &BenchRow::peer_ratio_mt},
+                                    std::pair{"peer_ratio_1t", &BenchRow::peer_ratio_1t}}) {
     const auto it = object.find(key);
     if (it == object.end() || it->is_null()) continue;
     if (!it->is_number() || !(it->get<double>() >= 0.0))
@@ -253,22 +256,36 @@ ChartAxis linear_zero_axis(double max, int target_ticks) {
 
 namespace {
 
-/// Bench rows that are no registry structure: the Embree baselines. Their labels and their
-/// place after the registry's structures are the chart's own.
+/// Bench rows that are no registry structure: the peers' (app/cli/bench.cpp names them).
+/// Their labels and their place after the registry's structures are the chart's own.
 struct ExternalStructure {
   const char* name;
   const char* label;
 };
-constexpr ExternalStructure kExternal[] = {{"embree-medium", "Embree med"}, {"embree-high", "Embree high"}};
+constexpr ExternalStructure kExternal[] = {
+    {"embree-medium", "Embree med"}, {"embree-high", "Embree high"},    {"tinybvh-bvh8", "tinybvh 8"},
+    {"tinybvh-bvh4", "tinybvh 4"},   {"tinybvh-bvh8-hq", "tinybvh 8 HQ"},
+};
+/// The peers' kernels in legend order, with their legend names.
+constexpr ExternalStructure kPeerKernels[] = {{"embree", "Embree"}, {"tinybvh", "tinybvh"}};
 
 }  // namespace
 
 int kernel_order(const std::string& kernel) {
-  // The core's kernels in its order, then Embree's (the baseline rows), then any other.
+  // The core's kernels in its order, then the peers' (Embree, tinybvh), then any other.
   constexpr int kCore = static_cast<int>(std::size(accel::kAllKernels));
   for (int i = 0; i < kCore; ++i)
     if (kernel == accel::kernel_name(accel::kAllKernels[i])) return i;
-  return kernel == "embree" ? kCore : kCore + 1;
+  constexpr int kPeers = static_cast<int>(std::size(kPeerKernels));
+  for (int i = 0; i < kPeers; ++i)
+    if (kernel == kPeerKernels[i].name) return kCore + i;
+  return kCore + kPeers;
+}
+
+std::string kernel_label(const std::string& kernel) {
+  for (const ExternalStructure& k : kPeerKernels)
+    if (kernel == k.name) return k.label;
+  return kernel;
 }
 
 int structure_order(const std::string& structure) {
@@ -330,6 +347,20 @@ std::string set_chart_option(ChartOptions& options, const std::string& key_value
   return "";
 }
 
+std::string format_peer_ratio(const BenchRow& row) {
+  if (row.is_peer()) return "(a peer)";
+  if (!row.peer_ratio_mt && !row.peer_ratio_1t) return "- (none in the file)";
+  char text[96];
+  if (row.peer_ratio_mt && row.peer_ratio_1t)
+    std::snprintf(text, sizeof text, "%.2fx the fastest peer with all threads, %.2fx with 1", *row.peer_ratio_mt,
+                  *row.peer_ratio_1t);
+  else if (row.peer_ratio_mt)
+    std::snprintf(text, sizeof text, "%.2fx the fastest peer with all threads", *row.peer_ratio_mt);
+  else
+    std::snprintf(text, sizeof text, "%.2fx the fastest peer with 1 thread", *row.peer_ratio_1t);
+  return text;
+}
+
 std::string format_error_rate(uint64_t wrong, uint64_t rays) {
   std::string text = with_separators(wrong) + " of " + with_separators(rays);
   if (wrong == 0 || rays == 0) return text;
@@ -365,7 +396,10 @@ ChartModel make_chart(const BenchData& data, const ChartOptions& options) {
     n_rays = std::max(n_rays, r.n_rays);
     append_unique(m.kernels, r.kernel);
     append_unique(m.structures, r.structure);
-    if (r.is_embree() && (!m.baseline_y || p.y > *m.baseline_y)) m.baseline_y = p.y;
+    if (r.is_peer() && (!m.baseline_y || p.y > *m.baseline_y)) {
+      m.baseline_y = p.y;
+      m.baseline_row = index;
+    }
     m.points.push_back(p);
   }
   std::stable_sort(m.kernels.begin(), m.kernels.end(),

@@ -20,9 +20,11 @@ namespace viz {
 /// One row of the bench's JSON array (app/cli/bench.cpp, function `json`, writes it).
 struct BenchRow {
   std::string scene;      ///< OBJ path or procedural:NAME
-  std::string structure;  ///< registry name, or embree-medium / embree-high
+  /// Registry name, or a peer's: embree-medium / embree-high, tinybvh-bvh8 / tinybvh-bvh4 /
+  /// tinybvh-bvh8-hq.
+  std::string structure;
   std::string params;     ///< "key=value ..." as given to the bench ("" = defaults)
-  std::string kernel;     ///< watertight, moller, double, or embree
+  std::string kernel;     ///< watertight, moller, double, or a peer's: embree, tinybvh
   std::string rays;       ///< the ray set: primary:W:H, random:N:SEED or a rays file
   uint64_t n_rays = 0;    ///< rays traced (> 0)
   double build_ms = 0.0;
@@ -41,9 +43,19 @@ struct BenchRow {
   std::optional<double> embree_ratio_mt;
   /// The same for mrays_1t (optional key: newer benches write it).
   std::optional<double> embree_ratio_1t;
+  /// mrays_mt over the fastest peer row's (Embree or tinybvh) on the same rays; absent on
+  /// peer rows, without peers and in files older than the key (the JSON's null or no key).
+  std::optional<double> peer_ratio_mt;
+  /// The same for mrays_1t.
+  std::optional<double> peer_ratio_1t;
 
-  /// An Embree baseline row (kernel "embree").
+  /// An Embree row (kernel "embree"): the baseline of the embree_ratio_* columns.
   bool is_embree() const { return kernel == "embree"; }
+  /// A peer row: another library's answer to the same rays (Embree or tinybvh), the
+  /// baseline of peer_ratio_*.
+  bool is_peer() const { return is_peer_kernel(kernel); }
+  /// Kernels of the peers' rows: "embree", "tinybvh".
+  static bool is_peer_kernel(const std::string& kernel) { return kernel == "embree" || kernel == "tinybvh"; }
   /// Rays whose answer is wrong: false misses + false hits + wrong triangles.
   uint64_t wrong_answers() const { return false_miss + false_hit + wrong_prim; }
   /// wrong_answers() / n_rays, in [0, 1].
@@ -71,7 +83,8 @@ struct BenchData {
 /// Parses the text of a bench JSON file; `name` (the path) starts every error message.
 /// Valid: an array of at least one object, each with the keys and types of BenchRow
 /// (strings; non-negative integers; finite non-negative numbers; n_rays > 0;
-/// embree_ratio_mt and embree_ratio_1t a number, null or absent); other keys are ignored. Errors are one line:
+/// embree_ratio_mt, embree_ratio_1t, peer_ratio_mt and peer_ratio_1t a number, null or absent);
+/// other keys are ignored. Errors are one line:
 /// "NAME: not valid JSON: ...", "NAME: expected a JSON array of rows ...",
 /// "NAME: row 3: missing key 'mrays_mt'", "NAME: row 3: 'n_rays' must be ..., got ...";
 /// rows count from 1.
@@ -161,9 +174,11 @@ struct ChartModel {
   std::string x_title, y_title, zero_label;
   std::vector<std::string> kernels;     ///< kernels in this group, legend order
   std::vector<std::string> structures;  ///< structures in this group, legend order
-  /// y of the faster Embree row (the dashed baseline), if the group has Embree rows.
+  /// y of the fastest peer row (Embree or tinybvh: the dashed baseline), if the group has
+  /// peer rows; baseline_row is that row (index into BenchData::rows; the first on a tie).
   std::optional<double> baseline_y;
   std::optional<float> baseline_fy;
+  std::optional<size_t> baseline_row;
   /// Width of the zero band as a fraction of the chart's width: kBandBase, plus
   /// kBandPerPoint for each point in it (at most kBandMax), so that its points do not pile up.
   float zero_band = kBandBase;
@@ -181,14 +196,23 @@ struct ChartModel {
 /// error rate, 1e-8..1e-6 for t errors). Needs a non-empty `data`.
 ChartModel make_chart(const BenchData& data, const ChartOptions& options);
 
-/// Legend order of the kernels: the core's (watertight, moller, double), embree, then any other.
+/// Legend order of the kernels: the core's (watertight, moller, double), the peers' (embree,
+/// tinybvh), then any other.
 int kernel_order(const std::string& kernel);
+/// The legend's name of a kernel: "Embree", "tinybvh" for the peers, else the name itself.
+std::string kernel_label(const std::string& kernel);
 /// Legend order of the structures: the registry's in lecture order with the reference
-/// (brute force) last, then Embree medium and high, then any other.
+/// (brute force) last, then the peers' (Embree medium and high; tinybvh BVH8, BVH4, BVH8
+/// HQ), then any other.
 int structure_order(const std::string& structure);
-/// The label of a bench row's structure: the registry's ("kd-tree"), "Embree med" /
-/// "Embree high" for the baselines, else the name itself.
+/// The label of a bench row's structure: the registry's ("kd-tree"), the chart's for the
+/// peers ("Embree med", "Embree high", "tinybvh 8", "tinybvh 4", "tinybvh 8 HQ"), else the
+/// name itself.
 std::string structure_label(const std::string& structure);
+/// The tooltip's line on a row against the fastest peer: "0.92x the fastest peer with all
+/// threads, 0.85x with 1"; "(a peer)" on peer rows; without a ratio (no peer rows, or a file older than the key)
+/// "- (none in the file)".
+std::string format_peer_ratio(const BenchRow& row);
 
 /// "650 of 20,000 (3.25%)": wrong answers, rays and the rate to 3 significant digits;
 /// "0 of 20,000" when there is none (a percentage would suggest a rounded small number).

@@ -24,7 +24,8 @@ namespace {
 // ============================================================================
 
 // Okabe-Ito colours: distinguishable with the common colour-vision deficiencies and on a
-// projector. The reference kernels are cool, the fast inexact one warm, Embree neutral.
+// projector. The reference kernels are cool, the fast inexact one warm; the peers each
+// have their own: Embree neutral, tinybvh bluish green.
 ImU32 kernel_color(const std::string& kernel, float alpha = 1.0f) {
   ImVec4 c;
   switch (kernel_order(kernel)) {
@@ -32,19 +33,24 @@ ImU32 kernel_color(const std::string& kernel, float alpha = 1.0f) {
     case 1: c = ImVec4(0.90f, 0.62f, 0.0f, 1.0f); break;    // moller: orange
     case 2: c = ImVec4(0.80f, 0.47f, 0.65f, 1.0f); break;   // double: reddish purple
     case 3: c = ImVec4(0.92f, 0.92f, 0.92f, 1.0f); break;   // embree: white
+    case 4: c = ImVec4(0.0f, 0.70f, 0.52f, 1.0f); break;    // tinybvh: bluish green (lightened)
     default: c = ImVec4(0.94f, 0.89f, 0.26f, 1.0f); break;  // anything else: yellow
   }
   c.w = alpha;
   return ImGui::ColorConvertFloat4ToU32(c);
 }
 
-enum class Shape { Square, Diamond, TriangleUp, Circle, TriangleDown, Cross, StarOutline, Star, Ring };
+enum class Shape {
+  Square, Diamond, TriangleUp, Circle, TriangleDown, Cross, StarOutline, Star, HexagonOutline, Plus, Hexagon, Ring
+};
 
 /// One marker shape per structure (structure_order's order), so a printed chart in grey
-/// still tells the structures apart.
+/// still tells the structures apart: the registry's, Embree's stars (medium outlined, high
+/// filled), tinybvh's hexagons (binned outlined, HQ filled) and its BVH4 plus, then rings.
 Shape structure_shape(const std::string& structure) {
-  static const Shape kShapes[] = {Shape::Square, Shape::Diamond,     Shape::TriangleUp, Shape::Circle, Shape::TriangleDown,
-                                  Shape::Cross,  Shape::StarOutline, Shape::Star,       Shape::Ring};
+  static const Shape kShapes[] = {Shape::Square,      Shape::Diamond, Shape::TriangleUp,     Shape::Circle,
+                                  Shape::TriangleDown, Shape::Cross,  Shape::StarOutline,    Shape::Star,
+                                  Shape::HexagonOutline, Shape::Plus, Shape::Hexagon,        Shape::Ring};
   return kShapes[std::min<size_t>(static_cast<size_t>(structure_order(structure)), std::size(kShapes) - 1)];
 }
 
@@ -60,7 +66,30 @@ void draw_marker(ImDrawList* dl, Shape shape, ImVec2 c, float r, ImU32 fill) {
     }
     return std::to_array(pts);
   };
+  auto hexagon = [&] {
+    std::array<ImVec2, 6> pts;
+    for (size_t i = 0; i < 6; ++i) {
+      const float a = -1.5707963f + static_cast<float>(i) * 1.0471976f;
+      pts[i] = ImVec2(c.x + 1.1f * r * std::cos(a), c.y + 1.1f * r * std::sin(a));
+    }
+    return pts;
+  };
   switch (shape) {
+    case Shape::Hexagon: {
+      const auto p = hexagon();
+      dl->AddConvexPolyFilled(p.data(), 6, fill);
+      dl->AddPolyline(p.data(), 6, outline, ImDrawFlags_Closed, t);
+      break;
+    }
+    case Shape::HexagonOutline: {
+      const auto p = hexagon();
+      dl->AddPolyline(p.data(), 6, fill, ImDrawFlags_Closed, 2.0f * t);
+      break;
+    }
+    case Shape::Plus:
+      dl->AddLine(ImVec2(c.x - 1.15f * r, c.y), ImVec2(c.x + 1.15f * r, c.y), fill, 2.5f * t);
+      dl->AddLine(ImVec2(c.x, c.y - 1.15f * r), ImVec2(c.x, c.y + 1.15f * r), fill, 2.5f * t);
+      break;
     case Shape::Square:
       dl->AddRectFilled(ImVec2(c.x - 0.85f * r, c.y - 0.85f * r), ImVec2(c.x + 0.85f * r, c.y + 0.85f * r), fill);
       dl->AddRect(ImVec2(c.x - 0.85f * r, c.y - 0.85f * r), ImVec2(c.x + 0.85f * r, c.y + 0.85f * r), outline, 0.0f, 0, t);
@@ -158,13 +187,16 @@ void row_tooltip(const BenchRow& r) {
       ImGui::TableSetColumnIndex(1);
       ImGui::TextUnformatted(value.c_str());
     };
-    row("kernel", r.is_embree() ? "Embree (rtcIntersect1): the baseline" : r.kernel);
+    row("kernel", r.is_embree()         ? "Embree (rtcIntersect1): a peer, the baseline of the Embree ratio"
+                  : r.kernel == "tinybvh" ? "tinybvh (its own CPU traversal): a peer"
+                                          : r.kernel);
     row("Mrays/s", fmt("%.3g", r.mrays_mt) + " with " + std::to_string(r.threads) + " threads, " +
                        fmt("%.3g", r.mrays_1t) + " with 1");
     std::string ratio = r.is_embree() ? "(baseline)" : r.embree_ratio_mt ? fmt("%.2fx with all threads", *r.embree_ratio_mt)
                                                                          : "- (no Embree rows)";
     if (r.embree_ratio_1t) ratio += fmt(", %.2fx with 1", *r.embree_ratio_1t);
     row("vs Embree", ratio);
+    row("vs fastest peer", format_peer_ratio(r));
     row("wrong answers", format_error_rate(r.wrong_answers(), r.n_rays));
     row("", std::to_string(r.false_miss) + " false misses, " + std::to_string(r.false_hit) + " false hits, " +
                 std::to_string(r.wrong_prim) + " wrong triangles");
@@ -283,12 +315,16 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
     taken.push_back(ImVec4(where[i].x - r, where[i].y - r, where[i].x + r, where[i].y + r));
   }
   clip_push();
-  // Embree's best speed as a dashed line across the plot, labelled where no marker is.
+  // The fastest peer's speed as a dashed line across the plot in its kernel's colour,
+  // labelled where no marker is.
+  const std::string baseline_kernel = m.baseline_row ? data.rows[*m.baseline_row].kernel : std::string("embree");
   if (m.baseline_fy) {
     const float y = py(*m.baseline_fy);
-    const ImU32 c = kernel_color("embree", 0.55f);
+    const ImU32 c = kernel_color(baseline_kernel, 0.55f);
     for (float x = p0.x; x < p1.x; x += 0.9f * em) dl->AddLine(ImVec2(x, y), ImVec2(std::min(x + 0.5f * em, p1.x), y), c, 1.5f);
-    const char* label = "Embree (baseline)";
+    const std::string label_text =
+        "fastest peer" + (m.baseline_row ? " (" + structure_label(data.rows[*m.baseline_row].structure) + ")" : "");
+    const char* label = label_text.c_str();
     const ImVec2 ts = text_size(label);
     bool placed = false;
     for (float fx : {0.02f, 0.35f, 0.65f}) {
@@ -298,18 +334,20 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
         if (placed || box.z > p1.x || box.y < p0.y || box.w > p1.y ||
             std::any_of(taken.begin(), taken.end(), [&](const ImVec4& t) { return overlaps(box, t); }))
           continue;
-        dl->AddText(ImVec2(box.x, box.y), kernel_color("embree", 0.8f), label);
-        taken.push_back(box);
+        dl->AddText(ImVec2(box.x, box.y), kernel_color(baseline_kernel, 0.8f), label);
+        // Point labels keep half an em from it: "Embree high fastest peer (...)" would
+        // read as one label.
+        taken.push_back(ImVec4(box.x - 0.5f * em, box.y, box.z + 0.5f * em, box.w));
         placed = true;
       }
     }
     taken.push_back(ImVec4(p0.x, y - 1.0f, p1.x, y + 1.0f));  // point labels keep off the line
   }
-  // Embree first so that the structures' markers stay on top of the baseline's.
+  // Peers first so that the structures' markers stay on top of the peers'.
   std::vector<size_t> order(m.points.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return data.rows[m.points[a].row].is_embree() > data.rows[m.points[b].row].is_embree();
+    return data.rows[m.points[a].row].is_peer() > data.rows[m.points[b].row].is_peer();
   });
   for (size_t i : order) {
     const BenchRow& row = data.rows[m.points[i].row];
@@ -380,7 +418,7 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
   y += line;
   for (const std::string& k : m.kernels) {
     dl->AddRectFilled(ImVec2(x, y + 0.2f * em), ImVec2(x + 0.9f * em, y + 1.0f * em), kernel_color(k), 2.0f);
-    dl->AddText(ImVec2(x + 1.4f * em, y), text, k == "embree" ? "Embree" : k.c_str());
+    dl->AddText(ImVec2(x + 1.4f * em, y), text, kernel_label(k).c_str());
     y += line;
   }
   y += 0.5f * em;
@@ -393,10 +431,10 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
   }
   if (m.baseline_fy) {
     y += 0.5f * em;
-    const ImU32 c = kernel_color("embree", 0.7f);
+    const ImU32 c = kernel_color(baseline_kernel, 0.7f);
     for (float d = 0.0f; d < 1.0f * em; d += 0.45f * em)
       dl->AddLine(ImVec2(x + d, y + 0.6f * em), ImVec2(x + d + 0.25f * em, y + 0.6f * em), c, 1.5f);
-    dl->AddText(ImVec2(x + 1.4f * em, y), text, "Embree's best");
+    dl->AddText(ImVec2(x + 1.4f * em, y), text, "fastest peer");
   }
 }
 
@@ -485,8 +523,8 @@ void bench_chart_window(BenchChartState& state, glm::vec2 pos, glm::vec2 size, b
   const ChartModel m = make_chart(data, o);
   char caption[320];
   std::snprintf(caption, sizeof caption,
-                "Up and left is better: faster and fewer wrong answers. Colour = ray/triangle test, shape = "
-                "structure; the green band holds the rows with %s; hover a point for its numbers.",
+                "Up and left is better: faster and fewer wrong answers. Colour = ray/triangle test or peer "
+                "library, shape = structure; the dashed line is the fastest peer; the green band holds the rows with %s; hover a point for its numbers.",
                 o.x == ChartX::ErrorRate ? "no wrong answer" : "exact hit distances");
   if (ImGui::GetContentRegionAvail().y < 22.0f * em) {
     // A small window keeps its height for the chart: the caption becomes a tooltip.

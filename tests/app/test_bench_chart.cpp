@@ -51,38 +51,65 @@ BenchData parsed_bench(const std::vector<std::string>& rows) {
 
 TEST(BenchChart, LoadsTheCheckedInFile) {
   // Made by accelviz-cli bench (tests/app/data/README.md says how): two groups, the first
-  // with every structure, three kernels and Embree, the second with no wrong answer at all.
+  // with every structure, three kernels and both peers (Embree, tinybvh), the second with
+  // no wrong answer in the core's kernels.
   auto loaded = load_bench_json(ACCEL_TEST_DATA_DIR "/bench_chart.json");
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
   const BenchData& d = loaded.value();
-  ASSERT_EQ(d.rows.size(), 23u);
+  ASSERT_EQ(d.rows.size(), 29u);
   ASSERT_EQ(d.groups.size(), 2u);
   EXPECT_EQ(d.groups[0].label(), "bunny.obj, bunny_edges_20k.txt");
-  EXPECT_EQ(d.groups[0].rows.size(), 17u);
+  EXPECT_EQ(d.groups[0].rows.size(), 20u);
   EXPECT_EQ(d.groups[1].label(), "procedural:cornell, random:2000:1");
-  EXPECT_EQ(d.groups[1].rows.size(), 6u);
+  EXPECT_EQ(d.groups[1].rows.size(), 9u);
   EXPECT_EQ(d.groups[1].n_rays, 2000u);
-  size_t embree = 0;
+  size_t embree = 0, tinybvh = 0;
   for (const BenchRow& r : d.rows) {
     EXPECT_GT(r.mrays_mt, 0.0);
     if (r.is_embree()) {
       ++embree;
+      EXPECT_TRUE(r.is_peer());
       EXPECT_FALSE(r.embree_ratio_mt.has_value());
     } else {
       EXPECT_TRUE(r.embree_ratio_mt.has_value()) << r.structure;
+      EXPECT_TRUE(r.embree_ratio_1t.has_value()) << r.structure;
     }
+    if (r.kernel == "tinybvh") {
+      ++tinybvh;
+      EXPECT_TRUE(r.is_peer());
+      EXPECT_FALSE(r.is_embree());
+      EXPECT_TRUE(r.structure.starts_with("tinybvh-")) << r.structure;
+    }
+    // The bench writes peer ratios on every row but the peers' own.
+    EXPECT_EQ(r.peer_ratio_mt.has_value(), !r.is_peer()) << r.structure;
+    EXPECT_EQ(r.peer_ratio_1t.has_value(), !r.is_peer()) << r.structure;
     if (r.kernel == "watertight" || r.kernel == "double") {
       EXPECT_EQ(r.wrong_answers(), 0u) << r.structure;
     }
   }
   EXPECT_EQ(embree, 4u);
+  EXPECT_EQ(tinybvh, 6u);
 
   const ChartModel m = make_chart(d, ChartOptions{});
-  EXPECT_EQ(m.points.size(), 17u);
-  EXPECT_EQ(m.kernels, (std::vector<std::string>{"watertight", "moller", "double", "embree"}));
+  EXPECT_EQ(m.points.size(), 20u);
+  EXPECT_EQ(m.kernels, (std::vector<std::string>{"watertight", "moller", "double", "embree", "tinybvh"}));
   EXPECT_EQ(m.structures, (std::vector<std::string>{"grid", "octree", "kdtree", "bvh", "spheretree", "embree-medium",
-                                                    "embree-high"}));
+                                                    "embree-high", "tinybvh-bvh8", "tinybvh-bvh4", "tinybvh-bvh8-hq"}));
+  // The baseline is the fastest peer row of the group, and each accelviz row's peer ratio
+  // is its speed over that row's (the file's ratios are rounded to 4 digits).
   ASSERT_TRUE(m.baseline_y.has_value());
+  ASSERT_TRUE(m.baseline_row.has_value());
+  const BenchRow& fastest = d.rows[*m.baseline_row];
+  EXPECT_TRUE(fastest.is_peer());
+  for (size_t i : d.groups[0].rows) {
+    const BenchRow& r = d.rows[i];
+    if (r.is_peer()) {
+      EXPECT_LE(r.mrays_mt, *m.baseline_y) << r.structure;
+    } else {
+      EXPECT_NEAR(*r.peer_ratio_mt, r.mrays_mt / fastest.mrays_mt, 1e-3) << r.structure << " " << r.kernel;
+    }
+  }
+  EXPECT_DOUBLE_EQ(*m.baseline_y, fastest.mrays_mt);
 }
 
 TEST(BenchChart, BadFilesGiveOneLineNamingFileRowAndKey) {
@@ -138,6 +165,79 @@ TEST(BenchChart, BadFilesGiveOneLineNamingFileRowAndKey) {
   auto bad_1t = parse_bench_json(bench_array({bench_row({{"embree_ratio_1t", "true"}})}), "t.json");
   ASSERT_FALSE(bad_1t.ok());
   EXPECT_EQ(bad_1t.error().message, "t.json: row 1: 'embree_ratio_1t' must be a non-negative number or null, got true");
+}
+
+TEST(BenchChart, PeerRatiosAreOptionalNumbers) {
+  // peer_ratio_mt / _1t: a number, null (a run without peers) or absent (peer rows, files
+  // older than the key), like the Embree ratios.
+  const BenchData d = parsed_bench({bench_row({{"peer_ratio_mt", "0.92"}, {"peer_ratio_1t", "0.85"}}),
+                                    bench_row({{"peer_ratio_mt", "null"}, {"peer_ratio_1t", "null"}}),
+                                    bench_row(), bench_row({{"peer_ratio_mt", "1.5"}})});
+  ASSERT_EQ(d.rows.size(), 4u);
+  EXPECT_DOUBLE_EQ(d.rows[0].peer_ratio_mt.value(), 0.92);
+  EXPECT_DOUBLE_EQ(d.rows[0].peer_ratio_1t.value(), 0.85);
+  EXPECT_FALSE(d.rows[1].peer_ratio_mt.has_value());
+  EXPECT_FALSE(d.rows[1].peer_ratio_1t.has_value());
+  EXPECT_FALSE(d.rows[2].peer_ratio_mt.has_value());
+  EXPECT_FALSE(d.rows[2].peer_ratio_1t.has_value());
+  EXPECT_DOUBLE_EQ(d.rows[3].peer_ratio_mt.value(), 1.5);
+  EXPECT_FALSE(d.rows[3].peer_ratio_1t.has_value());
+  EXPECT_EQ(format_peer_ratio(d.rows[0]), "0.92x the fastest peer with all threads, 0.85x with 1");
+  EXPECT_EQ(format_peer_ratio(d.rows[1]), "- (none in the file)");
+  EXPECT_EQ(format_peer_ratio(d.rows[3]), "1.50x the fastest peer with all threads");
+  const BenchData peer = parsed_bench({bench_row({{"structure", "\"tinybvh-bvh8\""}, {"kernel", "\"tinybvh\""}})});
+  EXPECT_EQ(format_peer_ratio(peer.rows[0]), "(a peer)");
+  for (const char* key : {"peer_ratio_mt", "peer_ratio_1t"}) {
+    auto bad = parse_bench_json(bench_array({bench_row({{key, "\"fast\""}})}), "t.json");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_EQ(bad.error().message,
+              std::string("t.json: row 1: '") + key + "' must be a non-negative number or null, got \"fast\"");
+  }
+  auto negative = parse_bench_json(bench_array({bench_row({{"peer_ratio_1t", "-0.5"}})}), "t.json");
+  ASSERT_FALSE(negative.ok());
+}
+
+TEST(BenchChart, BaselineIsTheFastestPeer) {
+  // Embree and tinybvh rows are both peers; the dashed line is at the fastest of them, for
+  // the speed shown (here tinybvh with all threads, Embree with one). The peers' wrong
+  // answers place them on the error axis like any row.
+  const BenchData d = parsed_bench({
+      bench_row({{"mrays_mt", "6"}, {"mrays_1t", "3"}, {"peer_ratio_mt", "0.6667"}, {"peer_ratio_1t", "0.75"}}),
+      bench_row({{"structure", "\"embree-medium\""}, {"kernel", "\"embree\""}, {"embree_ratio_mt", ""},
+                 {"mrays_mt", "7"}, {"mrays_1t", "4"}, {"false_hit", "4"}}),
+      bench_row({{"structure", "\"tinybvh-bvh8\""}, {"kernel", "\"tinybvh\""}, {"mrays_mt", "9"},
+                 {"mrays_1t", "3.5"}, {"wrong_prim", "20"}}),
+      bench_row({{"structure", "\"tinybvh-bvh4\""}, {"kernel", "\"tinybvh\""}, {"mrays_mt", "8"}, {"mrays_1t", "3.9"}}),
+  });
+  EXPECT_FALSE(d.rows[0].is_peer());
+  EXPECT_TRUE(d.rows[1].is_peer() && d.rows[1].is_embree());
+  EXPECT_TRUE(d.rows[2].is_peer() && !d.rows[2].is_embree());
+  ChartOptions o;
+  ChartModel m = make_chart(d, o);
+  ASSERT_TRUE(m.baseline_y.has_value());
+  EXPECT_DOUBLE_EQ(*m.baseline_y, 9.0);
+  EXPECT_EQ(m.baseline_row, std::optional<size_t>(2));
+  EXPECT_DOUBLE_EQ(m.y.hi, 10.0);
+  EXPECT_FLOAT_EQ(m.baseline_fy.value(), 0.9f);
+  EXPECT_EQ(m.kernels, (std::vector<std::string>{"watertight", "embree", "tinybvh"}));
+  EXPECT_EQ(m.structures,
+            (std::vector<std::string>{"bvh", "embree-medium", "tinybvh-bvh8", "tinybvh-bvh4"}));
+  // Wrong answers of the peers: off the band, on the log axis (4 and 20 of 2000).
+  EXPECT_FALSE(m.points[1].zero);
+  EXPECT_FALSE(m.points[2].zero);
+  EXPECT_TRUE(m.points[3].zero);
+  EXPECT_DOUBLE_EQ(m.points[2].x, 0.01);
+  EXPECT_DOUBLE_EQ(m.x.lo, 1e-3);
+  EXPECT_FLOAT_EQ(m.points[2].fx, 1.0f);
+  o.speed = ChartSpeed::OneThread;
+  m = make_chart(d, o);
+  EXPECT_DOUBLE_EQ(*m.baseline_y, 4.0);
+  EXPECT_EQ(m.baseline_row, std::optional<size_t>(1));
+
+  // No peer at all: no baseline.
+  const ChartModel none = make_chart(parsed_bench({bench_row()}), ChartOptions{});
+  EXPECT_FALSE(none.baseline_y.has_value());
+  EXPECT_FALSE(none.baseline_row.has_value());
 }
 
 TEST(BenchChart, ErrorRateCountsWrongAnswersNotWrongT) {
@@ -340,7 +440,7 @@ TEST(BenchChart, OptionsAndWindowState) {
   EXPECT_TRUE(st.error().message.starts_with(ACCEL_TEST_DATA_DIR "/bench_malformed.json: not valid JSON: "));
   EXPECT_EQ(state.error, st.error().message);
   ASSERT_TRUE(state.data.has_value());
-  EXPECT_EQ(state.data->rows.size(), 23u);
+  EXPECT_EQ(state.data->rows.size(), 29u);
   EXPECT_EQ(state.options.group, 1u);
 }
 
@@ -355,13 +455,28 @@ TEST(BenchChart, LabelsAndOrderFromTheRegistry) {
   EXPECT_EQ(structure_label("embree-high"), "Embree high");
   EXPECT_LT(structure_order("brute"), structure_order("embree-medium"));
   EXPECT_LT(structure_order("embree-medium"), structure_order("embree-high"));
+  // tinybvh's rows: after Embree's, in the bench's order, with short labels.
+  EXPECT_EQ(structure_label("tinybvh-bvh8"), "tinybvh 8");
+  EXPECT_EQ(structure_label("tinybvh-bvh4"), "tinybvh 4");
+  EXPECT_EQ(structure_label("tinybvh-bvh8-hq"), "tinybvh 8 HQ");
+  EXPECT_LT(structure_order("embree-high"), structure_order("tinybvh-bvh8"));
+  EXPECT_LT(structure_order("tinybvh-bvh8"), structure_order("tinybvh-bvh4"));
+  EXPECT_LT(structure_order("tinybvh-bvh4"), structure_order("tinybvh-bvh8-hq"));
   // Anything else: its name, last.
   EXPECT_EQ(structure_label("mystery"), "mystery");
-  EXPECT_LT(structure_order("embree-high"), structure_order("mystery"));
-  // Kernels: the core's order, then Embree.
+  EXPECT_LT(structure_order("tinybvh-bvh8-hq"), structure_order("mystery"));
+  // Kernels: the core's order, then the peers (Embree, tinybvh), then any other.
   for (size_t i = 0; i < std::size(accel::kAllKernels); ++i)
     EXPECT_EQ(kernel_order(std::string(accel::kernel_name(accel::kAllKernels[i]))), static_cast<int>(i));
-  EXPECT_EQ(kernel_order("embree"), static_cast<int>(std::size(accel::kAllKernels)));
+  const int core = static_cast<int>(std::size(accel::kAllKernels));
+  EXPECT_EQ(kernel_order("embree"), core);
+  EXPECT_EQ(kernel_order("tinybvh"), core + 1);
+  EXPECT_EQ(kernel_order("mystery"), core + 2);
+  EXPECT_EQ(kernel_label("embree"), "Embree");
+  EXPECT_EQ(kernel_label("tinybvh"), "tinybvh");
+  EXPECT_EQ(kernel_label("moller"), "moller");
+  EXPECT_TRUE(BenchRow::is_peer_kernel("tinybvh"));
+  EXPECT_FALSE(BenchRow::is_peer_kernel("watertight"));
 }
 
 }  // namespace
