@@ -265,6 +265,7 @@ std::vector<HardConfig> hard_configs() {
           {"bvh", {"builder=bottom_up", "traversal=dfs"}},
           {"bvh", {"width=2"}},
           {"bvh", {"width=4"}},
+          {"bvh", {"width=8"}},
           {"spheretree", {}}};
 }
 

@@ -10,7 +10,7 @@ void add_hierarchy_option_lines(const BvhBuildOptions& options, TraversalOrder o
 
 std::unique_ptr<Structure> make_bvh(const ParamSet& params) {
   // The layout is a class, not a branch in every query: width is read once, here.
-  switch (hierarchy_options(params).width) {
+  switch (hierarchy_options(params).resolved_width()) {
     case 2: return std::make_unique<BinaryBvh>();
     case 8: return std::make_unique<WideBvh8>();
     default: return std::make_unique<WideBvh>();

@@ -1,5 +1,7 @@
 #include "structures/hierarchy_params.h"
 
+#include "isa.h"
+
 namespace accel {
 namespace {
 
@@ -37,10 +39,11 @@ ParamTable<HierarchyOptions> make_table(bool with_width) {
                   "node order: depth-first in tree order, nearer child first with skipping, or a priority queue by "
                   "entry distance (lecture)");
   if (with_width)
-    table.choice("width", &O::width, std::vector<std::pair<std::string, int>>{{"2", 2}, {"4", 4}, {"8", 8}},
+    table.choice("width", &O::width,
+                 std::vector<std::pair<std::string, int>>{{"auto", O::kAutoWidth}, {"2", 2}, {"4", 4}, {"8", 8}},
                  "children per node: 2 is the lecture's binary tree, 4 collapses it into nodes whose four boxes are "
                  "tested at once with SSE2, 8 into nodes of eight boxes tested with AVX-512 or AVX2 when the CPU has "
-                 "them (SSE2 in two halves otherwise)");
+                 "them (SSE2 in two halves otherwise); auto is 8 with AVX2, else 4");
   return table;
 }
 
@@ -53,6 +56,12 @@ const ParamTable<HierarchyOptions>& hierarchy_param_table(bool with_width) {
 
 HierarchyOptions hierarchy_options(const ParamSet& params) {
   return hierarchy_param_table(params.has("width")).apply(params);
+}
+
+int HierarchyOptions::resolved_width() const {
+  if (width != kAutoWidth) return width;
+  // Without AVX2 the 8-wide node is two SSE2 halves: the 4-wide tree runs fewer instructions.
+  return active_isa() >= Isa::Avx2 ? 8 : 4;
 }
 
 }  // namespace accel

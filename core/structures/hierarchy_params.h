@@ -18,9 +18,12 @@ enum class TraversalOrder : uint8_t {
 struct HierarchyOptions {
   BvhBuildOptions build;
   TraversalOrder traversal = TraversalOrder::Ordered;
-  /// bvh only: children per stored node (2 binary, 4 wide SSE2, 8 wide AVX-512/AVX2/SSE2).
-  /// 8 by default: the fastest on every shared mesh (README, "Single-ray speed").
-  int width = 8;
+  /// bvh only: children per stored node (2 binary, 4 wide SSE2, 8 wide AVX-512/AVX2/SSE2),
+  /// or kAutoWidth (the default): 8 on a CPU with AVX2 (isa.h, capped by ACCEL_ISA), else 4.
+  int width = kAutoWidth;
+  static constexpr int kAutoWidth = 0;
+  /// The width `width` stands for on this CPU.
+  int resolved_width() const;
 };
 
 /// The declaration: builder parameters and `traversal`, plus `width` when `with_width`
