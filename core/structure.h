@@ -149,12 +149,15 @@ class StructureWithTraversal : public Structure {
 
 /// Takes the outcome of testing triangle `prim` into `closest` (whose t is the current
 /// tmax). The first hit in [tmin, tmax] counts even at t == tmax (inclusive); later ones
-/// only when strictly closer, so ties keep the first triangle found.
+/// only when strictly closer, so ties keep the first triangle found. A triangle that is
+/// already the closest hit never replaces itself: structures that hold a triangle in several
+/// leaves or cells (kd-tree, grid, octree, bvh builder=sbvh) may test it again, and near tmax
+/// the test's double-precision fallback could return a t an ulp or so below its first one.
 template <TraversalSink Sink>
 ACCEL_FORCE_INLINE bool take_triangle_result(uint32_t prim, bool hit, const TriangleHit& th, Hit& closest,
                                              Sink& sink) {
   sink.test_prim(prim, hit, th.t);
-  if (hit && (closest.prim < 0 || th.t < closest.t)) {
+  if (hit && (closest.prim < 0 || (th.t < closest.t && closest.prim != int32_t(prim)))) {
     closest = Hit{int32_t(prim), th.t, th.u, th.v};
     sink.new_closest(prim, th.t);
     return true;

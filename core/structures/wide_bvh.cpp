@@ -16,6 +16,7 @@ void WideBvh::clear() {
   child_ids_.clear();
   blocks_.clear();
   prim_count_ = 0;
+  triangle_count_ = 0;
 }
 
 namespace {
@@ -203,6 +204,7 @@ void WideBvh::collapse(const Scene& scene, const BuildTree& tree) {
   clear();
   if (tree.empty()) return;
   prim_count_ = tree.prims.size();
+  triangle_count_ = scene.valid_prims().size();  // every builder places each valid triangle (sbvh: at least once)
   const std::vector<uint32_t> size = binary_subtree_sizes(tree);
 
   // Plan the top: wide nodes over binary subtrees of kCollapseTaskNodes or more. A child
@@ -373,7 +375,7 @@ size_t WideBvh::memory_bytes() const {
 BuildStats WideBvh::compute_stats() const {
   BuildStats s;
   s.nodes = entries_.size();
-  s.prims = prim_count_;
+  s.prims = triangle_count_;
   s.prim_references = prim_count_;
   s.memory_bytes = memory_bytes();
   s.sah_ct = options_.ct;
