@@ -76,7 +76,10 @@ class Structure {
   /// spheres (fitted as the build fits them) -- the fastest "rebuild" when the vertices move
   /// but the triangles do not (an animation). Afterwards queries return exactly the hits of
   /// docs/hits.md on the moved scene, and refitting to unmoved vertices reproduces the
-  /// build's bounds. The tree's quality (SAH cost) may degrade as the vertices travel far
+  /// build's bounds -- except after spatial splits (bvh/spheretree builder=sbvh), whose
+  /// boxes were clipped to split planes the moved triangles may cross: their refitted boxes
+  /// are the triangles' whole boxes (conservative, so still exact hits, at a higher SAH
+  /// cost; rebuild to get the clipped boxes back). The tree's quality (SAH cost) may degrade as the vertices travel far
   /// from where it was built: rebuild now and then. `scene` (usually the one built
   /// over, moved in place) replaces the build's scene: it must outlive the structure. Not
   /// concurrently with queries. Timed (BuildStats::refit_ms); deterministic whatever the
