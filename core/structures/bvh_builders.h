@@ -40,7 +40,7 @@ struct BvhBuildOptions {
   int leaf_size = 4;     ///< max triangles per leaf
   /// sbvh: a node tries a spatial split when its best object split's children overlap by
   /// more than this fraction of the root's surface area (Stich et al.'s alpha).
-  float sbvh_alpha = 1e-5f;
+  double sbvh_alpha = 1e-5;
   /// sbvh: at most this many references per triangle over the whole tree (1: object splits
   /// only). The budget is handed down, split between the children by their reference
   /// counts, so the tree does not depend on the build order.

@@ -213,7 +213,7 @@ struct SharedProgress {
 
   bool stop() const { return stopped.load(std::memory_order_relaxed); }
   void placed_leaf(double weight) {
-    if (!span) return;
+    if (!span || stop()) return;  // cancelled: report nothing more
     const uint64_t done = placed.fetch_add(uint64_t(weight * kScale), std::memory_order_relaxed) +
                           uint64_t(weight * kScale);
     const bool go_on = std::this_thread::get_id() == reporter ? span->advance(std::min(1.0, double(done) / kScale))
@@ -272,7 +272,7 @@ class SpatialBuilder {
         partitioned = object_.partition(r, object, ol, orr);
         if (partitioned) {
           Aabb both = ol.box.aabb();
-          overlap = clip_to(both, orr.box.aabb()) && both.area() > o_.sbvh_alpha * root_area_;
+          overlap = clip_to(both, orr.box.aabb()) && double(both.area()) > o_.sbvh_alpha * double(root_area_);
         }
       }
       if (overlap) spatial = find_spatial(refs, r, t.budget, id);
@@ -294,7 +294,7 @@ class SpatialBuilder {
       return false;
     }
     size_t added = 0;  // references the split added
-    bool done = use_spatial && spatial_split(refs, r, spatial, left, right, id, leaf_cost);
+    const bool done = use_spatial && spatial_split(refs, r, spatial, left, right, id, leaf_cost);
     if (done) {
       added = left.refs.size() + right.refs.size() - n;
     } else {
@@ -338,6 +338,19 @@ class SpatialBuilder {
   /// object split's bins), where a reference spans many bins and chopping it is the cost.
   static int spatial_bins(size_t n) { return int(std::min<size_t>(kSpatialBins, 4 + n / 2)); }
 
+  /// How many of the planes pos[1..nb) are <= x (planes_at_or_below) or < x (planes_below),
+  /// from a guess in [0, nb): pos is non-decreasing, so walking from the guess is exact.
+  static int planes_at_or_below(const float* pos, int nb, int k, float x) {
+    while (k + 1 < nb && pos[k + 1] <= x) ++k;
+    while (k > 0 && pos[k] > x) --k;
+    return k;
+  }
+  static int planes_below(const float* pos, int nb, int k, float x) {
+    while (k + 1 < nb && pos[k + 1] < x) ++k;
+    while (k > 0 && pos[k] >= x) --k;
+    return k;
+  }
+
   /// The plane positions of `nb` spatial bins on `axis`: pos[k] for k in [1, nb), non-decreasing.
   static void plane_positions(const Aabb& box, int axis, int nb, float* pos) {
     const float lo = box.min[axis], step = (box.max[axis] - lo) / float(nb);
@@ -359,13 +372,20 @@ class SpatialBuilder {
       if (!(box.max[a] - box.min[a] > 0.0f)) continue;
       float pos[kSpatialBins];
       plane_positions(box, a, nb, pos);
+      // The bin of x by arithmetic, a start for the exact count of planes (the planes are
+      // rounded, so the guess may be one off).
+      const float lo = box.min[a], scale = float(nb) / (box.max[a] - lo);
+      const auto guess = [&](float x) {
+        const float f = (x - lo) * scale;  // NaN (an infinite scale at x == lo) guesses 0
+        return f >= 0.0f ? (f < float(nb - 1) ? int(f) : nb - 1) : 0;
+      };
       Aabb bin_box[kSpatialBins];
       uint32_t enter[kSpatialBins] = {}, exit[kSpatialBins] = {};
       for (const Ref& ref : refs) {
         // Bin k lies between planes k and k + 1; a reference spans [first, last] (a flat one
         // on a plane belongs to the bin right of it).
-        const int first = int(std::upper_bound(pos + 1, pos + nb, ref.lo[a]) - (pos + 1));
-        const int last = std::max(first, int(std::lower_bound(pos + 1, pos + nb, ref.hi[a]) - (pos + 1)));
+        const int first = planes_at_or_below(pos, nb, guess(ref.lo[a]), ref.lo[a]);
+        const int last = std::max(first, planes_below(pos, nb, guess(ref.hi[a]), ref.hi[a]));
         ++enter[first];
         ++exit[last];
         Aabb rest = box_of(ref);
