@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "batch.h"
+#include "build_replay.h"
 #include "build_trace.h"
 #include "random.h"
 #include "ray_gen.h"
@@ -126,7 +127,15 @@ TEST(SpatialSplits, CrossingSliversAreSplitAndCostLessThanBinnedSah) {
   }
   // The recorded steps name the spatial splits.
   BuildRecorder recorder;
-  ASSERT_TRUE(build_structure("bvh", scene, {"builder=sbvh", "width=2"}, Kernel::Watertight, nullptr, &recorder));
+  auto recorded = build_structure("bvh", scene, {"builder=sbvh", "width=2"}, Kernel::Watertight, nullptr, &recorder);
+  ASSERT_TRUE(recorded);
+  // The replay counts every reference of the duplicated triangles and ends at the tree's cost.
+  BuildReplay replay(recorder.trace());
+  replay.seek(replay.steps());
+  const BuildStats rs = recorded.value()->build_stats();
+  EXPECT_EQ(replay.references(), rs.prim_references);
+  EXPECT_GT(replay.references(), n);
+  EXPECT_NEAR(replay.sah_cost(1.0, 1.0), rs.sah_cost, 1e-6 * rs.sah_cost);
   size_t spatial = 0, duplicated = 0;
   std::vector<uint32_t> node_refs;  // by node id: the references of its Node step
   for (const BuildEvent& e : recorder.trace().events) {
