@@ -141,7 +141,7 @@ void BuildRecorder::candidates(uint32_t id, int axis, const SplitCandidate* c, s
 }
 
 void BuildRecorder::split(uint32_t id, int axis, float pos, float cost, float leaf_cost, uint32_t left,
-                          uint32_t right, uint32_t straddling) {
+                          uint32_t right, uint32_t straddling, bool spatial) {
   if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Split, id)) {
     e->axis = int8_t(axis);
@@ -151,6 +151,7 @@ void BuildRecorder::split(uint32_t id, int axis, float pos, float cost, float le
     e->a = left;
     e->b = right;
     e->count = straddling;
+    e->values[1] = spatial ? 1.0f : 0.0f;
   }
 }
 
@@ -287,7 +288,7 @@ std::string describe_build_event(const BuildTrace& trace, const BuildEvent& e) {
              (e.list_count ? ", min C(B) = " + num(best) : std::string());
     }
     case BuildEventKind::Split:
-      return "split " + node + " on " + axis_name(e.axis) + " at " + num(e.pos) + ": " + std::to_string(e.a) +
+      return std::string(e.values[1] == 1.0f ? "spatial split " : "split ") + node + " on " + axis_name(e.axis) + " at " + num(e.pos) + ": " + std::to_string(e.a) +
              " left, " + std::to_string(e.b) + " right" +
              (e.count ? ", " + std::to_string(e.count) + " both" : std::string()) +
              (std::isnan(e.cost) ? std::string() : ", C(B) = " + num(e.cost) + " (leaf " + num(e.values[0]) + ")");
@@ -426,6 +427,7 @@ void write_build_trace_jsonl(const BuildTrace& trace, std::ostream& out) {
         out << ",\"leaf_cost\":";
         write_num(out, e.values[0]);
         out << ",\"left\":" << e.a << ",\"right\":" << e.b << ",\"both\":" << e.count;
+        if (e.values[1] == 1.0f) out << ",\"spatial\":true";
         break;
       case BuildEventKind::Leaf:
         out << ",\"reason\":\"" << leaf_reason_name(e.reason) << '"';

@@ -44,7 +44,8 @@ enum class BuildEventKind : uint8_t {
   Node,            ///< a node with its triangles: node, parent, depth, box, centroids, list = its triangles
   Axis,            ///< the split axis of node chosen: axis (0..2, 3 = PCA with direction dir)
   Candidates,      ///< node: the candidate splits along `axis` evaluated (candidates[first, first+count))
-  Split,           ///< node split: axis, pos, cost = C(B), values[0] = leaf cost; a,b = left,right counts; count = straddling (kd)
+  Split,           ///< node split: axis, pos, cost = C(B), values[0] = leaf cost; a,b = left,right counts; count = straddling
+                   ///< (kd; sbvh: references on both sides); values[1] = 1 for a BVH spatial split (sbvh), else 0
   Leaf,            ///< node becomes a leaf: reason, list = its triangles
   Subdivide,       ///< octree: node split into 8; list = child ids in octant order (children follow as Node)
   Merge,           ///< bottom-up: node = new cluster of a and b, box, cost = its area
@@ -125,7 +126,7 @@ struct NullBuildSink {
   void node(uint32_t, uint32_t, int, const Aabb&, const Aabb&, const uint32_t*, size_t) {}
   void axis(uint32_t, int, const Vec3&) {}
   void candidates(uint32_t, int, const SplitCandidate*, size_t) {}
-  void split(uint32_t, int, float, float, float, uint32_t, uint32_t, uint32_t) {}
+  void split(uint32_t, int, float, float, float, uint32_t, uint32_t, uint32_t, bool = false) {}
   void leaf(uint32_t, LeafReason, const uint32_t*, size_t) {}
   void subdivide(uint32_t, const uint32_t*) {}
   void merge(uint32_t, uint32_t, uint32_t, const Aabb&, float) {}
@@ -166,8 +167,10 @@ class BuildRecorder {
             size_t n);
   void axis(uint32_t id, int axis, const Vec3& dir);
   void candidates(uint32_t id, int axis, const SplitCandidate* c, size_t n);
+  /// `spatial`: a BVH spatial split (sbvh), whose `straddling` references were split in two
+  /// (values[1] = 1); otherwise an object split or a kd plane.
   void split(uint32_t id, int axis, float pos, float cost, float leaf_cost, uint32_t left, uint32_t right,
-             uint32_t straddling);
+             uint32_t straddling, bool spatial = false);
   void leaf(uint32_t id, LeafReason reason, const uint32_t* prims, size_t n);
   /// Octree: `id` subdivided into the 8 nodes `children` (octant order).
   void subdivide(uint32_t id, const uint32_t* children);

@@ -76,7 +76,10 @@ class Structure {
   /// spheres (fitted as the build fits them) -- the fastest "rebuild" when the vertices move
   /// but the triangles do not (an animation). Afterwards queries return exactly the hits of
   /// docs/hits.md on the moved scene, and refitting to unmoved vertices reproduces the
-  /// build's bounds. The tree's quality (SAH cost) may degrade as the vertices travel far
+  /// build's bounds -- except after spatial splits (bvh/spheretree builder=sbvh), whose
+  /// boxes were clipped to split planes the moved triangles may cross: their refitted boxes
+  /// are the triangles' whole boxes (conservative, so still exact hits, at a higher SAH
+  /// cost; rebuild to get the clipped boxes back). The tree's quality (SAH cost) may degrade as the vertices travel far
   /// from where it was built: rebuild now and then. `scene` (usually the one built
   /// over, moved in place) replaces the build's scene: it must outlive the structure. Not
   /// concurrently with queries. Timed (BuildStats::refit_ms); deterministic whatever the
@@ -149,12 +152,15 @@ class StructureWithTraversal : public Structure {
 
 /// Takes the outcome of testing triangle `prim` into `closest` (whose t is the current
 /// tmax). The first hit in [tmin, tmax] counts even at t == tmax (inclusive); later ones
-/// only when strictly closer, so ties keep the first triangle found.
+/// only when strictly closer, so ties keep the first triangle found. A triangle that is
+/// already the closest hit never replaces itself: structures that hold a triangle in several
+/// leaves or cells (kd-tree, grid, octree, bvh builder=sbvh) may test it again, and near tmax
+/// the test's double-precision fallback could return a t an ulp or so below its first one.
 template <TraversalSink Sink>
 ACCEL_FORCE_INLINE bool take_triangle_result(uint32_t prim, bool hit, const TriangleHit& th, Hit& closest,
                                              Sink& sink) {
   sink.test_prim(prim, hit, th.t);
-  if (hit && (closest.prim < 0 || th.t < closest.t)) {
+  if (hit && (closest.prim < 0 || (th.t < closest.t && closest.prim != int32_t(prim)))) {
     closest = Hit{int32_t(prim), th.t, th.u, th.v};
     sink.new_closest(prim, th.t);
     return true;

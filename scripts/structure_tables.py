@@ -29,7 +29,7 @@ def bvh_tables(scene, rays):
         print(f"\n`{structure}` on `{os.path.basename(scene)}`, rays `{rays}` (nodes visited / triangles tested per ray):\n")
         print("| builder | build ms | SAH cost | nodes | dfs | ordered | pqueue |")
         print("|---|---:|---:|---:|---:|---:|---:|")
-        for builder in ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion"):
+        for builder in ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion", "sbvh"):
             cells = []
             first = None
             for traversal in ("dfs", "ordered", "pqueue"):

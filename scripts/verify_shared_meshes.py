@@ -24,10 +24,10 @@ CONFIGS = [
     ("kdtree", []), ("kdtree", ["split=middle", "axis=round_robin"]), ("kdtree", ["split=median", "axis=longest"]),
     ("kdtree", ["split=middle", "axis=longest"]),
 ] + [("bvh", [f"builder={b}", f"traversal={t}"]) for b in
-     ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion") for t in ("dfs", "ordered", "pqueue")] + [
+     ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion", "sbvh") for t in ("dfs", "ordered", "pqueue")] + [
     ("bvh", ["width=2", f"traversal={t}"]) for t in ("dfs", "ordered", "pqueue")] + [
     ("spheretree", [f"builder={b}", f"traversal={t}"]) for b in
-    ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion") for t in ("ordered", "pqueue")]
+    ("median", "sah", "binned_sah", "pca_sah", "bottom_up", "insertion", "sbvh") for t in ("ordered", "pqueue")]
 
 
 def read_hits(path):

@@ -37,6 +37,7 @@ std::vector<Config> configs() {
       {"bvh", {"width=2"}},
       {"bvh", {"width=4"}},
       {"bvh", {"width=2", "builder=binned_sah"}},
+      {"bvh", {"width=4", "builder=sbvh"}},  // progress by subtree weights, not triangles
       {"spheretree", {}},
   };
 }

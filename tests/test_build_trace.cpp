@@ -184,6 +184,9 @@ std::vector<Config> all_configs() {
     c.push_back({s, {"builder=median", "axis=x", "leaf_size=1"}});
     c.push_back({s, {"builder=median", "axis=round_robin"}});
     c.push_back({s, {"builder=binned_sah", "bins=4", "leaf_size=2"}});
+    // Spatial splits (duplicate references), at every node the object split overlaps.
+    c.push_back({s, {"builder=sbvh", "sbvh_alpha=0"}});
+    if (std::string(s) == "bvh") c.push_back({s, {"builder=sbvh", "width=2", "bins=4", "leaf_size=2"}});
   }
   c.push_back({"bvh", {"width=4"}});  // the default is 8 wide: the 4-wide collapse too
   c.push_back({"bvh", {"width=4", "builder=bottom_up"}});

@@ -35,6 +35,9 @@ std::vector<SuiteCase> bvh_cases(const std::string& structure) {
   cases.push_back({structure, {"builder=median", "axis=x"}});
   cases.push_back({structure, {"builder=median", "axis=round_robin"}});
   cases.push_back({structure, {"builder=binned_sah", "bins=2"}});
+  // Spatial splits: two configurations only (the builder's own tests: test_bvh_spatial.cpp).
+  cases.push_back({structure, {"builder=sbvh", "traversal=ordered"}});
+  if (structure == "bvh") cases.push_back({structure, {"width=2", "builder=sbvh", "traversal=pqueue", "leaf_size=1"}});
   cases.push_back({structure, {"builder=sah", "ct=100", "ci=0.01"}});  // extreme costs: deep tree
   return cases;
 }

@@ -263,6 +263,8 @@ std::vector<HardConfig> hard_configs() {
           {"bvh", {}},
           {"bvh", {"builder=binned_sah", "traversal=pqueue"}},
           {"bvh", {"builder=bottom_up", "traversal=dfs"}},
+          {"bvh", {"builder=sbvh"}},
+          {"bvh", {"builder=sbvh", "width=2", "traversal=pqueue", "sbvh_alpha=0"}},
           {"bvh", {"width=2"}},
           {"bvh", {"width=4"}},
           {"bvh", {"width=8"}},

@@ -18,7 +18,8 @@ INSTANTIATE_TEST_SUITE_P(SphereTree, StructureVsReference,
                                            SuiteCase{"spheretree", {"builder=insertion", "traversal=dfs"}},
                                            SuiteCase{"spheretree", {"builder=sah", "traversal=pqueue", "leaf_size=1"}},
                                            SuiteCase{"spheretree", {"builder=bottom_up", "traversal=ordered"}},
-                                           SuiteCase{"spheretree", {"builder=insertion", "traversal=pqueue"}}),
+                                           SuiteCase{"spheretree", {"builder=insertion", "traversal=pqueue"}},
+                                           SuiteCase{"spheretree", {"builder=sbvh", "traversal=dfs"}}),
                          suite_case_name);
 }  // namespace testing
 

@@ -427,7 +427,7 @@ const PseudoCode& build_kd_code() {
 std::vector<std::pair<const char*, const char*>> hierarchy_tail() {
   return {
       {"unrecorded", "(below the recorded depth: built, not shown)"},
-      {"collapse", "width 4: node adopts its child's children"},
+      {"collapse", "width 4 / 8: node adopts its child's children"},
       {"fit", "fit each node's bounding volume (box / sphere)"},
       {"done", "done"},
   };
@@ -473,6 +473,20 @@ const PseudoCode& build_bvh_binned_code() {
       {"axis", "    for each axis x, y, z:"},
       {"candidates", "        bin the centres; C(B) at each bin boundary"},
       {"split", "    split at the minimum of C(B),"},
+      {"", "        unless the leaf is cheaper"},
+  });
+  return code;
+}
+
+const PseudoCode& build_bvh_spatial_code() {
+  static const PseudoCode code = top_down("BVH: top-down, spatial splits (Stich et al. 2009)", {
+      {"axis", "    for each axis x, y, z:"},
+      {"candidates", "        object split: bin the centres, C(B) per boundary;"},
+      {"", "        if the two boxes overlap: spatial split: cut the"},
+      {"", "        node's box into bins, clip each triangle into the"},
+      {"", "        bins it crosses, C(B) per bin boundary"},
+      {"split", "    split at the cheaper minimum (spatial: triangles"},
+      {"", "        on both sides go to both, with clipped boxes),"},
       {"", "        unless the leaf is cheaper"},
   });
   return code;
@@ -542,6 +556,7 @@ BuildCodeKind build_code_kind(const std::string& name, const std::vector<std::st
   if (b == "pca_sah") return BuildCodeKind::BvhPca;
   if (b == "bottom_up") return BuildCodeKind::BvhBottomUp;
   if (b == "insertion") return BuildCodeKind::BvhInsertion;
+  if (b == "sbvh") return BuildCodeKind::BvhSpatial;
   return BuildCodeKind::Unknown;
 }
 
@@ -557,6 +572,7 @@ const char* build_code_label(BuildCodeKind kind) {
     case BuildCodeKind::BvhPca: return "PCA + SAH";
     case BuildCodeKind::BvhBottomUp: return "bottom-up";
     case BuildCodeKind::BvhInsertion: return "insertion";
+    case BuildCodeKind::BvhSpatial: return "spatial splits";
     case BuildCodeKind::Unknown: break;
   }
   return "?";
@@ -574,6 +590,7 @@ const PseudoCode& build_pseudo_code(BuildCodeKind kind) {
     case BuildCodeKind::BvhPca: return build_bvh_pca_code();
     case BuildCodeKind::BvhBottomUp: return build_bvh_bottom_up_code();
     case BuildCodeKind::BvhInsertion: return build_bvh_insertion_code();
+    case BuildCodeKind::BvhSpatial: return build_bvh_spatial_code();
     case BuildCodeKind::Unknown: break;
   }
   return unknown_code();

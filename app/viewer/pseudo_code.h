@@ -68,6 +68,7 @@ enum class BuildCodeKind {
   BvhPca,       ///< top-down, SAH sweep along the PCA axis
   BvhBottomUp,  ///< agglomerative clustering
   BvhInsertion, ///< Goldsmith-Salmon insertion
+  BvhSpatial,   ///< binned SAH with spatial splits (SBVH)
   Unknown,
 };
 

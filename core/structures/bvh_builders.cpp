@@ -3,13 +3,14 @@
 //   [SECTION] Shared top-down framework (parallel recursion, leaf rule, fallback split, progress)
 //   [SECTION] Median split
 //   [SECTION] SAH sweep (all three axes) and PCA sweep
-//   [SECTION] Binned SAH: see bvh_binned_builder.cpp
+//   [SECTION] Binned SAH: see bvh_binned_builder.cpp; spatial splits (sbvh): bvh_spatial_builder.cpp
 //   [SECTION] Bottom-up: locally-ordered clustering
 //   [SECTION] Insertion (Goldsmith-Salmon)
 //   [SECTION] Collapse, depth limit and final layout for the bottom-up builders
 #include "structures/bvh_builders.h"
 
 #include "structures/bvh_binned_builder.h"
+#include "structures/bvh_spatial_builder.h"
 
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU (as in geometry.h)
 
@@ -43,6 +44,7 @@ const char* builder_name(BvhBuilderKind kind) {
     case BvhBuilderKind::PcaSah: return "pca_sah";
     case BvhBuilderKind::BottomUp: return "bottom_up";
     case BvhBuilderKind::Insertion: return "insertion";
+    case BvhBuilderKind::Sbvh: return "sbvh";
   }
   return "?";
 }
@@ -1179,6 +1181,7 @@ BuildTree build_insertion(const Scene& scene, const BvhBuildOptions& o, Progress
 BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                          BuildRecorder* recorder) {
   if (options.builder == BvhBuilderKind::BinnedSah) return build_binned_sah_tree(scene, options, progress, recorder);
+  if (options.builder == BvhBuilderKind::Sbvh) return build_spatial_split_tree(scene, options, progress, recorder);
   const auto run = [&](auto& sink) {
     switch (options.builder) {
       case BvhBuilderKind::BottomUp: return build_bottom_up(scene, options, progress, sink);

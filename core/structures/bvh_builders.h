@@ -22,6 +22,7 @@ enum class BvhBuilderKind : uint8_t {
   PcaSah,     ///< sweep along the principal axis of the centroids (lecture: "PCA", then SAH plane sweep)
   BottomUp,   ///< agglomerative clustering, locally ordered (Meister & Bittner 2018, "PLOC")
   Insertion,  ///< incremental insertion by least surface-area cost (Goldsmith & Salmon 1987)
+  Sbvh,       ///< binned SAH plus spatial splits (Stich, Friedrich & Dietrich 2009, "SBVH"): bvh_spatial_builder.h
 };
 
 /// Axis rule of the median builder.
@@ -37,6 +38,13 @@ struct BvhBuildOptions {
   /// crytek_sponza and spider; a node of n references uses at most 4 + n / 2 bins anyway.
   int bins = 64;
   int leaf_size = 4;     ///< max triangles per leaf
+  /// sbvh: a node tries a spatial split when its best object split's children overlap by
+  /// more than this fraction of the root's surface area (Stich et al.'s alpha).
+  double sbvh_alpha = 1e-5;
+  /// sbvh: at most this many references per triangle over the whole tree (1: object splits
+  /// only). The budget is handed down, split between the children by their reference
+  /// counts, so the tree does not depend on the build order.
+  float sbvh_budget = 1.5f;
   float ct = 1.0f;       ///< SAH cost of one traversal step
   float ci = 1.0f;       ///< SAH cost of one ray/triangle test
   /// Triangles one test handles: 1 for the binary tree's scalar test, 4 for the 4-wide
@@ -71,8 +79,12 @@ struct BuildTree {
 };
 
 /// Runs the chosen builder over scene.valid_prims(). Guarantees: every valid triangle is in
-/// exactly one leaf, leaves hold at most `leaf_size` triangles, each box bounds its subtree,
-/// and the depth stays below kMaxBvhDepth.
+/// exactly one leaf (sbvh: in at least one leaf, never twice in the same leaf, and every point
+/// of it lies in the box of a leaf that holds it and of that leaf's ancestors -- a spatial
+/// split puts a triangle in both children with boxes clipped to their sides, so prims may
+/// hold it several times and a box may be smaller than its triangles' boxes), leaves hold
+/// at most `leaf_size` triangles, each box bounds its subtree, the triangles below a node
+/// are contiguous in prims, and the depth stays below kMaxBvhDepth.
 /// `progress` (optional) receives the fraction of triangles placed in leaves so far; it is
 /// called from one thread at a time. When its advance() returns false (cancelled), the
 /// builder returns as soon as it can with an incomplete tree, which the caller discards.

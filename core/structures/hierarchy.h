@@ -30,7 +30,7 @@ namespace accel {
 void add_hierarchy_option_lines(const BvhBuildOptions& options, TraversalOrder order, BuildStats* stats);
 
 /// Refit's precondition, for every hierarchy layout (hierarchy_refit.cpp): the `held`
-/// triangles of the structure (each once, as every builder guarantees) are exactly
+/// distinct triangles of the structure (each once, or several times under sbvh) are exactly
 /// scene.valid_prims(). The layout scans its triangles and passes the first that is out of
 /// range or degenerate in `scene` (`bad`, or ~0u if none); the counts settle the rest.
 /// The error names `structure` and tells the caller to rebuild.
@@ -136,6 +136,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     boxes_.clear();
     depth_.clear();
     prims_.clear();
+    triangles_ = 0;
     return cancelled_error();
   }
 
@@ -161,6 +162,8 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// node's fitted volume, by the builder's event id.
   bool store_binary(const BuildTree& tree, ProgressSpan* span = nullptr, BuildRecorder* recorder = nullptr) {
     prims_ = tree.prims;
+    // Every builder places each valid triangle (sbvh: at least once; prims_ counts references).
+    triangles_ = tree.empty() ? 0 : scene_->valid_prims().size();
     if (tree.empty()) return true;
     nodes_.reserve(tree.nodes.size());
     std::vector<uint32_t> sources;
@@ -180,7 +183,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   BuildStats compute_stats() const override {
     BuildStats s;
     s.nodes = nodes_.size();
-    s.prims = prims_.size();
+    s.prims = triangles_;
     s.prim_references = prims_.size();
     s.memory_bytes = nodes_.size() * sizeof(Node) + prims_.size() * sizeof(uint32_t);
     s.sah_ct = options_.ct;
@@ -212,6 +215,7 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   std::vector<Aabb> boxes_;        ///< subtree boxes, for drawing (the sphere tree's volume is a sphere)
   std::vector<uint16_t> depth_;
   std::vector<uint32_t> prims_;
+  size_t triangles_ = 0;  ///< distinct triangles in prims_ (fewer than prims_.size() after spatial splits)
 
  private:
   /// Depth-first flattening of the topology (the first child directly follows its

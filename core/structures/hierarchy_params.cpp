@@ -16,9 +16,11 @@ ParamTable<HierarchyOptions> make_table(bool with_width) {
                                                          {"binned_sah", K::BinnedSah},
                                                          {"pca_sah", K::PcaSah},
                                                          {"bottom_up", K::BottomUp},
-                                                         {"insertion", K::Insertion}},
+                                                         {"insertion", K::Insertion},
+                                                         {"sbvh", K::Sbvh}},
                   "how the tree is built: top-down median split, SAH plane sweep on all axes, binned SAH, SAH sweep "
-                  "along the PCA axis, bottom-up agglomerative clustering, or Goldsmith-Salmon insertion")
+                  "along the PCA axis, bottom-up agglomerative clustering, Goldsmith-Salmon insertion, or binned SAH "
+                  "with spatial splits (SBVH: a triangle may be in several leaves)")
           .choice("axis", [](O& o) -> auto& { return o.build.axis; },
                   std::vector<std::pair<std::string, MedianAxis>>{{"x", MedianAxis::X},
                                                                  {"round_robin", MedianAxis::RoundRobin},
@@ -26,7 +28,12 @@ ParamTable<HierarchyOptions> make_table(bool with_width) {
                   "median builder only: split axis always x, cycling x,y,z by depth, or the longest extent of the "
                   "centres")
           .integer("bins", [](O& o) -> auto& { return o.build.bins; }, 2, 256,
-                   "binned_sah only: bins per axis (a node of n triangles uses at most 4 + n/2)")
+                   "binned_sah and sbvh: bins per axis (a node of n triangles uses at most 4 + n/2)")
+          .number("sbvh_alpha", [](O& o) -> auto& { return o.build.sbvh_alpha; }, 0.0, 1.0,
+                  "sbvh only: try a spatial split when the object split's children overlap by more than this "
+                  "fraction of the root's area (0: at every node)")
+          .number("sbvh_budget", [](O& o) -> auto& { return o.build.sbvh_budget; }, 1.0, 4.0,
+                  "sbvh only: at most this many triangle references per triangle (1: no spatial splits)")
           .integer("leaf_size", [](O& o) -> auto& { return o.build.leaf_size; }, 1, 64,
                    "maximum number of triangles in a leaf")
           .number("ct", [](O& o) -> auto& { return o.build.ct; }, 0.001, 1000,

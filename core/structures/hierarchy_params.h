@@ -1,6 +1,7 @@
 #pragma once
 // The parameters of the two hierarchies (bvh, spheretree), declared once: the builder's
-// (builder, axis, bins, leaf_size, ct, ci), the traversal order, and the BVH's node width.
+// (builder, axis, bins, sbvh_alpha, sbvh_budget, leaf_size, ct, ci), the traversal order, and
+// the BVH's node width.
 #include "params.h"
 #include "structures/bvh_builders.h"
 

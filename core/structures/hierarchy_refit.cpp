@@ -46,7 +46,7 @@ Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
       },
       [](size_t a, size_t b) { return std::min(a, b); });
   const uint32_t bad = bad_at < prims_.size() ? prims_[bad_at] : ~0u;
-  if (Status s = check_refit_prims(this->name(), scene, prims_.size(), bad); !s) return s;
+  if (Status s = check_refit_prims(this->name(), scene, triangles_, bad); !s) return s;
   if (!nodes_.empty()) {
     // A box is its own volume: one pass. A sphere is fitted to every vertex below it, as
     // fit_volumes() does, from the triangle range the bottom-up pass records: a second pass,

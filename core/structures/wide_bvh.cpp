@@ -18,6 +18,7 @@ void WideBvhOf<W>::clear() {
   child_ids_.clear();
   blocks_.clear();
   prim_count_ = 0;
+  triangle_count_ = 0;
 }
 
 namespace {
@@ -225,6 +226,7 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
   clear();
   if (tree.empty()) return;
   prim_count_ = tree.prims.size();
+  triangle_count_ = scene.valid_prims().size();  // every builder places each valid triangle (sbvh: at least once)
   const std::vector<uint32_t> size = binary_subtree_sizes(tree);
 
   // Plan the top: wide nodes over binary subtrees of kCollapseTaskNodes or more. A child
@@ -400,7 +402,7 @@ template <int W>
 BuildStats WideBvhOf<W>::compute_stats() const {
   BuildStats s;
   s.nodes = entries_.size();
-  s.prims = prim_count_;
+  s.prims = triangle_count_;
   s.prim_references = prim_count_;
   s.memory_bytes = memory_bytes();
   s.sah_ct = options_.ct;

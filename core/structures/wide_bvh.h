@@ -282,7 +282,8 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   std::vector<Aabb> boxes_;        ///< by node id: the node's own box (the root's is tested alone)
   std::vector<uint16_t> depth_;    ///< by node id
   std::vector<TriangleBlock> blocks_;  ///< leaf triangles in leaf order, four per block
-  size_t prim_count_ = 0;
+  size_t prim_count_ = 0;      ///< triangle references in the leaves
+  size_t triangle_count_ = 0;  ///< distinct triangles among them (fewer after sbvh's spatial splits)
   BvhBuildOptions options_;
   TraversalOrder order_ = TraversalOrder::Ordered;
   FastWideTraversal fast_ = nullptr;  ///< set for 8-wide trees on AVX2 / AVX-512 CPUs (stack orders)

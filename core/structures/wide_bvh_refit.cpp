@@ -31,7 +31,7 @@ Status WideBvhOf<W>::refit_impl(const Scene& scene) {
   if (bad_at < blocks_.size())
     for (uint32_t prim : blocks_[bad_at].prim)
       if (bad == ~0u && prim != TriangleBlock::kNoPrim && !refit_keeps(scene, prim)) bad = prim;
-  if (Status s = check_refit_prims(this->name(), scene, prim_count_, bad); !s) return s;
+  if (Status s = check_refit_prims(this->name(), scene, triangle_count_, bad); !s) return s;
   if (!entries_.empty()) refit_subtree(scene, 0, NodeId(entries_.size()));
   return {};
 }

@@ -307,10 +307,12 @@ TEST(BuildCode, ListingsAndLines) {
   EXPECT_EQ(build_code_kind("bvh", {"builder=pca_sah"}), BuildCodeKind::BvhPca);
   EXPECT_EQ(build_code_kind("spheretree", {"builder=insertion"}), BuildCodeKind::BvhInsertion);
   EXPECT_EQ(build_code_kind("bvh", {"builder=bottom_up"}), BuildCodeKind::BvhBottomUp);
+  EXPECT_EQ(build_code_kind("bvh", {"builder=sbvh"}), BuildCodeKind::BvhSpatial);
   const BuildTrace t = sah_trace();
   for (BuildCodeKind k : {BuildCodeKind::KdTree, BuildCodeKind::BvhSah, BuildCodeKind::BvhPca, BuildCodeKind::Octree,
                           BuildCodeKind::Grid, BuildCodeKind::BvhMedian, BuildCodeKind::BvhBinned,
-                          BuildCodeKind::BvhBottomUp, BuildCodeKind::BvhInsertion, BuildCodeKind::Brute}) {
+                          BuildCodeKind::BvhBottomUp, BuildCodeKind::BvhInsertion, BuildCodeKind::BvhSpatial,
+                          BuildCodeKind::Brute}) {
     const PseudoCode& code = build_pseudo_code(k);
     ASSERT_EQ(code.lines.size(), code.anchors.size());
     EXPECT_EQ(build_code_line(k, nullptr), -1);
