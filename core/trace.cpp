@@ -77,6 +77,8 @@ QueryStats TraceRecorder::stats() const {
   return sink.stats;
 }
 
+StepListener::~StepListener() = default;
+
 void RecordingListener::visit(NodeId n, int depth, float t0, float t1) { r_.visit(n, depth, t0, t1); }
 void RecordingListener::enter_cell(NodeId n, float t0, float t1) { r_.enter_cell(n, t0, t1); }
 void RecordingListener::cull(NodeId n, int depth, CullReason why, float t0) { r_.cull(n, depth, why, t0); }

@@ -157,7 +157,9 @@ class TraceRecorder {
 /// the baseline, so tests compare the kernels step by step. Not a fast path.
 class StepListener {
  public:
-  virtual ~StepListener() = default;
+  /// Defined in trace.cpp (the key function): the vtable and type information are emitted
+  /// there only, not in the ISA units that call through this interface.
+  virtual ~StepListener();
   virtual void visit(NodeId n, int depth, float t0, float t1) = 0;
   virtual void enter_cell(NodeId n, float t0, float t1) = 0;
   virtual void cull(NodeId n, int depth, CullReason why, float t0) = 0;

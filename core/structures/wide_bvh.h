@@ -261,7 +261,9 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
       }
     }
   }
-  template <TraversalSink Sink>
+  /// Templated on the ISA tag although it runs no SIMD code: a copy the compiler emits in
+  /// an ISA unit (it may not inline, e.g. under the sanitizers) must carry that unit's name.
+  template <class Tag, TraversalSink Sink>
   bool enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink, Pending* root) const;
   /// Makes its SIMD ray constants itself: a local the compiler keeps in registers or its
   /// own frame (through a reference, every store of the loop might alias them).
@@ -321,7 +323,7 @@ void WideBvhOf<W>::report_misses(uint32_t wide, int hit_mask, const WideRayFor<T
 }
 
 template <int W>
-template <TraversalSink Sink>
+template <class Tag, TraversalSink Sink>
 bool WideBvhOf<W>::enter_root(const Ray& ray, const BoxTester& box_ray, const Hit& closest, Sink& sink,
                               Pending* root) const {
   float t0, t1;
@@ -342,7 +344,7 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
     const TriangleTester tester(ray, this->kernel_);
     const BoxTester box_ray(ray);
     Pending root;
-    if (enter_root(ray, box_ray, closest, sink, &root)) {
+    if (enter_root<Tag>(ray, box_ray, closest, sink, &root)) {
       // The priority queue runs on SSE2 kernels only (its heap, not the box test, is what
       // it spends its time on): its std::vector code is compiled once, for the baseline,
       // and no ISA unit emits a copy of it. The ISA units are only called for stack orders.
