@@ -29,19 +29,24 @@ std::string kernel_names_text(std::string_view separator) {
 
 TriangleTester::TriangleTester(const Ray& ray, Kernel kernel) : ray_(ray), kernel_(kernel) {
   // Woop et al. 2013, section 3: permute so that kz is the dominant direction axis and the
-  // winding is preserved, then shear so the ray becomes the +z axis.
-  const Vec3 a = glm::abs(ray.dir);
-  kz_ = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-  kx_ = (kz_ + 1) % 3;
-  ky_ = (kx_ + 1) % 3;
-  if (ray.dir[kz_] < 0.0f) std::swap(kx_, ky_);
-  sx_ = ray.dir[kx_] / ray.dir[kz_];
-  sy_ = ray.dir[ky_] / ray.dir[kz_];
-  sz_ = 1.0f / ray.dir[kz_];
+  // winding is preserved, then shear so the ray becomes the +z axis. Written with selects,
+  // not branches: the axes are random per ray, so a branch here was a misprediction.
+  const Vec3 a(std::fabs(ray.dir.x), std::fabs(ray.dir.y), std::fabs(ray.dir.z));  // glm::abs branches
+  const int xy = a.x >= a.y ? 0 : 1;
+  kz_ = std::max(a.x, a.y) >= a.z ? xy : 2;  // max returns a.x on a tie, as xy chose
+  static constexpr int kNext[3] = {1, 2, 0};
+  const int x = kNext[kz_], y = kNext[x];
+  const bool flip = component(ray.dir, kz_) < 0.0f;
+  kx_ = flip ? y : x;
+  ky_ = flip ? x : y;
+  const float dz = component(ray.dir, kz_);
+  sx_ = component(ray.dir, kx_) / dz;
+  sy_ = component(ray.dir, ky_) / dz;
+  sz_ = 1.0f / dz;
+  org_kx_ = component(ray.org, kx_);
+  org_ky_ = component(ray.org, ky_);
+  org_kz_ = component(ray.org, kz_);
 }
-
-
-
 
 bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax,
                                TriangleHit* out) const {
@@ -89,7 +94,11 @@ bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
 BoxTester::BoxTester(const Ray& ray) : org(ray.org) {
   // 1/(-0.0) = -inf and 1/(+0.0) = +inf, so the slab test needs no special case.
   inv_dir = Vec3(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
-  for (int axis = 0; axis < 3; ++axis) negative[axis] = std::signbit(inv_dir[axis]) ? 1 : 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    negative[axis] = std::signbit(inv_dir[axis]) ? 1 : 0;
+    near_index[axis] = axis + 3 * negative[axis];
+    far_index[axis] = axis + 3 * (1 - negative[axis]);
+  }
 }
 
 

@@ -88,6 +88,7 @@ class TriangleTester {
   Kernel kernel_;
   int kx_, ky_, kz_;     // axis permutation: kz is the largest |dir| component
   float sx_, sy_, sz_;   // shear constants
+  float org_kx_, org_ky_, org_kz_;  // the origin's coordinates kx, ky, kz
 };
 
 /// Double-precision watertight test of float inputs: the oracle used by tests and the
@@ -108,6 +109,7 @@ struct BoxTester {
   ACCEL_FORCE_INLINE bool intersect(const Aabb& box, float tmin, float tmax, float* t_enter, float* t_exit) const;
   Vec3 org, inv_dir;
   int negative[3];  ///< 1 where the direction's sign bit is set (-0.0 included)
+  int near_index[3], far_index[3];  ///< per axis, the near and far bound's index in an Aabb's six floats
 };
 
 /// Entry/exit distances of the ray through a sphere, clipped to [tmin, tmax]; conservative
@@ -137,10 +139,14 @@ bool TriangleTester::intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
 
 bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax,
                                 TriangleHit* out) const {
-  const Vec3 a = p0 - ray_.org, b = p1 - ray_.org, c = p2 - ray_.org;
-  const float ax = a[kx_] - sx_ * a[kz_], ay = a[ky_] - sy_ * a[kz_];
-  const float bx = b[kx_] - sx_ * b[kz_], by = b[ky_] - sy_ * b[kz_];
-  const float cx = c[kx_] - sx_ * c[kz_], cy = c[ky_] - sy_ * c[kz_];
+  // Vertices relative to the origin, permuted (kx, ky, kz): the same subtractions as p - org
+  // taken per component.
+  const float a_x = component(p0, kx_) - org_kx_, a_y = component(p0, ky_) - org_ky_, a_z = component(p0, kz_) - org_kz_;
+  const float b_x = component(p1, kx_) - org_kx_, b_y = component(p1, ky_) - org_ky_, b_z = component(p1, kz_) - org_kz_;
+  const float c_x = component(p2, kx_) - org_kx_, c_y = component(p2, ky_) - org_ky_, c_z = component(p2, kz_) - org_kz_;
+  const float ax = a_x - sx_ * a_z, ay = a_y - sy_ * a_z;
+  const float bx = b_x - sx_ * b_z, by = b_y - sy_ * b_z;
+  const float cx = c_x - sx_ * c_z, cy = c_y - sy_ * c_z;
   // Scaled barycentrics: u_ weights p0, v_ weights p1, w_ weights p2.
   const float u_ = cx * by - cy * bx;
   const float v_ = ax * cy - ay * cx;
@@ -153,9 +159,9 @@ bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
   // Bound: each sheared coordinate is off by at most ~4 eps of its unsheared magnitude m,
   // so an edge function (products of sheared coordinates s) is off by ~8 eps (m s' + s m').
   const float sxa = std::abs(sx_), sya = std::abs(sy_);
-  const float m_a = std::abs(a[kx_]) + std::abs(a[ky_]) + (sxa + sya) * std::abs(a[kz_]);
-  const float m_b = std::abs(b[kx_]) + std::abs(b[ky_]) + (sxa + sya) * std::abs(b[kz_]);
-  const float m_c = std::abs(c[kx_]) + std::abs(c[ky_]) + (sxa + sya) * std::abs(c[kz_]);
+  const float m_a = std::abs(a_x) + std::abs(a_y) + (sxa + sya) * std::abs(a_z);
+  const float m_b = std::abs(b_x) + std::abs(b_y) + (sxa + sya) * std::abs(b_z);
+  const float m_c = std::abs(c_x) + std::abs(c_y) + (sxa + sya) * std::abs(c_z);
   const float s_a = std::abs(ax) + std::abs(ay), s_b = std::abs(bx) + std::abs(by), s_c = std::abs(cx) + std::abs(cy);
   const float bound =
       10.0f * gamma_bound(1) * (m_a * (s_b + s_c) + m_b * (s_a + s_c) + m_c * (s_a + s_b));
@@ -166,7 +172,7 @@ bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
     return reference(p0, p1, p2, tmax, out);
   const float det = u_ + v_ + w_;
   if (det == 0.0f) return false;  // ray lies in the triangle's plane (or is parallel to it)
-  const float az = sz_ * a[kz_], bz = sz_ * b[kz_], cz = sz_ * c[kz_];
+  const float az = sz_ * a_z, bz = sz_ * b_z, cz = sz_ * c_z;
   const float t_scaled = u_ * az + v_ * bz + w_ * cz;
   const float inv_det = 1.0f / det;
   const float t = t_scaled * inv_det;
@@ -213,7 +219,7 @@ int TriangleTester::watertight4(const TriangleBlock& block, int lanes, float tma
   const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
   const auto abs = [&](__m128 x) { return _mm_and_ps(x, abs_mask); };
   const auto row = [&](int vertex, int axis) { return _mm_load_ps(block.v[3 * vertex + axis]); };
-  const __m128 ox = _mm_set1_ps(ray_.org[kx_]), oy = _mm_set1_ps(ray_.org[ky_]), oz = _mm_set1_ps(ray_.org[kz_]);
+  const __m128 ox = _mm_set1_ps(org_kx_), oy = _mm_set1_ps(org_ky_), oz = _mm_set1_ps(org_kz_);
   const __m128 sx = _mm_set1_ps(sx_), sy = _mm_set1_ps(sy_), sz = _mm_set1_ps(sz_);
   // Vertex k relative to the origin, permuted (kx, ky, kz).
   __m128 rx[3], ry[3], rz[3], px[3], py[3];
@@ -353,11 +359,12 @@ bool BoxTester::intersect(const Aabb& box, float tmin, float tmax, float* t_ente
   // -0.0 one distance may be NaN and a comparison would pick the wrong side. The max/min
   // below are written so a NaN (0 * inf: origin on a slab plane, zero direction) leaves the
   // interval unchanged instead of poisoning it. No early exit: straight-line code is faster.
-  const float* lo = &box.min.x;
-  const float* hi = &box.max.x;
+  // The six bounds as one array (min then max, math.h), indexed by near_index / far_index:
+  // a select on the sign became a mispredicted branch once per ray at the root.
+  const float* bounds = glm::value_ptr(box.min);
   for (int axis = 0; axis < 3; ++axis) {
-    const float t_near = ((negative[axis] ? hi : lo)[axis] - org[axis]) * inv_dir[axis];
-    const float t_far = ((negative[axis] ? lo : hi)[axis] - org[axis]) * inv_dir[axis] * widen;
+    const float t_near = (bounds[near_index[axis]] - org[axis]) * inv_dir[axis];
+    const float t_far = (bounds[far_index[axis]] - org[axis]) * inv_dir[axis] * widen;
     tmin = t_near > tmin ? t_near : tmin;
     tmax = t_far < tmax ? t_far : tmax;
   }

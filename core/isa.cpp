@@ -24,9 +24,9 @@ bool cpu_runs(Isa isa) {
   switch (isa) {
     case Isa::Sse2: return true;
     // __builtin_cpu_supports also checks that the OS enabled the registers' state (XCR0).
-    case Isa::Avx2: return __builtin_cpu_supports("avx2");
+    case Isa::Avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
     case Isa::Avx512:
-      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("avx512vl") &&
              __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
              __builtin_cpu_supports("avx512cd");
   }

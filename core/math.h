@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 /// Forces inlining of the few functions in the innermost traversal loops, which GCC would
 /// otherwise keep out of line across the template layers.
@@ -22,6 +23,11 @@ using DVec3 = glm::dvec3;
 using UVec3 = glm::uvec3;
 
 inline constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// v[axis] for an axis known only at run time, as an indexed load. glm's operator[] is a
+/// switch: in a traversal loop, where the axis changes per ray or per node, its branches
+/// were mispredicted several times a ray (callgrind --branch-sim).
+inline float component(const Vec3& v, int axis) { return glm::value_ptr(v)[axis]; }
 
 /// A ray o + t*d, t in the closed interval [tmin, tmax] (docs/hits.md). d need not be unit length.
 struct Ray {
@@ -56,6 +62,9 @@ struct Aabb {
     return glm::all(glm::lessThanEqual(min, b.min)) && glm::all(glm::greaterThanEqual(max, b.max));
   }
 };
+
+// BoxTester reads an Aabb's bounds as six consecutive floats (min x y z, max x y z).
+static_assert(sizeof(Vec3) == 3 * sizeof(float) && sizeof(Aabb) == 6 * sizeof(float));
 
 /// Union of two boxes.
 inline Aabb merge(const Aabb& a, const Aabb& b) { Aabb r = a; r.extend(b); return r; }

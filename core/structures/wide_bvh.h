@@ -70,8 +70,8 @@ struct WideRayFor<Sse2Tag> {
     for (int axis = 0; axis < 3; ++axis) {
       org[axis] = _mm_set1_ps(box_ray.org[axis]);
       inv_dir[axis] = _mm_set1_ps(box_ray.inv_dir[axis]);
-      near_row[axis] = box_ray.negative[axis] ? 3 + axis : axis;
-      far_row[axis] = box_ray.negative[axis] ? axis : 3 + axis;
+      near_row[axis] = box_ray.near_index[axis];  // a node's rows are ordered as an Aabb's floats
+      far_row[axis] = box_ray.far_index[axis];
     }
   }
   __m128 org[3], inv_dir[3];
@@ -229,12 +229,39 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
     if constexpr (kObservesNothing<Sink>) return 0;
     else return depth_[id];
   }
-  /// Starts fetching what a pushed child will read when it is popped.
+  /// Starts fetching what a pushed child will read when it is popped: the first 192 bytes of
+  /// its node or its leaf's first block. The address is selected with a mask, not a branch
+  /// on the kind (the compiler turned the plain ?: into a mispredicted branch).
   void prefetch(ChildRef r) const {
-    const char* p = ref_is_leaf(r) ? reinterpret_cast<const char*>(&blocks_[ref_first(r)])
-                                   : reinterpret_cast<const char*>(&nodes_[r]);
-    const int lines = ref_is_leaf(r) ? 3 : int(sizeof(Node) / 64);
-    for (int k = 0; k < lines; ++k) _mm_prefetch(p + 64 * k, _MM_HINT_T0);
+    // Integer arithmetic: the address not taken may lie outside its array.
+    const uintptr_t leaf = reinterpret_cast<uintptr_t>(blocks_.data()) + uintptr_t(ref_first(r)) * sizeof(TriangleBlock);
+    const uintptr_t inner = reinterpret_cast<uintptr_t>(nodes_.data()) + uintptr_t(uint32_t(r)) * sizeof(Node);
+    const uintptr_t is_leaf = uintptr_t(0) - uintptr_t(ref_is_leaf(r));
+    const char* p = reinterpret_cast<const char*>((leaf & is_leaf) | (inner & ~is_leaf));
+    for (int k = 0; k < 3; ++k) _mm_prefetch(p + 64 * k, _MM_HINT_T0);
+  }
+  /// Bits set in an 8-bit mask: the POPCNT instruction in the AVX units (compiled with
+  /// -mpopcnt), a few shifts in the SSE2 baseline, which may not have it.
+  template <class Tag>
+  ACCEL_FORCE_INLINE static int popcount8(unsigned m) {
+#if defined(__POPCNT__)
+    if constexpr (!std::is_same_v<Tag, Sse2Tag>) return __builtin_popcount(m);
+#endif
+    m = m - ((m >> 1) & 0x55u);
+    m = (m & 0x33u) + ((m >> 2) & 0x33u);
+    return int((m + (m >> 4)) & 0x0fu);
+  }
+  /// The slots whose entry distance orders before slot s's: strictly nearer, or as near and
+  /// earlier in tree order. Slots beyond the hit ones give bits the caller masks off.
+  ACCEL_FORCE_INLINE static int nearer_mask(const float* t0, int s) {
+    const __m128 key = _mm_set1_ps(t0[s]);
+    int lt = 0, eq = 0;
+    for (int first = 0; first < W; first += 4) {
+      const __m128 t = _mm_load_ps(t0 + first);
+      lt |= _mm_movemask_ps(_mm_cmplt_ps(t, key)) << first;
+      eq |= _mm_movemask_ps(_mm_cmpeq_ps(t, key)) << first;
+    }
+    return lt | (eq & ((1 << s) - 1));
   }
   // Each pop pushes at most W children in place of one node: W - 1 per level, plus slack.
   static constexpr int kStackSize = (W - 1) * kMaxBvhDepth + W;
@@ -252,8 +279,8 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
       const int hits = tester.intersect4(*block, lanes, closest.t, t, u, v);
       // The fast path looks at hit lanes only; an observer sees every test.
       const int seen = kObservesNothing<Sink> ? hits : lanes;
-      for (int lane = 0; lane < 4; ++lane) {
-        if (!((seen >> lane) & 1)) continue;
+      for (int rest = seen; rest; rest &= rest - 1) {  // set bits only: no branch per empty lane
+        const int lane = __builtin_ctz(unsigned(rest));
         const bool hit = (hits >> lane) & 1;
         take_triangle_result(block->prim[lane], hit,
                              hit ? TriangleHit{t[lane], u[lane], v[lane]} : TriangleHit{kInf, 0.0f, 0.0f}, closest,
@@ -410,16 +437,25 @@ void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, cons
           cur = child(swap ? second : first);
           continue;
         }
-        int slot[W], hits = 2;
-        slot[0] = first;
-        slot[1] = second;
-        for (; mask; mask &= mask - 1) slot[hits++] = __builtin_ctz(unsigned(mask));
-        if (nearest_first) {
-          for (int i = 1; i < hits; ++i)
-            for (int j = i; j > 0 && t0[slot[j]] < t0[slot[j - 1]]; --j) std::swap(slot[j], slot[j - 1]);
+        // Three or more: each hit child's rank in (entry distance, slot) order, which is
+        // the order a stable sort by distance gives (dfs: slot order), computed without
+        // data-dependent branches -- the insertion sort's compares were the most
+        // mispredicted branches of the traversal (callgrind --branch-sim). Rank r goes to
+        // stack[top + hits - 1 - r], so the farthest lands deepest and rank 0, the child to
+        // descend into, just above the new top, where it is read back from.
+        const int hit_mask = mask | (1 << first) | (1 << second);
+        const int hits = popcount8<Tag>(unsigned(hit_mask));
+        Item* const dst = stack + top + hits - 1;
+        for (int rest = hit_mask; rest; rest &= rest - 1) {
+          const int s = __builtin_ctz(unsigned(rest));
+          const int before = nearest_first ? nearer_mask(t0, s) & hit_mask : hit_mask & ((1 << s) - 1);
+          *(dst - popcount8<Tag>(unsigned(before))) = child(s);
+          prefetch(n.ref[s]);
         }
-        for (int i = hits - 1; i > 0; --i) push(slot[i]);  // the rest, farthest (or last in tree order) first
-        cur = child(slot[0]);
+        cur = *dst;
+        if constexpr (!kObservesNothing<Sink>)
+          for (int k = top; k < top + hits - 1; ++k) sink.push(node_of(stack[k]), node_depth<Sink>(node_of(stack[k])), stack[k].t0);
+        top += hits - 1;
         continue;
       }
     }

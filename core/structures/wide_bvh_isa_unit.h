@@ -25,8 +25,8 @@ struct WideRayFor<ACCEL_ISA_TAG> {
       inv_dir[axis] = _mm256_set1_ps(box_ray.inv_dir[axis]);
       // Byte offsets of the near and far rows in an 8-wide node (32 bytes a row): one
       // address addition per load in the loop, no index scaling.
-      near_off[axis] = size_t(box_ray.negative[axis] ? 3 + axis : axis) * sizeof(WideNode8::bounds[0]);
-      far_off[axis] = size_t(box_ray.negative[axis] ? axis : 3 + axis) * sizeof(WideNode8::bounds[0]);
+      near_off[axis] = size_t(box_ray.near_index[axis]) * sizeof(WideNode8::bounds[0]);
+      far_off[axis] = size_t(box_ray.far_index[axis]) * sizeof(WideNode8::bounds[0]);
     }
   }
   __m256 org[3], inv_dir[3];
