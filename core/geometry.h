@@ -112,6 +112,18 @@ struct BoxTester {
   int near_index[3], far_index[3];  ///< per axis, the near and far bound's index in an Aabb's six floats
 };
 
+/// The box whose min and max are the x, y, z lanes of two SSE registers (the builders keep
+/// their bounds that way; the fourth lane is ignored).
+inline Aabb aabb_from_lanes(__m128 lo, __m128 hi) {
+  alignas(16) float l[4], h[4];
+  _mm_store_ps(l, lo);
+  _mm_store_ps(h, hi);
+  Aabb b;
+  b.min = Vec3(l[0], l[1], l[2]);
+  b.max = Vec3(h[0], h[1], h[2]);
+  return b;
+}
+
 /// Entry/exit distances of the ray through a sphere, clipped to [tmin, tmax]; conservative
 /// (radius widened by a few ulps) so no enclosed hit is culled.
 bool intersect_sphere(const Ray& ray, const BoundingSphere& s, float tmin, float tmax, float* t_enter,

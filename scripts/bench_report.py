@@ -243,6 +243,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("files", nargs="+")
     ap.add_argument("--out-json")
+    ap.add_argument("--made-by", default="scripts/bench_shared.sh", help="the script named in the header line")
     ap.add_argument("--builds", action="store_true", help="build report: DEFAULT.json SWEEP.json")
     a = ap.parse_args()
     if a.builds:
@@ -259,7 +260,7 @@ def main():
         with open(tmp, "w") as f:
             json.dump(rows, f, indent=1)
         os.replace(tmp, a.out_json)  # never a half-written file
-    lines = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} (`scripts/bench_shared.sh`)."]
+    lines = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} (`{a.made_by}`)."]
     for rays in dict.fromkeys(r["rays"] for r in rows):
         lines += speed_table(rows, rays)
     lines += build_table(rows)

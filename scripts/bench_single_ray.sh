@@ -55,6 +55,6 @@ for f in sys.argv[2:]:
 json.dump(rows, open(sys.argv[1], "w"), indent=1)
 PY
   rm -f "${files[@]}"
-  python3 scripts/bench_report.py "$out.json" > "$out.md"
+  python3 scripts/bench_report.py --made-by scripts/bench_single_ray.sh "$out.json" > "$out.md"
   echo "wrote $out.json and $out.md"
 done

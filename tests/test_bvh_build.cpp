@@ -18,6 +18,7 @@ namespace accel {
 namespace {
 
 using testing::expect_same_tree;
+using testing::expect_valid_tree_shape;
 
 /// Random triangles: a few clusters of small ones (so the SAH has structure to find) and a
 /// sprinkling of long thin ones; large enough for parallel tasks and parallel binning.
@@ -61,27 +62,13 @@ BuildTree build_with_threads(const Scene& scene, const BvhBuildOptions& o, int t
 
 /// The guarantees of build_bvh_tree(), checked on the builder's own output.
 void expect_valid_build_tree(const BuildTree& tree, const Scene& scene, int leaf_size) {
-  ASSERT_FALSE(tree.empty());
   std::vector<uint32_t> seen;
-  std::vector<std::pair<uint32_t, int>> stack{{tree.root, 0}};
-  while (!stack.empty()) {
-    const auto [i, depth] = stack.back();
-    stack.pop_back();
-    ASSERT_LT(depth, kMaxBvhDepth);
-    const BuildNode& n = tree.nodes[i];
-    if (n.count) {
-      EXPECT_LE(n.count, uint32_t(leaf_size)) << "leaf " << i;
-      for (uint32_t k = n.first; k < n.first + n.count; ++k) {
-        EXPECT_TRUE(n.box.contains(scene.triangle_bounds(tree.prims[k]))) << "leaf " << i;
-        seen.push_back(tree.prims[k]);
-      }
-      continue;
+  expect_valid_tree_shape(tree, leaf_size, [&](uint32_t i, const BuildNode& n) {
+    for (uint32_t k = n.first; k < n.first + n.count; ++k) {
+      EXPECT_TRUE(n.box.contains(scene.triangle_bounds(tree.prims[k]))) << "leaf " << i;
+      seen.push_back(tree.prims[k]);
     }
-    for (uint32_t c : {n.left, n.right}) {
-      EXPECT_TRUE(n.box.contains(tree.nodes[c].box)) << "node " << i;
-      stack.push_back({c, depth + 1});
-    }
-  }
+  });
   std::vector<uint32_t> valid = scene.valid_prims();
   std::sort(seen.begin(), seen.end());
   EXPECT_EQ(seen, valid);  // valid_prims() is ascending: every valid triangle exactly once

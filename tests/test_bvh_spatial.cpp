@@ -28,6 +28,7 @@ namespace accel {
 namespace {
 
 using testing::expect_same_tree;
+using testing::expect_valid_tree_shape;
 
 /// Long thin slivers along the diagonals of the unit square (every one's box is nearly the
 /// whole scene, so no object split separates them) among small triangles scattered in the
@@ -65,28 +66,15 @@ BvhBuildOptions sbvh_options() {
 /// twice in one leaf, children inside their parent, leaf sizes, depth, and every point of a
 /// triangle (sampled) inside the box of some leaf that holds it.
 void expect_valid_spatial_tree(const BuildTree& tree, const Scene& scene, int leaf_size) {
-  ASSERT_FALSE(tree.empty());
   std::vector<std::vector<uint32_t>> leaves_of(scene.triangle_count());
-  std::vector<std::pair<uint32_t, int>> stack{{tree.root, 0}};
-  while (!stack.empty()) {
-    const auto [i, depth] = stack.back();
-    stack.pop_back();
-    ASSERT_LT(depth, kMaxBvhDepth);
-    const BuildNode& n = tree.nodes[i];
-    if (n.count) {
-      EXPECT_LE(n.count, uint32_t(leaf_size)) << "leaf " << i;
-      std::set<uint32_t> in_leaf;
-      for (uint32_t k = n.first; k < n.first + n.count; ++k) {
-        EXPECT_TRUE(in_leaf.insert(tree.prims[k]).second) << "triangle " << tree.prims[k] << " twice in leaf " << i;
-        leaves_of[tree.prims[k]].push_back(i);
-      }
-      continue;
+  expect_valid_tree_shape(tree, leaf_size, [&](uint32_t i, const BuildNode& n) {
+    std::set<uint32_t> in_leaf;
+    for (uint32_t k = n.first; k < n.first + n.count; ++k) {
+      EXPECT_TRUE(in_leaf.insert(tree.prims[k]).second) << "triangle " << tree.prims[k] << " twice in leaf " << i;
+      leaves_of[tree.prims[k]].push_back(i);
     }
-    for (uint32_t c : {n.left, n.right}) {
-      EXPECT_TRUE(n.box.contains(tree.nodes[c].box)) << "node " << i;
-      stack.push_back({c, depth + 1});
-    }
-  }
+  });
+  if (tree.empty()) return;
   Rng rng(9);
   for (uint32_t prim : scene.valid_prims()) {
     ASSERT_FALSE(leaves_of[prim].empty()) << "triangle " << prim << " lost";

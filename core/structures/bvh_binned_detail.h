@@ -17,6 +17,7 @@
 
 #include "build_control.h"
 #include "check.h"
+#include "geometry.h"
 #include "structures/bvh_builders.h"
 
 namespace accel::binned {
@@ -57,15 +58,7 @@ struct Box4 {
     _mm_store_ps(e, _mm_sub_ps(hi, lo));
     return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
   }
-  Aabb aabb() const {
-    alignas(16) float l[4], h[4];
-    _mm_store_ps(l, lo);
-    _mm_store_ps(h, hi);
-    Aabb b;
-    b.min = Vec3(l[0], l[1], l[2]);
-    b.max = Vec3(h[0], h[1], h[2]);
-    return b;
-  }
+  Aabb aabb() const { return aabb_from_lanes(lo, hi); }
 };
 
 /// A node's references refs[begin, end) with their bounds, as the parent's partition found them.

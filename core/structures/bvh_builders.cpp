@@ -7,6 +7,7 @@
 //   [SECTION] Bottom-up: locally-ordered clustering
 //   [SECTION] Insertion (Goldsmith-Salmon)
 //   [SECTION] Collapse, depth limit and final layout for the bottom-up builders
+#include "geometry.h"
 #include "structures/bvh_builders.h"
 
 #include "structures/bvh_binned_builder.h"
@@ -185,15 +186,7 @@ struct SweepBox {
     const __m128 sum = _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
     return _mm_cvtss_f32(_mm_mul_ss(_mm_set_ss(2.0f), sum));
   }
-  Aabb aabb() const {
-    alignas(16) float l[4], h[4];
-    _mm_store_ps(l, lo);
-    _mm_store_ps(h, hi);
-    Aabb b;
-    b.min = Vec3(l[0], l[1], l[2]);
-    b.max = Vec3(h[0], h[1], h[2]);
-    return b;
-  }
+  Aabb aabb() const { return aabb_from_lanes(lo, hi); }
 };
 
 /// Top-down recursion shared by the median, SAH and PCA builders (the binned SAH builder has
