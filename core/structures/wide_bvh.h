@@ -393,8 +393,8 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
 /// beyond the closest hit found meanwhile is skipped. Descending without a push and pop is
 /// what makes the wide layout pay off (the child was tested against the current closest hit
 /// a moment ago). One and two hit children, the common cases, take short paths; more are
-/// sorted by a stable insertion sort, so equal distances keep tree order as in the binary
-/// traversal. The observed and the fast path run this same code (only the pending entries
+/// ranked by (entry distance, slot) without branches, the order of a stable sort by
+/// distance, so equal distances keep tree order as in the binary traversal. The observed and the fast path run this same code (only the pending entries
 /// differ in size), so they visit the same nodes in the same order.
 template <int W>
 template <class Tag, TraversalSink Sink>
