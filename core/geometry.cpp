@@ -95,9 +95,9 @@ BoxTester::BoxTester(const Ray& ray) : org(ray.org) {
   // 1/(-0.0) = -inf and 1/(+0.0) = +inf, so the slab test needs no special case.
   inv_dir = Vec3(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
   for (int axis = 0; axis < 3; ++axis) {
-    negative[axis] = std::signbit(inv_dir[axis]) ? 1 : 0;
-    near_index[axis] = axis + 3 * negative[axis];
-    far_index[axis] = axis + 3 * (1 - negative[axis]);
+    const int negative = std::signbit(inv_dir[axis]) ? 1 : 0;
+    near_index[axis] = axis + 3 * negative;
+    far_index[axis] = axis + 3 * (1 - negative);
   }
 }
 

@@ -108,8 +108,9 @@ struct BoxTester {
   /// with the origin on a slab plane gives no NaN (Williams et al. 2005).
   ACCEL_FORCE_INLINE bool intersect(const Aabb& box, float tmin, float tmax, float* t_enter, float* t_exit) const;
   Vec3 org, inv_dir;
-  int negative[3];  ///< 1 where the direction's sign bit is set (-0.0 included)
-  int near_index[3], far_index[3];  ///< per axis, the near and far bound's index in an Aabb's six floats
+  /// Per axis, the index in an Aabb's six floats of the bound the ray meets first (min, or
+  /// max where the direction's sign bit is set, -0.0 included) and of the other one.
+  int near_index[3], far_index[3];
 };
 
 /// The box whose min and max are the x, y, z lanes of two SSE registers (the builders keep

@@ -26,9 +26,9 @@ bool cpu_runs(Isa isa) {
     // __builtin_cpu_supports also checks that the OS enabled the registers' state (XCR0).
     case Isa::Avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
     case Isa::Avx512:
-      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("avx512vl") &&
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
              __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-             __builtin_cpu_supports("avx512cd");
+             __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("popcnt");
   }
   return false;
 }

@@ -394,8 +394,9 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
 /// what makes the wide layout pay off (the child was tested against the current closest hit
 /// a moment ago). One and two hit children, the common cases, take short paths; more are
 /// ranked by (entry distance, slot) without branches, the order of a stable sort by
-/// distance, so equal distances keep tree order as in the binary traversal. The observed and the fast path run this same code (only the pending entries
-/// differ in size), so they visit the same nodes in the same order.
+/// distance, so equal distances keep tree order as in the binary traversal. The observed
+/// and the fast path run this same code (only the pending entries differ in size), so they
+/// visit the same nodes in the same order.
 template <int W>
 template <class Tag, TraversalSink Sink>
 void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester,
@@ -453,8 +454,9 @@ void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, cons
           prefetch(n.ref[s]);
         }
         cur = *dst;
-        if constexpr (!kObservesNothing<Sink>)
-          for (int k = top; k < top + hits - 1; ++k) sink.push(node_of(stack[k]), node_depth<Sink>(node_of(stack[k])), stack[k].t0);
+        if constexpr (!kObservesNothing<Sink>)  // the pushes in stack order, farthest first
+          for (int k = top; k < top + hits - 1; ++k)
+            sink.push(node_of(stack[k]), node_depth<Sink>(node_of(stack[k])), stack[k].t0);
         top += hits - 1;
         continue;
       }
