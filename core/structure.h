@@ -99,6 +99,12 @@ class Structure {
   virtual NodeView node_view(NodeId id) const = 0;
   /// The triangles of a leaf or cell (empty for inner nodes).
   virtual std::vector<uint32_t> node_prims(NodeId id) const = 0;
+  /// The children of inner node `id` in the structure's own child order (empty for a leaf,
+  /// a grid cell or an id out of range): the tree's shape, for the viewer's diagram.
+  virtual std::vector<NodeId> node_children(NodeId id) const {
+    (void)id;
+    return {};
+  }
 
   /// The ray/triangle test used by queries (default watertight).
   void set_kernel(Kernel k) { kernel_ = k; }

@@ -1,5 +1,7 @@
 #include "trace.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace accel {
@@ -87,5 +89,117 @@ void RecordingListener::pop(NodeId n, int depth, float key) { r_.pop(n, depth, k
 void RecordingListener::test_prim(uint32_t prim, bool hit, float t) { r_.test_prim(prim, hit, t); }
 void RecordingListener::new_closest(uint32_t prim, float t) { r_.new_closest(prim, t); }
 void RecordingListener::done(const Hit& h) { r_.done(h); }
+void RecordingListener::vars(const StepVars& v) { r_.vars(v); }
+
+// ---------------------------------------------------------------------------------------
+// The traversal's variables
+
+const char* kd_case_name(KdCase c) {
+  switch (c) {
+    case KdCase::Both: return "a(both)";
+    case KdCase::NearOnly: return "b(near_only)";
+    case KdCase::FarOnly: return "c(far_only)";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr const char* kAxisName[3] = {"x", "y", "z"};
+constexpr const char* kAxisUpper[3] = {"X", "Y", "Z"};
+
+const char* fate_name(OctreeOrderVars::Fate f) {
+  switch (f) {
+    case OctreeOrderVars::Fate::Pushed: return "pushed";
+    case OctreeOrderVars::Fate::Missed: return "missed";
+    case OctreeOrderVars::Fate::BeyondClosestHit: return "beyond_hit";
+    case OctreeOrderVars::Fate::Empty: return "empty";
+  }
+  return "?";
+}
+
+// Appends " name=value" with %g (inf prints as inf).
+void add(std::string& out, const char* name, double value) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%s%s=%g", out.empty() ? "" : " ", name, value);
+  out += buf;
+}
+void add(std::string& out, const std::string& name, const std::string& value) {
+  if (!out.empty()) out += ' ';
+  out += name + "=" + value;
+}
+
+std::string describe(const GridDdaVars& v) {
+  std::string s;
+  for (int a = 0; a < 3; ++a) add(s, kAxisUpper[a], v.cell[a]);
+  for (int a = 0; a < 3; ++a) add(s, (std::string("step") + kAxisUpper[a]).c_str(), v.step[a]);
+  for (int a = 0; a < 3; ++a) add(s, (std::string("tMax") + kAxisUpper[a]).c_str(), v.t_max[a]);
+  for (int a = 0; a < 3; ++a) add(s, (std::string("tDelta") + kAxisUpper[a]).c_str(), v.t_delta[a]);
+  add(s, "next", kAxisName[(v.next_axis % 3 + 3) % 3]);
+  return s;
+}
+
+std::string describe(const KdSplitVars& v) {
+  std::string s;
+  add(s, "t_min", v.t_min);
+  add(s, "t_split", v.t_split);
+  add(s, "t_max", v.t_max);
+  add(s, "axis", kAxisName[(v.axis % 3 + 3) % 3]);
+  add(s, "near", v.near_child);
+  add(s, "far", v.far_child);
+  add(s, "case", kd_case_name(v.kase));
+  return s;
+}
+
+std::string describe(const KdExitVars& v) {
+  std::string s;
+  add(s, "t_hit", v.t_hit);
+  add(s, "t_split", v.t_split);
+  add(s, "far", v.far_child);
+  add(s, "early_exit", v.exits ? "yes(t_hit<t_split)" : "no");
+  return s;
+}
+
+std::string describe(const OctreeOrderVars& v) {
+  std::string s;
+  add(s, "mask", v.mask);
+  std::string order;
+  for (int i = 0; i < v.count && i < 8; ++i) {
+    const OctreeOrderVars::Child& c = v.children[i];
+    char buf[96];
+    if (c.fate == OctreeOrderVars::Fate::Pushed || c.fate == OctreeOrderVars::Fate::BeyondClosestHit)
+      std::snprintf(buf, sizeof buf, "%s%u:%g:%s", order.empty() ? "" : ",", c.node, double(c.t_enter),
+                    fate_name(c.fate));
+    else
+      std::snprintf(buf, sizeof buf, "%s%u:%s", order.empty() ? "" : ",", c.node, fate_name(c.fate));
+    order += buf;
+  }
+  add(s, "order", order.empty() ? "-" : order);
+  return s;
+}
+
+}  // namespace
+
+std::string describe_vars(const StepVars& vars) {
+  return std::visit([](const auto& v) { return describe(v); }, vars);
+}
+
+const StepVars* vars_at(std::span<const TraceEvent> events, std::span<const RecordedVars> vars, size_t step) {
+  if (events.empty()) return nullptr;
+  step = std::min(step, events.size() - 1);
+  size_t node_step = 0;  // the last Visit / EnterCell at or before the step
+  for (size_t i = step + 1; i-- > 0;) {
+    if (events[i].kind == TraceEventKind::Visit || events[i].kind == TraceEventKind::EnterCell) {
+      node_step = i;
+      break;
+    }
+  }
+  const StepVars* found = nullptr;
+  for (const RecordedVars& r : vars) {
+    if (r.event > step) break;
+    if (r.event >= node_step) found = &r.vars;
+  }
+  return found;
+}
 
 }  // namespace accel

@@ -5,9 +5,12 @@
 // TraceRecorder keeps every step for the viewer's animation -- so the animation shows
 // exactly what the real query does. TraversalSink names the contract.
 #include <concepts>
+#include <cstddef>
+#include <span>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "geometry.h"
@@ -54,6 +57,82 @@ const char* cull_reason_name(CullReason reason);
 /// One line describing the event, e.g. "visit node 12 (depth 3) t=[0.5, 0.8]".
 std::string describe_event(const TraceEvent& e);
 
+// ---------------------------------------------------------------------------------------
+// The traversal's variables at a step, named as in the lecture's pseudo code. Recorded by
+// the traversal itself (sink.vars(), only when Sink::kRecords), right after the event they
+// belong to, so the viewer shows the values the real loop computed, never recomputed ones.
+
+/// Grid 3D-DDA (Amanatides & Woo 1987), recorded on entering a cell: the cell (X, Y, Z),
+/// the step per axis, tMax (the t of the next boundary crossing per axis; inf on an axis
+/// the ray never steps on) and tDelta (t to cross one cell; 0 where it never steps), and
+/// the axis that steps next (the smallest tMax).
+struct GridDdaVars {
+  int cell[3] = {0, 0, 0};
+  int step[3] = {0, 0, 0};
+  float t_max[3] = {0, 0, 0};
+  float t_delta[3] = {0, 0, 0};
+  int next_axis = 0;
+};
+
+/// Which children of a kd-tree inner node the ray visits (the lecture's three cases).
+enum class KdCase : uint8_t {
+  Both,      ///< (a) t_min <= t_split <= t_max: near child on [t_min, t_split], far on [t_split, t_max]
+  NearOnly,  ///< (b) t_split > t_max: the plane lies beyond the interval
+  FarOnly,   ///< (c) t_split < t_min: the plane lies before it
+};
+
+/// kd-tree inner node, recorded after its visit: the interval, the plane distance, the near
+/// and far child (near = the side the ray is on before t_split) and the case.
+struct KdSplitVars {
+  float t_min = 0, t_split = 0, t_max = 0;
+  NodeId near_child = kNoNode, far_child = kNoNode;
+  int axis = 0;
+  KdCase kase = KdCase::Both;
+};
+
+/// kd-tree, recorded when a pending far child is popped: the lecture's early exit
+/// "if t_hit < t_split return" (t_split = the far child's entry distance; t_hit = inf
+/// while nothing is hit).
+struct KdExitVars {
+  float t_hit = 0, t_split = 0;
+  NodeId far_child = kNoNode;
+  bool exits = false;  ///< t_hit < t_split: the far child is skipped
+};
+
+/// Octree inner node, recorded after its children were tested: the children in visiting
+/// order (octant i ^ mask for i = 0..7; mask = the axes the ray travels down) with their
+/// entry and exit distances, and what became of each.
+struct OctreeOrderVars {
+  enum class Fate : uint8_t { Pushed, Missed, BeyondClosestHit, Empty };
+  struct Child {
+    NodeId node = kNoNode;
+    uint8_t octant = 0;
+    Fate fate = Fate::Empty;
+    float t_enter = 0, t_exit = 0;
+  };
+  unsigned mask = 0;
+  int count = 0;  ///< children listed (8 for an inner node)
+  Child children[8];
+};
+
+/// One step's variables.
+using StepVars = std::variant<GridDdaVars, KdSplitVars, KdExitVars, OctreeOrderVars>;
+
+/// Variables recorded after events[event] (the event recorded just before them).
+struct RecordedVars {
+  size_t event = 0;
+  StepVars vars;
+};
+
+/// "X=3 Y=0 Z=1 stepX=1 ... tMaxX=0.5 ... tDeltaX=0.25 ... next=x" and the like: the
+/// variables as name=value pairs, named as in the lecture (print-vars, the panel).
+std::string describe_vars(const StepVars& vars);
+/// "a (both)", "b (near only)", "c (far only)".
+const char* kd_case_name(KdCase c);
+/// The variables shown at `step`: the last ones recorded at or before it since the last
+/// Visit / EnterCell at or before it (so a new node shows no stale values), or nullptr.
+const StepVars* vars_at(std::span<const TraceEvent> events, std::span<const RecordedVars> vars, size_t step);
+
 /// The fast path: every callback is empty and inlined away.
 struct NullSink {
   /// Keeps no steps: no extra tests to tell why a node was culled.
@@ -68,6 +147,7 @@ struct NullSink {
   void test_prim(uint32_t, bool, float) {}
   void new_closest(uint32_t, float) {}
   void done(const Hit&) {}
+  void vars(const StepVars&) {}
 };
 
 /// Per-query counters, returned per query (never global).
@@ -99,6 +179,7 @@ struct StatsSink {
   void test_prim(uint32_t, bool, float) { ++stats.prims_tested; }
   void new_closest(uint32_t, float) {}
   void done(const Hit&) {}
+  void vars(const StepVars&) {}
 };
 
 /// Records every step in order, for the animation and for tests of the traversal order.
@@ -133,8 +214,14 @@ class TraceRecorder {
     e.hit = h.valid();
     events_.push_back(e);
   }
+  void vars(const StepVars& v) { vars_.push_back({events_.empty() ? 0 : events_.size() - 1, v}); }
   const std::vector<TraceEvent>& events() const { return events_; }
-  void clear() { events_.clear(); }
+  /// The variables recorded (grid, kd-tree and octree), each after the event it belongs to.
+  const std::vector<RecordedVars>& recorded_vars() const { return vars_; }
+  void clear() {
+    events_.clear();
+    vars_.clear();
+  }
   /// Counters derived from the recorded events (equal to StatsSink's by construction).
   QueryStats stats() const;
 
@@ -150,6 +237,7 @@ class TraceRecorder {
   }
   void add(TraceEventKind k, NodeId n, int depth, float t0, float t1) { events_.push_back(make(k, n, depth, t0, t1)); }
   std::vector<TraceEvent> events_;
+  std::vector<RecordedVars> vars_;
 };
 
 /// Receives a traversal's steps through virtual calls: lets a traversal compiled for
@@ -168,6 +256,7 @@ class StepListener {
   virtual void test_prim(uint32_t prim, bool hit, float t) = 0;
   virtual void new_closest(uint32_t prim, float t) = 0;
   virtual void done(const Hit& h) = 0;
+  virtual void vars(const StepVars& v) = 0;
 };
 
 /// A recording sink (cull reasons included) that forwards every step to a StepListener.
@@ -183,6 +272,7 @@ struct ForwardingSink {
   void test_prim(uint32_t prim, bool hit, float t) { to->test_prim(prim, hit, t); }
   void new_closest(uint32_t prim, float t) { to->new_closest(prim, t); }
   void done(const Hit& h) { to->done(h); }
+  void vars(const StepVars& v) { to->vars(v); }
 };
 
 /// A StepListener that keeps the steps in a TraceRecorder (defined in trace.cpp, so no
@@ -198,6 +288,7 @@ class RecordingListener final : public StepListener {
   void test_prim(uint32_t prim, bool hit, float t) override;
   void new_closest(uint32_t prim, float t) override;
   void done(const Hit& h) override;
+  void vars(const StepVars& v) override;
 
  private:
   TraceRecorder& r_;
@@ -205,14 +296,15 @@ class RecordingListener final : public StepListener {
 
 /// What every traversal may call on its sink, in the order of a query: visit (enter a node)
 /// or enter_cell (a grid cell), cull, push / pop (stack or queue), test_prim and
-/// new_closest (triangles), done (the answer). kRecords: the sink keeps the steps, so a
+/// new_closest (triangles), done (the answer); vars (the loop's variables, called only
+/// when kRecords). kRecords: the sink keeps the steps, so a
 /// traversal spends extra tests on telling it why a node was culled. kObserves: the sink
 /// counts or keeps anything at all; when it does not, the traversal may skip the work
 /// done only to report steps (node ids, missed children), which is what keeps the fast
 /// path free.
 template <class S>
 concept TraversalSink = requires(S& sink, NodeId node, int depth, float t, CullReason why, uint32_t prim, bool hit,
-                                 const Hit& answer) {
+                                 const Hit& answer, const StepVars& vars) {
   { S::kRecords } -> std::convertible_to<bool>;
   { S::kObserves } -> std::convertible_to<bool>;
   sink.visit(node, depth, t, t);
@@ -223,6 +315,7 @@ concept TraversalSink = requires(S& sink, NodeId node, int depth, float t, CullR
   sink.test_prim(prim, hit, t);
   sink.new_closest(prim, t);
   sink.done(answer);
+  sink.vars(vars);
 };
 
 /// True for a sink that observes nothing (NullSink): the traversal's fast path.

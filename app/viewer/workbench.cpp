@@ -129,6 +129,7 @@ void DebugRay::record(const accel::Structure& s, bool keep_step) {
   accel::TraceRecorder recorder;
   hit = s.intersect_traced(ray, recorder);
   stats = recorder.stats();
+  vars = recorder.recorded_vars();
   player.load(recorder.events(), keep_step);
 }
 

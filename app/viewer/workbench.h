@@ -176,6 +176,8 @@ struct DebugRay {
   accel::Hit hit;              ///< intersect_traced's answer
   accel::QueryStats stats;     ///< counters of the whole trace
   accel::TracePlayer player;
+  /// The loop's variables recorded with the trace (grid, kd-tree, octree); see vars_at().
+  std::vector<accel::RecordedVars> vars;
 
   /// Records the ray's traversal of `s` (its real intersect_traced). keep_step: the same ray
   /// replayed after a rebuild keeps its step, clamped.

@@ -91,6 +91,10 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     if (id >= nodes_.size() || !nodes_[id].leaf()) return {};
     return {prims_.begin() + nodes_[id].index, prims_.begin() + nodes_[id].index + nodes_[id].count};
   }
+  std::vector<NodeId> node_children(NodeId id) const override {
+    if (id >= nodes_.size() || nodes_[id].leaf()) return {};
+    return {id + 1, nodes_[id].index};
+  }
   TraversalOrder order() const { return order_; }
   const std::vector<Node>& nodes() const { return nodes_; }
 

@@ -168,4 +168,9 @@ BuildStats KdTree::compute_stats() const {
   return s;
 }
 
+std::vector<NodeId> KdTree::node_children(NodeId id) const {
+  if (id >= data_.nodes.size() || data_.nodes[id].leaf()) return {};
+  return {id + 1, data_.nodes[id].above_child()};
+}
+
 }  // namespace accel

@@ -47,6 +47,7 @@ class KdTree final : public StructureWithTraversal<KdTree> {
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;
   std::vector<uint32_t> node_prims(NodeId id) const override;
+  std::vector<NodeId> node_children(NodeId id) const override;
   /// The built data, for tests.
   const KdTreeData& data() const { return data_; }
 
@@ -111,12 +112,18 @@ Hit KdTree::traverse(const Ray& ray, Sink& sink) const {
         const NodeId second = below_first ? node.above_child() : id + 1;
         ++depth;
         if (kd_lower(t_split) > kd_upper(t_max)) {  // (b) the plane lies beyond the interval
+          if constexpr (Sink::kRecords)
+            sink.vars(KdSplitVars{t_min, t_split, t_max, first, second, axis, KdCase::NearOnly});
           sink.cull(second, depth, CullReason::MissedBounds, t_split);
           id = first;
         } else if (kd_upper(t_split) < kd_lower(t_min)) {  // (c) the plane lies before it
+          if constexpr (Sink::kRecords)
+            sink.vars(KdSplitVars{t_min, t_split, t_max, first, second, axis, KdCase::FarOnly});
           sink.cull(first, depth, CullReason::MissedBounds, t_split);
           id = second;
         } else {  // (a); a NaN t_split (ray in the plane) keeps [t_min, t_max] for both
+          if constexpr (Sink::kRecords)
+            sink.vars(KdSplitVars{t_min, t_split, t_max, first, second, axis, KdCase::Both});
           const float far_min = t_split > t_min ? t_split : t_min;
           ACCEL_DCHECK(top < kKdMaxDepth);
           stack[top++] = {second, depth, far_min, t_max};
@@ -133,6 +140,8 @@ Hit KdTree::traverse(const Ray& ray, Sink& sink) const {
       while (top > 0) {
         const Entry& e = stack[--top];
         sink.pop(e.node, e.depth, e.t_min);
+        if constexpr (Sink::kRecords)  // the lecture's "if t_hit < t_split return"
+          sink.vars(KdExitVars{closest.t, e.t_min, e.node, closest.t < kd_lower(e.t_min)});
         if (closest.t < kd_lower(e.t_min)) {
           sink.cull(e.node, e.depth, CullReason::BeyondClosestHit, e.t_min);
           continue;

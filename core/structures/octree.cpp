@@ -610,4 +610,11 @@ std::vector<uint32_t> Octree::node_prims(NodeId id) const {
   return {data_.prim_ids.begin() + n.first, data_.prim_ids.begin() + n.first + n.count};
 }
 
+std::vector<NodeId> Octree::node_children(NodeId id) const {
+  if (id >= data_.nodes.size() || data_.nodes[id].leaf()) return {};
+  std::vector<NodeId> children;
+  for (uint32_t octant = 0; octant < 8; ++octant) children.push_back(data_.nodes[id].first + octant);
+  return children;
+}
+
 }  // namespace accel

@@ -167,6 +167,7 @@ class Octree final : public StructureWithTraversal<Octree> {
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;
   std::vector<uint32_t> node_prims(NodeId id) const override;
+  std::vector<NodeId> node_children(NodeId id) const override;
   /// The built data, for tests.
   const OctreeData& data() const { return data_; }
 
@@ -273,9 +274,11 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
         }
         Entry hit_children[8];
         int hits = 0;
+        [[maybe_unused]] OctreeOrderVars order;  // the child order, for the recorder only
         for (unsigned i = 0; i < 8; ++i) {
           const unsigned octant = i ^ mask;
           const NodeId child = node.first + octant;
+          if constexpr (Sink::kRecords) order.children[i] = {child, uint8_t(octant), OctreeOrderVars::Fate::Empty, 0, 0};
           if (nodes[child].count == 0) continue;  // empty leaf
           float c0 = ray.tmin, c1 = ray.tmax;
           for (int axis = 0; axis < 3; ++axis) {
@@ -284,6 +287,13 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
             c0 = n > c0 ? n : c0;  // as in BoxTester: a NaN distance leaves the interval as is
             c1 = f < c1 ? f : c1;
           }
+          if constexpr (Sink::kRecords) {
+            order.children[i].t_enter = c0;
+            order.children[i].t_exit = c1;
+            order.children[i].fate = c0 > c1             ? OctreeOrderVars::Fate::Missed
+                                     : c0 > closest.t ? OctreeOrderVars::Fate::BeyondClosestHit
+                                                      : OctreeOrderVars::Fate::Pushed;
+          }
           if (c0 > c1) {
             sink.cull(child, e.depth + 1, CullReason::MissedBounds, 0.0f);
           } else if (c0 > closest.t) {
@@ -291,6 +301,11 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
           } else {
             hit_children[hits++] = {child, e.depth + 1, c0, c1};
           }
+        }
+        if constexpr (Sink::kRecords) {
+          order.mask = mask;
+          order.count = 8;
+          sink.vars(order);
         }
         while (hits > 0) {
           const Entry& c = hit_children[--hits];

@@ -239,6 +239,17 @@ void UniformGrid::walk(const Ray& ray, const TriangleTester& tester, Hit& closes
     // The first cell's exit may precede t0 when the entry point rounded into it from a
     // neighbour: report an empty interval rather than a reversed one.
     sink.enter_cell(NodeId(cell), float(t_enter), float(std::max(t_exit, t_enter)));
+    if constexpr (Sink::kRecords) {  // the lecture's X, Y, Z, stepX.., tMaxX.., tDeltaX..
+      GridDdaVars v;
+      for (int a = 0; a < 3; ++a) {
+        v.cell[a] = idx[a];
+        v.step[a] = step[a];
+        v.t_max[a] = float(t_next[a]);
+        v.t_delta[a] = float(std::abs(t_delta[a]));
+      }
+      v.next_axis = axis;
+      sink.vars(v);
+    }
     for (uint32_t k = starts[cell], end = starts[cell + 1]; k < end; ++k) {
       const uint32_t prim = prims[k];
       if constexpr (kMailbox) {

@@ -393,6 +393,15 @@ std::vector<uint32_t> WideBvhOf<W>::node_prims(NodeId id) const {
 }
 
 template <int W>
+std::vector<NodeId> WideBvhOf<W>::node_children(NodeId id) const {
+  if (id >= entries_.size() || entries_[id].leaf()) return {};
+  std::vector<NodeId> children;
+  for (NodeId child : child_ids_[entries_[id].index])
+    if (child != kNoNode) children.push_back(child);
+  return children;
+}
+
+template <int W>
 size_t WideBvhOf<W>::memory_bytes() const {
   return nodes_.size() * (sizeof(Node) + sizeof(child_ids_[0])) + entries_.size() * sizeof(Entry) +
          blocks_.size() * sizeof(TriangleBlock);

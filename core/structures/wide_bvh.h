@@ -148,6 +148,7 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   void for_each_node(const std::function<void(const NodeView&)>& fn) const override;
   NodeView node_view(NodeId id) const override;
   std::vector<uint32_t> node_prims(NodeId id) const override;
+  std::vector<NodeId> node_children(NodeId id) const override;
 
   /// Number of nodes, inner and leaf.
   size_t size() const { return entries_.size(); }

@@ -71,6 +71,7 @@ void RayDebugger::set_ray(const accel::Ray& ray, const std::string& origin, cons
     ray_.record(*built->structure, /*keep_step=*/false);
   } else {
     ray_.hit = accel::Hit{};
+    ray_.vars.clear();
     ray_.player.clear();
   }
   dirty_ = true;
