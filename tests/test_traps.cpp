@@ -107,7 +107,7 @@ TEST_P(Trap, NaiveAnswerIsWrongAndTheRealOneMatchesBruteForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, Trap, ::testing::ValuesIn(trap_names()),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
 TEST(Traps, NamesAreTheThreeTraps) {
   EXPECT_EQ(trap_names(), (std::vector<std::string>{"pq", "kd", "grid"}));
