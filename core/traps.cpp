@@ -14,8 +14,10 @@ namespace {
 //   prim 1, "small": the plane x = 3.5 + 0.5 y, x in [3.35, 3.65], met at x = 3.5 (t = 4.5),
 //           inside it at |z| <= 0.15: nearer than prim 0's hit, but in a box entered later
 //           (t = 4.35), beyond the kd-tree's and the grid's cut at x = 3.
+/// x of the ray's origin: one unit before the scene, so the ray is seen entering it.
 constexpr float kRayStart = -1.0f;
 
+/// The figure above, named `name`.
 Scene slanted_and_small(std::string name) {
   std::vector<Vec3> positions = {
       {0.0f, 2.0f, -1.5f},    {0.0f, 2.0f, 1.5f},     {6.0f, -1.0f, 0.0f},  // prim 0: slanted
@@ -25,6 +27,8 @@ Scene slanted_and_small(std::string name) {
   return Scene(std::move(positions), std::move(triangles), std::move(name));
 }
 
+/// One demonstration as declared: what TrapDemo holds besides the scene spec and the ray,
+/// which all three share.
 struct TrapEntry {
   const char* name;
   const char* title;
@@ -33,7 +37,14 @@ struct TrapEntry {
   std::vector<std::string> params;
 };
 
-/// The three demonstrations, in the lecture's order of the traps' structures.
+/// The three demonstrations. The parameters make the trees the figure needs:
+///  pq    width=2 and leaf_size=1: a binary tree with one triangle per leaf, so the two
+///        boxes are two queue entries;
+///  kd    split=middle, max_depth=1: one split at the middle of x in [0, 6], x = 3, which
+///        the slanted triangle straddles (the default SAH keeps two triangles in one leaf,
+///        since no plane costs less than testing both, and a larger ci splits at x = 3.35
+///        into a deeper tree that shows the same thing less plainly);
+///  grid  res=2,1,1: two cells, x in [0, 3] and [3, 6].
 const std::vector<TrapEntry>& trap_entries() {
   static const std::vector<TrapEntry> entries = {
       {"pq", "BVH priority queue: the nearest box need not hold the nearest hit",
@@ -59,12 +70,14 @@ const std::vector<TrapEntry>& trap_entries() {
   return entries;
 }
 
+/// The entry named `name`, or nullptr.
 const TrapEntry* find_entry(std::string_view name) {
   for (const TrapEntry& e : trap_entries())
     if (name == e.name) return &e;
   return nullptr;
 }
 
+/// "unknown trap 'NAME' (valid: pq, kd, grid)".
 Error unknown_trap(std::string_view name) {
   std::string valid;
   for (const TrapEntry& e : trap_entries()) valid += std::string(valid.empty() ? "" : ", ") + e.name;
