@@ -260,6 +260,28 @@ TEST(StepVarsGrid, RandomRaysMatchTheIndependentWalk) {
   for (const Ray& ray : random_rays(scene.bounds(), 40, 7)) check_grid_ray(*as_grid(s.get()), ray);
 }
 
+TEST(StepVarsGrid, VarsAtShowsTheCurrentCells) {
+  const Scene scene = grid_scene();
+  auto s = build("grid", scene, {"res=4,4,4"});
+  ASSERT_TRUE(s);
+  TraceRecorder rec;
+  s->intersect_traced(make_ray({-1.0f, 0.2f, 0.3f}, {1.0f, 0.42f, 0.3f}), rec);
+  const auto& ev = rec.events();
+  const GridData& g = as_grid(s.get())->data();
+  size_t cells = 0;
+  for (size_t step = 0; step < ev.size(); ++step) {
+    const StepVars* v = vars_at(ev, rec.recorded_vars(), step);
+    const size_t cell = last_of(ev, step, TraceEventKind::EnterCell);
+    ASSERT_LT(cell, ev.size());  // the walk starts with one
+    ASSERT_NE(v, nullptr) << "step " << step;
+    const auto& dda = std::get<GridDdaVars>(*v);
+    EXPECT_EQ(ev[cell].node, NodeId(dda.cell[0] + g.res[0] * (dda.cell[1] + g.res[1] * dda.cell[2])))
+        << "step " << step;
+    cells += ev[step].kind == TraceEventKind::EnterCell;
+  }
+  EXPECT_EQ(cells, 5u);
+}
+
 // =======================================================================================
 // kd-tree: t_split, the near child, the case and the early exit
 
