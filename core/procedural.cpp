@@ -8,6 +8,7 @@
 
 #include "random.h"
 #include "scene.h"
+#include "traps.h"
 
 namespace accel {
 namespace {
@@ -176,9 +177,20 @@ std::vector<std::string> procedural_scene_names(bool include_large) {
   return names;
 }
 
+namespace {
+/// "trap_pq" -> "pq": the traps' scenes (traps.h), known by name but not listed in
+/// procedural_scene_names(), whose scenes the suites iterate; empty for other names.
+std::string_view trap_of(std::string_view name) {
+  constexpr std::string_view prefix = "trap_";
+  return name.starts_with(prefix) ? name.substr(prefix.size()) : std::string_view{};
+}
+}  // namespace
+
 std::string procedural_scene_description(std::string_view name) {
   for (const auto& e : kProcedural)
     if (name == e.name) return e.description;
+  if (!trap_of(name).empty())
+    if (auto demo = trap_demo(trap_of(name))) return "trap demonstration: " + demo.value().title;
   return {};
 }
 
@@ -188,8 +200,10 @@ Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed) {
   if (name == "cornell") return make_cornell();
   if (name == "stadium") return make_stadium();
   if (name == "terrain") return make_terrain();
+  if (!trap_of(name).empty() && trap_demo(trap_of(name))) return make_trap_scene(trap_of(name));
   std::string valid;
   for (const auto& e : kProcedural) valid += std::string(valid.empty() ? "" : ", ") + e.name;
+  for (const std::string& trap : trap_names()) valid += ", trap_" + trap;
   return make_error("unknown procedural scene '" + std::string(name) + "' (valid: " + valid + ")");
 }
 
