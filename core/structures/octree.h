@@ -27,6 +27,7 @@
 //    a 65536:1 ratio between the scene and its details, and deeper costs nothing since
 //    leaves stop earlier (see build_octree()).
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "structure.h"
@@ -274,7 +275,10 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
         }
         Entry hit_children[8];
         int hits = 0;
-        [[maybe_unused]] OctreeOrderVars order;  // the child order, for the recorder only
+        // The child order, for a recording sink only: an empty struct otherwise, so the fast
+        // path keeps no dead stores.
+        struct NoOrder {};
+        [[maybe_unused]] std::conditional_t<Sink::kRecords, OctreeOrderVars, NoOrder> order;
         for (unsigned i = 0; i < 8; ++i) {
           const unsigned octant = i ^ mask;
           const NodeId child = node.first + octant;
