@@ -110,6 +110,7 @@ void App::sync_session() {
     // A new scene: the old ray, its comparison and the heat map no longer mean anything.
     ray_.reset();
     build_.reset();
+    trap_.on_scene_loaded(session_.scene_info().spec);
     compare_.clear();
     heatmap_.invalidate();
     frame_scene();
@@ -166,6 +167,19 @@ accel::Status App::start_sweep() {
                       synchronous_);
 }
 
+accel::Status App::load_trap(const std::string& name) {
+  auto found = accel::trap_demo(name);
+  if (!found) return found.error();
+  const accel::TrapDemo& demo = found.value();
+  if (auto st = load_scene(demo.scene); !st) return st;
+  session_.switch_structure(demo.structure, demo.params);
+  sync_session();
+  if (auto st = session_.need_structure(); !st) return st;
+  trap_.set_demo(demo);
+  set_ray(demo.ray, "trap " + demo.name);
+  return {};
+}
+
 HeatmapView App::heatmap_view() const { return {camera_.pinhole(), session_.current_ptr(), view_size()}; }
 
 // ---------------------------------------------------------------------------------------
@@ -194,6 +208,10 @@ void App::update(float dt) {
   apply_lecture_mode();
   const ImGuiIO& io = ImGui::GetIO();
   dock_ = {0.0f, io.DisplaySize.x};
+  // The highlights (and the numbers the panels show) of the step this frame starts at.
+  ray_.update(session_.scene(), session_.current());
+  trap_.update(ray_.ray(), session_.scene());
+  ray_.set_marked_step(trap_.marked_step(), "a naive traversal stops here");
   if (ui_visible_) {
     layout_windows();
     if (panels_.main) main_panel();
@@ -217,6 +235,10 @@ void App::update(float dt) {
       }
       if (panels_.steps) ray_.steps_panel(place(layout_.steps));
       if (panels_.code) ray_.code_panel(place(layout_.code), shown, mono);
+      if (panels_.vars)
+        vars_.panel(place(layout_.vars), ray_.ray(), ray_.step_highlight(),
+                    shown ? shown->kind : TraversalKind::Unknown, mono);
+      trap_.window(place({layout_.legend.pos, {0.0f, 0.0f}}, false), ray_.ray(), ray_.player());
     }
     if (compare_.open()) {
       if (auto choice = compare_.panel(place(layout_.bottom, false), shown, ray_.ray().ray)) switch_structure(*choice);
@@ -231,6 +253,7 @@ void App::update(float dt) {
       heatmap_.legend(place({layout_.legend.pos, {0.0f, 0.0f}}, false), noun, heatmap_view());
     }
     bench_chart_window(chart_, layout_.chart.pos, layout_.chart.size, layout_apply_);
+    if (panels_.strip && !build_.active()) traversal_numbers();
   }
   status_overlay();
   sync_session();  // the panels may have loaded a scene or switched the structure
@@ -291,6 +314,10 @@ void App::update_shortcuts() {
       case GLFW_KEY_LEFT_BRACKET: p.set_speed(p.speed() / 1.5); break;
       case GLFW_KEY_C: compare_.set_open(true); start_compare(); break;
       case GLFW_KEY_M: heatmap_.cycle(); break;
+      case GLFW_KEY_V:  // the traversal's variables and the t-axis strip together
+        panels_.vars = !(panels_.vars && panels_.strip);
+        panels_.strip = panels_.vars;
+        break;
       // The construction mode: B records (again: back to the traversal), P . , PgUp PgDn - = step it.
       case GLFW_KEY_B:
         if (build_.active()) build_.set_active(false);

@@ -28,6 +28,8 @@
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
 #include "tools/sweep_tool.h"
+#include "tools/trap_tool.h"
+#include "tools/vars_panel.h"
 #include "view_layout.h"
 
 struct GLFWwindow;
@@ -123,6 +125,7 @@ class App {
   void set_ray(const accel::Ray& ray, const std::string& origin);
   void start_compare();
   accel::Status start_sweep();
+  accel::Status load_trap(const std::string& name);
   void construct() { build_.construct(session_.scene_ptr(), session_.current_request(), synchronous_); }
   void switch_structure(const StructureChoice& choice) { session_.switch_structure(choice.name, choice.params); }
   HeatmapView heatmap_view() const;
@@ -137,6 +140,7 @@ class App {
   void layout_windows();
   PanelPlace place(const WindowRect& rect, bool docks = true);
   void main_panel();
+  void traversal_numbers();
   void status_overlay();
 
   // ---- The tools
@@ -147,6 +151,8 @@ class App {
   CompareTool compare_;
   SweepTool sweep_;
   HeatmapTool heatmap_;
+  VarsPanel vars_;  // the traversal's variables and the t-axis strip
+  TrapTool trap_;   // the lecture's traps: the naive answer beside the right one
   BenchChartState chart_;  // the "Speed vs error" window (bench_chart_panel.cpp)
 
   // ---- Camera, input and the 3D view
@@ -168,7 +174,7 @@ class App {
   int layout_frames_ = 2;      // frames left that (re)apply the layout
   glm::vec2 layout_size_{0.0f};
   struct Panels {
-    bool main = true, ray = true, steps = true, code = true, legend = true;
+    bool main = true, ray = true, steps = true, code = true, legend = true, vars = true, strip = true;
   } panels_;
   bool ui_visible_ = true;
   bool lecture_mode_ = false;  // large fonts, high contrast

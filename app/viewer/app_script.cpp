@@ -6,6 +6,7 @@
 
 #include "app.h"
 #include "registry.h"
+#include "tools/traversal_numbers.h"
 
 namespace viz {
 namespace {
@@ -169,6 +170,9 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       else if (c.name == "compare") compare_.set_open(c.on);
       else if (c.name == "sweep") sweep_.set_open(c.on);
       else if (c.name == "legend") panels_.legend = c.on;
+      else if (c.name == "vars") panels_.vars = c.on;
+      else if (c.name == "strip") panels_.strip = c.on;
+      else if (c.name == "trap") trap_.set_open(c.on);
       if (c.on && c.name != "all") ui_visible_ = true;
       return {};
     case CommandKind::Large:
@@ -206,6 +210,21 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       }
       return {};
     }
+    case CommandKind::PrintVars: {
+      if (auto st = ray_.need_trace(); !st) return accel::make_error("print-vars: " + st.error().message);
+      const BuiltStructure* built = session_.current();
+      const auto& events = ray_.ray().player.events();
+      print_line(vars_line(ray_.ray().vars, events, accel::trace_highlight(events, ray_.player().step()),
+                           built ? built->kind : TraversalKind::Unknown));
+      return {};
+    }
+    case CommandKind::Trap:
+      host.render(1);  // the current layout, so the scene is framed into the 3D view
+      return load_trap(c.name);
+    case CommandKind::PrintNaive:
+      if (auto st = ray_.need_trace(); !st) return accel::make_error("print-naive: " + st.error().message);
+      print_line(accel::naive_line(accel::naive_first_leaf_hit(ray_.ray().player.events())));
+      return {};
     case CommandKind::PrintHit:
       if (auto st = ray_.need_ray(); !st) return st;
       print_line(ray_.hit_line());

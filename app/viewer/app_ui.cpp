@@ -92,6 +92,9 @@ void App::main_panel() {
     }
     ray_.highlight_options();
   }
+  if (ImGui::CollapsingHeader("Lecture traps")) {
+    if (const std::string name = trap_.section(); !name.empty()) (void)load_trap(name);  // errors: the scene section shows them
+  }
   if (ImGui::CollapsingHeader("Cost heat map")) heatmap_.section();
   if (ImGui::CollapsingHeader("Parameter sweep")) {
     if (sweep_.section(session_.editor_info())) (void)start_sweep();  // errors shown in the section
@@ -104,12 +107,26 @@ void App::main_panel() {
     ImGui::TextDisabled("space: play/pause   left/right: step (shift: 10)");
     ImGui::TextDisabled("home/end: first/last step   J: jump to hit");
     ImGui::TextDisabled("[ ]: slower/faster   C: compare   M: heat map");
+    ImGui::TextDisabled("V: variables panel and t-axis strip");
     ImGui::TextDisabled("F: frame scene   H: hide panels   L: lecture mode");
     ImGui::TextDisabled("B: construct (again: traversal)   P: play/pause build");
     ImGui::TextDisabled(", .: build step (shift: 10)   PgUp/PgDn: first/last");
     ImGui::TextDisabled("- =: build slower/faster");
   }
   ImGui::End();
+}
+
+void App::traversal_numbers() {
+  // The t-axis strip along the bottom of the 3D view, between the docked panels (known
+  // now: every docked panel of this frame has been drawn).
+  const ImGuiIO& io = ImGui::GetIO();
+  const float em = ImGui::GetFontSize(), pad = 0.4f * em;
+  const float left = dock_.left > 0.0f ? dock_.left + pad : pad;
+  const float right = (dock_.right < io.DisplaySize.x ? dock_.right : io.DisplaySize.x) - pad;
+  const float h = VarsPanel::strip_height(em);
+  if (right - left < 12.0f * em) return;  // no room beside the panels
+  const WindowRect rect{{left, io.DisplaySize.y - h - pad}, {right - left, h}};
+  vars_.strip(rect, ray_.ray(), ray_.step_highlight(), trap_.misleads() || trap_.marked_step() ? &trap_.naive() : nullptr);
 }
 
 void App::status_overlay() {

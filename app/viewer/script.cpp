@@ -10,6 +10,7 @@
 #include "params.h"
 #include "rays_io.h"
 #include "registry.h"
+#include "traps.h"
 
 namespace viz {
 namespace {
@@ -196,12 +197,13 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
   }
   if (verb == "panel") {
     c.kind = CommandKind::Panel;
-    const char* usage = "panel on|off | panel scene|ray|steps|code|compare|sweep|legend on|off";
+    const char* usage = "panel on|off | panel scene|ray|steps|code|compare|sweep|legend|vars|strip|trap on|off";
     if (n == 1 && parse_on_off(args[0], &c.on)) {
       c.name = "all";
       return "";
     }
-    static const char* kPanels[] = {"all", "scene", "ray", "steps", "code", "compare", "sweep", "legend"};
+    static const char* kPanels[] = {"all",     "scene", "ray",  "steps", "code", "compare",
+                                    "sweep",   "legend", "vars", "strip", "trap"};
     if (n != 2 || !parse_on_off(args[1], &c.on)) return count_error(usage);
     for (const char* p : kPanels) {
       if (args[0] == p) {
@@ -240,6 +242,17 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
              : verb == "print-ray"  ? CommandKind::PrintRay
                                     : CommandKind::PrintStats;
     return n == 0 ? "" : "'" + verb + "' takes no arguments";
+  }
+  if (verb == "print-vars" || verb == "print-naive") {
+    c.kind = verb == "print-vars" ? CommandKind::PrintVars : CommandKind::PrintNaive;
+    return n == 0 ? "" : "'" + verb + "' takes no arguments";
+  }
+  if (verb == "trap") {
+    c.kind = CommandKind::Trap;
+    if (n != 1) return count_error("trap pq|kd|grid");
+    if (auto demo = accel::trap_demo(args[0]); !demo) return "trap: " + demo.error().message;
+    c.name = args[0];
+    return "";
   }
   if (verb == "print-frame-time") {
     c.kind = CommandKind::PrintFrameTime;

@@ -19,7 +19,8 @@
 //   nodes on|off                      draw the structure's nodes (the ray's highlights stay)
 //   opacity A                         opacity of the structure's lines, 0.05..1
 //   panel on|off                      all panels; or `panel NAME on|off` for one of
-//                                     scene, ray, steps, code, compare, sweep, legend
+//                                     scene, ray, steps, code, compare, sweep, legend,
+//                                     vars, strip (the t-axis strip), trap
 //   large on|off                      large-font / high-contrast lecture mode
 //   compare                           fill the "same ray, every structure" table
 //   sweep PARAM LO HI STEPS           parameter sweep of the current structure (synchronous)
@@ -31,6 +32,12 @@
 //   sah-plot on|off                   the construction panel's SAH cost plot
 //   print-hit                         "hit PRIM T" or "miss"
 //   print-step                        the current step as one line
+//   print-vars                        "vars: name=value ..." of the current step (the
+//                                     traversal's recorded variables, closest_hit, the
+//                                     stack or queue as NODE:KEY,...)
+//   trap pq|kd|grid                   load a lecture trap's scene and structure, shoot its ray
+//   print-naive                       "naive hit PRIM T" or "naive miss": what a traversal
+//                                     stopping at the first leaf with a hit would answer
 //   print-ray                         "ox oy oz dx dy dz" as C99 hex floats (a rays-file line)
 //   print-stats                       build statistics of the current structure, one line
 //   print-frame-time N                render N frames, print the mean frame time
@@ -51,6 +58,7 @@ enum class CommandKind {
   Size, Scene, Preset, Structure, Kernel, Camera, RayAtPixel, Ray, Step, Show, Heatmap, Mesh,
   EmptyCells, Nodes, Opacity, Panel, Large, Compare, Sweep, Screenshot, Frames, PrintHit, PrintStep,
   PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart, Construct, BuildStep, PrintBuildStep, SahPlot,
+  PrintVars, Trap, PrintNaive,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };
@@ -60,7 +68,7 @@ enum class ShowMode { All, Leaves, Depth };
 struct ScriptCommand {
   CommandKind kind = CommandKind::Size;
   int line = 0;                      ///< 1-based line in the script
-  std::string name;                  ///< scene spec, structure, kernel, preset, panel, path, prefix, param
+  std::string name;                  ///< scene spec, structure, kernel, preset, panel, path, prefix, param, trap
   std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
   std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
   bool has_fov = false;              ///< camera: FOVY given

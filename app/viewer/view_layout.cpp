@@ -13,7 +13,13 @@ PanelLayout compute_layout(glm::vec2 display, float em, bool lecture, bool main_
   // pseudo code and the step list, wide enough for the lecture's code lines.
   const float left = std::min(21.0f * em, 0.3f * w);
   const float right = std::min(34.0f * em, (lecture ? 0.42f : 0.4f) * w);
+  // The traversal's variables under the controls (in lecture mode the controls collapse to
+  // their title bar and the variables take the column).
+  const float main_h = lecture ? 2.0f * em : std::round(0.56f * h);
   l.main = {{pad, pad}, {left, h - 2.0f * pad}};
+  const float vars_y = 2.0f * pad + main_h;
+  l.vars = {{pad, vars_y}, {left, std::max(h - vars_y - pad, 6.0f * em)}};
+  if (!lecture) l.main.size.y = main_h;
   const float rx = w - right - pad;
   const float ray_h = lecture ? 0.4f * h : std::max(0.42f * h, 19.5f * em);
   const float code_h = lecture ? 0.38f * h : 0.32f * h;

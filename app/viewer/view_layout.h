@@ -13,7 +13,7 @@ struct WindowRect {
 
 /// Where every panel goes at a given display size and font size.
 struct PanelLayout {
-  WindowRect main, ray, code, steps, bottom, legend, status, chart;
+  WindowRect main, vars, ray, code, steps, bottom, legend, status, chart;
 };
 
 /// The panels' rectangles for a display of `display` (window coordinates), font size `em`,

@@ -320,9 +320,14 @@ void RayDebugger::steps_panel(const PanelPlace& where) {
     for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
       const accel::TraceEvent& e = events[static_cast<size_t>(i)];
       char label[256];
-      std::snprintf(label, sizeof label, "%5d  %*s%s", i + 1, std::min<int>(e.depth, 24), "",
-                    accel::describe_event(e).c_str());
-      ImGui::PushStyleColor(ImGuiCol_Text, static_cast<size_t>(i) == current ? ImVec4(0, 0, 0, 1) : event_color(e));
+      const bool marked = marked_step_ && *marked_step_ == static_cast<size_t>(i);
+      std::snprintf(label, sizeof label, "%5d  %*s%s%s", i + 1, std::min<int>(e.depth, 24), "",
+                    accel::describe_event(e).c_str(), marked ? ("   <- " + marked_note_).c_str() : "");
+      // The marked step (a naive traversal's stop) in the trap window's colour.
+      const ImVec4 color = static_cast<size_t>(i) == current ? ImVec4(0, 0, 0, 1)
+                           : marked                          ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f)
+                                                             : event_color(e);
+      ImGui::PushStyleColor(ImGuiCol_Text, color);
       if (static_cast<size_t>(i) == current)
         ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
       if (ImGui::Selectable(label, static_cast<size_t>(i) == current)) {

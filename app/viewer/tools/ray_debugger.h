@@ -36,6 +36,14 @@ class RayDebugger {
 
   /// The debug ray.
   const DebugRay& ray() const { return ray_; }
+  /// What the highlights show: the trace's state at the current step (current after update()).
+  const accel::TraceHighlight& step_highlight() const { return highlights_.step; }
+  /// Marks step `step` in the steps list with `note` (nothing: no mark), e.g. where a naive
+  /// traversal would stop.
+  void set_marked_step(std::optional<size_t> step, std::string note) {
+    marked_step_ = step;
+    marked_note_ = std::move(note);
+  }
   /// The trace player (keys and scripts step it; the highlights follow).
   accel::TracePlayer& player() { return ray_.player; }
   /// Success, or why there is no trace to step through.
@@ -85,6 +93,8 @@ class RayDebugger {
   size_t steps_scrolled_ = ~size_t(0);  // step the list was last scrolled to
   int code_scrolled_ = -2;              // code line last scrolled into view
   bool shoot_from_saved_ = false;
+  std::optional<size_t> marked_step_;
+  std::string marked_note_;
   std::optional<accel::PinholeCamera> saved_view_;
   float typed_ray_[6] = {0, 0, 5, 0, 0, -1};
   std::optional<HighlightBatches> gl_;

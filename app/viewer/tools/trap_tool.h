@@ -1,0 +1,60 @@
+#pragma once
+// The lecture's traps (core/traps.h): loads a demonstration (scene, structure, ray) and
+// shows, for the debug ray, what a naive traversal that stops at the first leaf or cell
+// with a hit would answer -- computed from the recorded steps, for display only -- next to
+// the traversal's answer and brute force. The "Lecture trap" window appears while a
+// demonstration is loaded, and for any ray on which the naive answer would be wrong.
+#include <optional>
+#include <string>
+
+#include "accuracy.h"
+#include "scene.h"
+#include "traps.h"
+#include "view_layout.h"
+#include "workbench.h"
+
+namespace viz {
+
+class TrapTool {
+ public:
+  /// Marks `demo` as the one shown (after its scene, structure and ray were loaded).
+  void set_demo(const accel::TrapDemo& demo) { demo_ = demo; }
+  /// A scene other than the demonstration's was loaded.
+  void on_scene_loaded(const std::string& spec) {
+    if (demo_ && demo_->scene != spec) demo_.reset();
+  }
+  /// Recomputes the naive answer (and brute force, when it is shown) when the debug ray or
+  /// its trace changed.
+  void update(const DebugRay& ray, const accel::Scene& scene);
+
+  /// The naive answer for the current trace.
+  const accel::NaiveAnswer& naive() const { return naive_; }
+  /// The naive answer differs from the traversal's (a different triangle, or a miss/hit).
+  bool misleads() const { return misleads_; }
+  /// "naive hit PRIM T" or "naive miss" (print-naive).
+  std::string naive_line() const { return accel::naive_line(naive_); }
+  /// The step the steps list marks ("naive stop"), or nothing.
+  std::optional<size_t> marked_step() const;
+
+  /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
+  std::string section() const;
+  /// Show the window (panel trap on|off).
+  void set_open(bool open) { open_ = open; }
+  /// The "Lecture trap" window at `place`; "go to the naive stop" seeks `player`.
+  void window(const PanelPlace& place, const DebugRay& ray, accel::TracePlayer& player);
+
+ private:
+  std::optional<accel::TrapDemo> demo_;
+  bool open_ = true;
+  accel::NaiveAnswer naive_;
+  bool misleads_ = false;
+  // What naive_ and brute_ were computed for.
+  accel::Ray ray_;
+  const accel::TraceEvent* events_ = nullptr;
+  size_t event_count_ = 0;
+  const accel::Scene* scene_ = nullptr;
+  bool computed_ = false;
+  std::optional<accel::ReferenceHit> brute_;
+};
+
+}  // namespace viz

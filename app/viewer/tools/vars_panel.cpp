@@ -1,0 +1,325 @@
+#include "tools/vars_panel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <variant>
+
+#include <imgui.h>
+
+#include "panels.h"
+#include "tools/traversal_numbers.h"
+#include "tools/ui_colors.h"
+
+namespace viz {
+namespace {
+
+using ui::kCullText;
+using ui::kCurrentText;
+using ui::kDimText;
+using ui::kHitText;
+using ui::kQueueText;
+
+constexpr const char* kAxisUpper[3] = {"X", "Y", "Z"};
+const ImVec4 kWhite(1.0f, 1.0f, 1.0f, 1.0f);
+const ImVec4 kNaiveText(1.0f, 0.35f, 0.85f, 1.0f);  // the naive traversal's (wrong) answer
+
+std::string num(float v) {
+  char buf[48];
+  if (std::isinf(v)) std::snprintf(buf, sizeof buf, "%sinf", v < 0 ? "-" : "");
+  else std::snprintf(buf, sizeof buf, "%.5g", static_cast<double>(v));
+  return buf;
+}
+
+void cell(int column, const std::string& text, const ImVec4& color = kWhite) {
+  ImGui::TableSetColumnIndex(column);
+  ImGui::TextColored(color, "%s", text.c_str());
+}
+
+/// A name/value row; `mono` for the value.
+void value_row(const char* name, const std::string& value, ImFont* mono, const ImVec4& color = kWhite) {
+  ImGui::TableNextRow();
+  ImGui::TableSetColumnIndex(0);
+  ImGui::TextColored(kDimText, "%s", name);
+  ImGui::TableSetColumnIndex(1);
+  if (mono) ImGui::PushFont(mono);
+  ImGui::TextColored(color, "%s", value.c_str());
+  if (mono) ImGui::PopFont();
+}
+
+constexpr ImGuiTableFlags kTable = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_BordersInnerH |
+                                   ImGuiTableFlags_RowBg;
+
+void grid_vars(const accel::GridDdaVars& v, float closest, ImFont* mono) {
+  if (mono) ImGui::PushFont(mono);
+  if (ImGui::BeginTable("dda", 4, kTable)) {
+    ImGui::TableSetupColumn("");
+    for (int a = 0; a < 3; ++a) ImGui::TableSetupColumn(a == v.next_axis ? "next" : "");
+    ImGui::TableNextRow();
+    for (int a = 0; a < 3; ++a) cell(a + 1, std::string(kAxisUpper[a]) + "=" + std::to_string(v.cell[a]));
+    cell(0, "cell", kDimText);
+    auto row = [&](const char* name, auto value_of) {
+      ImGui::TableNextRow();
+      cell(0, name, kDimText);
+      for (int a = 0; a < 3; ++a) cell(a + 1, value_of(a), a == v.next_axis ? kCurrentText : kWhite);
+    };
+    row("step", [&](int a) { return std::to_string(v.step[a]); });
+    row("tMax", [&](int a) { return num(v.t_max[a]); });
+    row("tDelta", [&](int a) { return num(v.t_delta[a]); });
+    ImGui::EndTable();
+  }
+  if (mono) ImGui::PopFont();
+  const int n = (v.next_axis % 3 + 3) % 3;
+  const float exit_t = v.t_max[n];
+  ImGui::TextColored(kCurrentText, "next: %s += step%s (tMax%s = %s is the smallest)", kAxisUpper[n], kAxisUpper[n],
+                     kAxisUpper[n], num(exit_t).c_str());
+  // The lecture's rule: the walk may stop only at a hit inside the current cell.
+  if (std::isfinite(closest)) {
+    if (closest <= exit_t)
+      ImGui::TextColored(kHitText, "closest_hit %s <= tMax%s %s: inside this cell, stop", num(closest).c_str(),
+                         kAxisUpper[n], num(exit_t).c_str());
+    else
+      ImGui::TextColored(kCullText, "closest_hit %s > tMax%s %s: beyond this cell, walk on", num(closest).c_str(),
+                         kAxisUpper[n], num(exit_t).c_str());
+  }
+}
+
+void kd_split_vars(const accel::KdSplitVars& v, ImFont* mono) {
+  if (ImGui::BeginTable("kd", 2, kTable)) {
+    value_row("t_min", num(v.t_min), mono);
+    value_row("t_split", num(v.t_split), mono, kCurrentText);
+    value_row("t_max", num(v.t_max), mono);
+    value_row("split axis", kAxisUpper[(v.axis % 3 + 3) % 3], mono);
+    value_row("near child", std::to_string(v.near_child), mono);
+    value_row("far child", std::to_string(v.far_child), mono);
+    ImGui::EndTable();
+  }
+  struct Case {
+    accel::KdCase kase;
+    const char* text;
+  };
+  const Case cases[3] = {
+      {accel::KdCase::Both, "(a) t_min <= t_split <= t_max: near on [t_min, t_split], far on [t_split, t_max]"},
+      {accel::KdCase::NearOnly, "(b) t_split > t_max: near child only"},
+      {accel::KdCase::FarOnly, "(c) t_split < t_min: far child only"},
+  };
+  for (const Case& c : cases) {
+    const bool on = c.kase == v.kase;
+    ImGui::PushStyleColor(ImGuiCol_Text, on ? kCurrentText : kDimText);
+    ImGui::TextWrapped("%s %s", on ? ">" : " ", c.text);
+    ImGui::PopStyleColor();
+  }
+}
+
+void kd_exit_vars(const accel::KdExitVars& v, ImFont* mono) {
+  ImGui::TextColored(kQueueText, "pop the far child %u: early exit if t_hit < t_split", v.far_child);
+  if (ImGui::BeginTable("kdexit", 2, kTable)) {
+    value_row("t_hit", num(v.t_hit), mono);
+    value_row("t_split", num(v.t_split), mono);
+    ImGui::EndTable();
+  }
+  if (v.exits)
+    ImGui::TextColored(kHitText, "%s < %s: the hit lies before the far child: return it", num(v.t_hit).c_str(),
+                       num(v.t_split).c_str());
+  else
+    ImGui::TextColored(kCullText, "%s >= %s: a nearer hit may wait in the far child: go on", num(v.t_hit).c_str(),
+                       num(v.t_split).c_str());
+}
+
+const char* fate_text(accel::OctreeOrderVars::Fate f) {
+  switch (f) {
+    case accel::OctreeOrderVars::Fate::Pushed: return "pushed";
+    case accel::OctreeOrderVars::Fate::Missed: return "missed";
+    case accel::OctreeOrderVars::Fate::BeyondClosestHit: return "beyond closest hit";
+    case accel::OctreeOrderVars::Fate::Empty: return "empty";
+  }
+  return "";
+}
+
+void octree_vars(const accel::OctreeOrderVars& v, ImFont* mono) {
+  ImGui::TextColored(kDimText, "child order: octant i ^ mask, mask = %u (axes the ray travels down)", v.mask);
+  if (mono) ImGui::PushFont(mono);
+  if (ImGui::BeginTable("oct", 6, kTable)) {
+    for (const char* h : {"#", "octant", "node", "t_enter", "t_exit", "fate"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (int i = 0; i < v.count && i < 8; ++i) {
+      const accel::OctreeOrderVars::Child& c = v.children[i];
+      const ImVec4 color = c.fate == accel::OctreeOrderVars::Fate::Pushed ? kQueueText
+                           : c.fate == accel::OctreeOrderVars::Fate::Empty ? kDimText
+                                                                            : kCullText;
+      ImGui::TableNextRow();
+      cell(0, std::to_string(i + 1), kDimText);
+      cell(1, std::to_string(c.octant), color);
+      cell(2, c.node == accel::kNoNode ? "-" : std::to_string(c.node), color);
+      const bool timed = c.fate != accel::OctreeOrderVars::Fate::Empty && c.fate != accel::OctreeOrderVars::Fate::Missed;
+      cell(3, timed ? num(c.t_enter) : "", color);
+      cell(4, timed ? num(c.t_exit) : "", color);
+      cell(5, fate_text(c.fate), color);
+    }
+    ImGui::EndTable();
+  }
+  if (mono) ImGui::PopFont();
+}
+
+void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* mono) {
+  const bool queue = kind == TraversalKind::HierarchyPqueue;
+  const std::vector<accel::PendingNode> pending = pending_in_pop_order(h, kind);
+  ImGui::TextColored(kQueueText, "%s (%zu)", queue ? "priority queue, nearest first" : "stack, top first",
+                     pending.size());
+  if (pending.empty()) return;
+  if (mono) ImGui::PushFont(mono);
+  constexpr size_t kShown = 12;
+  if (ImGui::BeginTable("pending", 3, kTable)) {
+    for (const char* name : {"node", "key (entry t)", "vs closest_hit"}) ImGui::TableSetupColumn(name);
+    ImGui::TableHeadersRow();
+    for (size_t i = 0; i < pending.size() && i < kShown; ++i) {
+      const accel::PendingNode& p = pending[i];
+      // The key decides at the pop: a node entered beyond the closest hit is skipped.
+      const bool skip = p.key > h.closest_t;
+      ImGui::TableNextRow();
+      cell(0, std::to_string(p.node), i == 0 ? kCurrentText : kWhite);
+      cell(1, num(p.key));
+      cell(2, skip ? "> closest: skip" : "<= closest: visit", skip ? kCullText : kHitText);
+    }
+    ImGui::EndTable();
+  }
+  if (pending.size() > kShown) ImGui::TextColored(kDimText, "... %zu more", pending.size() - kShown);
+  if (mono) ImGui::PopFont();
+}
+
+}  // namespace
+
+void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel::TraceHighlight& h, TraversalKind kind,
+                      ImFont* mono) {
+  ui::place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin("Variables")) {
+    ImGui::End();
+    return;
+  }
+  ui::note_docked(where);
+  const auto& events = ray.player.events();
+  if (!ray.active || events.empty() || !h.valid) {
+    ImGui::TextDisabled("the traversal's variables at the current step: shoot a ray");
+    ImGui::End();
+    return;
+  }
+  ImGui::TextDisabled("%s, step %zu of %zu", traversal_label(kind), h.step + 1, events.size());
+  const accel::StepVars* v = accel::vars_at(events, ray.vars, h.step);
+  if (v) {
+    if (const auto* g = std::get_if<accel::GridDdaVars>(v)) grid_vars(*g, h.closest_t, mono);
+    else if (const auto* k = std::get_if<accel::KdSplitVars>(v)) kd_split_vars(*k, mono);
+    else if (const auto* x = std::get_if<accel::KdExitVars>(v)) kd_exit_vars(*x, mono);
+    else if (const auto* o = std::get_if<accel::OctreeOrderVars>(v)) octree_vars(*o, mono);
+  } else if (kind == TraversalKind::Grid || kind == TraversalKind::KdTree || kind == TraversalKind::Octree) {
+    ImGui::TextDisabled(h.node == accel::kNoNode ? "before the first node" : "a leaf: testing its triangles");
+  }
+  ImGui::Separator();
+  if (std::isfinite(h.closest_t))
+    ImGui::TextColored(kHitText, "closest_hit = %s (triangle %d)", num(h.closest_t).c_str(), h.closest_prim);
+  else
+    ImGui::TextColored(kDimText, "closest_hit = inf (nothing hit yet)");
+  if (keeps_pending(kind)) pending_table(h, kind, mono);
+  ImGui::End();
+}
+
+void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::TraceHighlight& h,
+                      const accel::NaiveAnswer* naive) {
+  const auto& events = ray.player.events();
+  if (!ray.active || events.empty() || !h.valid || rect.size.x < 1.0f || rect.size.y < 1.0f) return;
+  float t_lo = 0.0f, t_hi = 1.0f;
+  t_strip_range(events, ray.ray.tmin, t_lo, t_hi);
+  if (naive && naive->hit) t_hi = std::max(t_hi, naive->t);
+  const TStrip s = t_strip_at(events, ray.vars, h, t_lo, t_hi);
+
+  ImGui::SetNextWindowPos(ImVec2(rect.pos.x, rect.pos.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.82f);
+  if (!ImGui::Begin("##t-strip", nullptr,
+                    ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                        ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+                        ImGuiWindowFlags_NoBringToFrontOnFocus)) {
+    ImGui::End();
+    return;
+  }
+  const float em = ImGui::GetFontSize();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const float label_w = 5.2f * em;  // the row names on the left
+  const float x0 = p0.x + label_w, x1 = p0.x + avail.x - 0.5f * em;
+  const float span = std::max(s.t_hi - s.t_lo, 1e-30f);
+  auto x_of = [&](float t) {
+    const float u = std::clamp((t - s.t_lo) / span, -0.01f, 1.01f);
+    return x0 + u * (x1 - x0);
+  };
+  const ImU32 dim = ImGui::GetColorU32(kDimText), white = ImGui::GetColorU32(kWhite);
+  const ImU32 current = ImGui::GetColorU32(kCurrentText), queue = ImGui::GetColorU32(kQueueText);
+  const ImU32 hit = ImGui::GetColorU32(ImVec4(1.0f, 0.78f, 0.05f, 1.0f));
+  const float row = 1.15f * em;
+  const float y_title = p0.y, y_int = p0.y + row, y_keys = y_int + row, y_axis = y_keys + row;
+
+  char title[160];
+  std::snprintf(title, sizeof title, "ray parameter t: %s .. %s", num(s.t_lo).c_str(), num(s.t_hi).c_str());
+  dl->AddText(ImVec2(p0.x, y_title), white, title);
+  dl->AddText(ImVec2(p0.x, y_int), dim, "visited");
+  dl->AddText(ImVec2(p0.x, y_keys), dim, "keys, splits");
+  // The visited intervals: earlier ones faint (overlaps add up), the current one bright.
+  const float bar_h = 0.55f * em, bar_y = y_int + 0.25f * em;
+  for (const TStrip::Interval& iv : s.intervals) {
+    if (iv.current || !(iv.t1 >= iv.t0)) continue;
+    dl->AddRectFilled(ImVec2(x_of(iv.t0), bar_y), ImVec2(std::max(x_of(iv.t1), x_of(iv.t0) + 1.0f), bar_y + bar_h),
+                      ImGui::GetColorU32(ImVec4(0.85f, 0.88f, 0.95f, 0.22f)));
+  }
+  for (const TStrip::Interval& iv : s.intervals) {
+    if (!iv.current || !(iv.t1 >= iv.t0)) continue;
+    const float a = x_of(iv.t0), b = std::max(x_of(iv.t1), a + 2.0f);
+    dl->AddRectFilled(ImVec2(a, bar_y - 0.1f * em), ImVec2(b, bar_y + bar_h + 0.1f * em), current);
+  }
+  // Push keys (pending bright, taken faint) and the kd-tree's split distances.
+  const float tick_y = y_keys + 0.15f * em, tick_h = 0.8f * em;
+  for (const TStrip::Key& k : s.keys) {
+    if (!std::isfinite(k.t)) continue;
+    const float x = x_of(k.t);
+    const ImU32 c = k.pending ? queue : ImGui::GetColorU32(ImVec4(kQueueText.x, kQueueText.y, kQueueText.z, 0.3f));
+    dl->AddTriangleFilled(ImVec2(x, tick_y + tick_h), ImVec2(x - 0.3f * em, tick_y + 0.3f * em),
+                          ImVec2(x + 0.3f * em, tick_y + 0.3f * em), c);
+  }
+  for (const TStrip::Split& sp : s.splits) {
+    if (!std::isfinite(sp.t) || sp.t < s.t_lo - span || sp.t > s.t_hi + span) continue;
+    const float x = x_of(sp.t);
+    dl->AddLine(ImVec2(x, tick_y), ImVec2(x, tick_y + tick_h), sp.current ? current : dim,
+                sp.current ? 0.2f * em : 0.08f * em);
+  }
+  // The axis with ticks at tmin and tmax.
+  dl->AddLine(ImVec2(x0, y_axis), ImVec2(x1, y_axis), white, 0.08f * em);
+  dl->AddText(ImVec2(x0, y_axis + 0.1f * em), dim, num(s.t_lo).c_str());
+  const std::string hi = num(s.t_hi);
+  dl->AddText(ImVec2(x1 - ImGui::CalcTextSize(hi.c_str()).x, y_axis + 0.1f * em), dim, hi.c_str());
+  // The current event's own distance, the closest hit so far, and the naive answer.
+  const float top = y_int, bottom = y_axis;
+  if (std::isfinite(s.event_t)) {
+    const float x = x_of(s.event_t);
+    dl->AddLine(ImVec2(x, top), ImVec2(x, bottom), white, 0.06f * em);
+  }
+  if (std::isfinite(s.closest)) {
+    const float x = x_of(s.closest);
+    dl->AddLine(ImVec2(x, top - 0.2f * em), ImVec2(x, bottom + 0.2f * em), hit, 0.22f * em);
+    const std::string label = "closest_hit " + num(s.closest);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    dl->AddText(ImVec2(std::clamp(x - 0.5f * w, x0, x1 - w), y_title), hit, label.c_str());
+  }
+  if (naive && naive->hit && (!ray.hit.valid() || naive->prim != ray.hit.prim)) {
+    const float x = x_of(naive->t);
+    const ImU32 c = ImGui::GetColorU32(kNaiveText);
+    for (float y = top; y < bottom; y += 0.5f * em) dl->AddLine(ImVec2(x, y), ImVec2(x, y + 0.3f * em), c, 0.18f * em);
+    const std::string label = "naive " + num(naive->t);
+    dl->AddText(ImVec2(std::min(x + 0.3f * em, x1 - ImGui::CalcTextSize(label.c_str()).x), y_axis + 0.1f * em), c,
+                label.c_str());
+  }
+  ImGui::Dummy(avail);
+  ImGui::End();
+}
+
+}  // namespace viz

@@ -1,0 +1,31 @@
+#pragma once
+// The traversal's numbers at the debug ray's current step: the "Variables" panel (the
+// active pseudo code's variables, named as in the lecture) and the t-axis strip under the
+// 3D view (the ray's parameter range with every visited interval, the split distances,
+// the entry keys and the closest hit so far). Both show what the traversal recorded
+// (tools/traversal_numbers.h selects it); neither recomputes the structure's work.
+#include "pseudo_code.h"
+#include "trace_player.h"
+#include "traps.h"
+#include "view_layout.h"
+#include "workbench.h"
+
+struct ImFont;
+
+namespace viz {
+
+class VarsPanel {
+ public:
+  /// The "Variables" window for `ray` at `highlight`'s step, traversal `kind`; `mono`
+  /// (may be null) for the numbers.
+  void panel(const PanelPlace& place, const DebugRay& ray, const accel::TraceHighlight& highlight, TraversalKind kind,
+             ImFont* mono);
+  /// The t-axis strip in `rect` (window coordinates). `naive` (may be null): the answer a
+  /// naive first-leaf traversal gives, marked on the axis when it differs from the answer.
+  void strip(const WindowRect& rect, const DebugRay& ray, const accel::TraceHighlight& highlight,
+             const accel::NaiveAnswer* naive);
+  /// Height of the strip at font size `em` (window units).
+  static float strip_height(float em) { return 5.6f * em; }
+};
+
+}  // namespace viz
