@@ -237,8 +237,8 @@ void App::update(float dt) {
       if (panels_.code) ray_.code_panel(place(layout_.code), shown, mono);
       if (panels_.vars)
         vars_.panel(place(layout_.vars), ray_.ray(), ray_.step_highlight(),
-                    shown ? shown->kind : TraversalKind::Unknown, mono);
-      trap_.window(place({layout_.legend.pos, {0.0f, 0.0f}}, false), ray_.ray(), ray_.player());
+                    shown ? shown->kind : TraversalKind::Unknown, mono,
+                    [&] { trap_.block(ray_.ray(), ray_.player()); });
     }
     if (compare_.open()) {
       if (auto choice = compare_.panel(place(layout_.bottom, false), shown, ray_.ray().ray)) switch_structure(*choice);

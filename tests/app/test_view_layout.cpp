@@ -20,6 +20,24 @@ DockEdges docked(glm::vec2 display, float em) {
   return d;
 }
 
+TEST(ViewLayout, VariablesSitUnderTheControlsInTheLeftColumn) {
+  const glm::vec2 display(1600, 900);
+  for (bool lecture : {false, true}) {
+    const float em = lecture ? 30.0f : 18.0f;
+    const PanelLayout l = compute_layout(display, em, lecture, /*main_open=*/true);
+    EXPECT_EQ(l.vars.pos.x, l.main.pos.x);
+    EXPECT_EQ(l.vars.size.x, l.main.size.x);
+    EXPECT_NEAR(l.vars.pos.y + l.vars.size.y, display.y - 0.4f * em, 0.5f) << "down to the bottom edge";
+    if (lecture) {
+      // The controls collapse to their title bar: the variables take the column.
+      EXPECT_LT(l.vars.pos.y, 3.0f * em);
+    } else {
+      EXPECT_GE(l.vars.pos.y, l.main.pos.y + l.main.size.y) << "below the controls, not over them";
+      EXPECT_GT(l.vars.size.y, 0.3f * display.y);
+    }
+  }
+}
+
 TEST(ViewLayout, DefaultWindowLeavesTheMiddleFree) {
   // 1280x720 at the viewer's 18 px font: the view lies between the controls and the debug
   // ray panels (it used to fall back to the whole window, leaving the mesh under them).

@@ -193,6 +193,46 @@ def main():
                 c, o, _ = run([args.png_check, "--differ", f"{work}/bs{k}_{a}.png", f"{work}/bs{k}_{b}.png", "30"])
                 check(c == 0, f"construct {s}: build steps {a} and {b} look the same: {o}")
 
+    # ---- The traversal's variables (print-vars names the lecture's variables: tMaxX on a
+    # grid step, the case on a kd-tree node) and the lecture's traps: the naive answer
+    # differs from the traversal's, which equals brute force (accelviz-cli).
+    lines = [f"size {W} {H}", f"scene {SCENE}", "structure grid", f"ray-at-pixel {PIXEL[0]} {PIXEL[1]}",
+             "step start", "print-vars", "structure kdtree", "step start", "print-vars", "step end", "print-vars",
+             f"screenshot {work}/vars_on.png", "panel vars off", "panel strip off", f"screenshot {work}/vars_off.png",
+             "panel vars on", "panel strip on"]
+    for trap in ("pq", "kd", "grid"):
+        lines += [f"trap {trap}", "print-hit", "print-naive", "print-ray"]
+    script = os.path.join(work, "vars_traps.txt")
+    with open(script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    code, out, err = viewer(args, script)
+    if check(code == 0, f"vars and traps: viewer exit {code}\n{err}"):
+        got = out.strip().splitlines()
+        if check(len(got) == 3 + 3 * 3, f"vars and traps: expected 12 lines:\n{out}"):
+            check(re.match(r"vars: X=\d+ Y=\d+ Z=\d+ .*\btMaxX=\S+ .*\bnext=[xyz] closest_hit=\S+$", got[0]) is not None,
+                  f"grid print-vars: '{got[0]}'")
+            check(re.match(r"vars: t_min=\S+ t_split=\S+ t_max=\S+ .*\bcase=[abc]\(\w+\) closest_hit=\S+ stack=\S+$", got[1])
+                  is not None, f"kd-tree print-vars: '{got[1]}'")
+            check(re.match(r"vars: .*closest_hit=[0-9.]+ stack=\S+$", got[2]) is not None, f"kd-tree at the end: '{got[2]}'")
+            for k, trap in enumerate(("pq", "kd", "grid")):
+                hit, naive, ray = got[3 + 3 * k: 6 + 3 * k]
+                m, n = re.fullmatch(r"hit (\d+) (\S+)", hit), re.fullmatch(r"naive hit (\d+) (\S+)", naive)
+                if not check(m is not None and n is not None, f"trap {trap}: '{hit}' / '{naive}'"):
+                    continue
+                check(m.group(1) != n.group(1), f"trap {trap}: the naive answer '{naive}' equals the traversal's '{hit}'")
+                check(float(n.group(2)) > float(m.group(2)), f"trap {trap}: the naive hit is not the farther one")
+                rays, hits = os.path.join(work, f"trap_{trap}_ray.txt"), os.path.join(work, f"trap_{trap}_hits.csv")
+                with open(rays, "w") as f:
+                    f.write(ray + "\n")
+                c, _, e = run([args.cli, "trace", "--scene", f"procedural:trap_{trap}", "--structure", "brute",
+                               "--rays", rays, "--out", hits])
+                if check(c == 0, f"trap {trap}: accelviz-cli trace failed: {e}"):
+                    with open(hits) as f:
+                        row = list(csv.DictReader(f))[0]
+                    check(row["prim"] == m.group(1), f"trap {trap}: brute force hits {row['prim']}, the viewer {hit}")
+        c, o, _ = run([args.png_check, "--differ", f"{work}/vars_on.png", f"{work}/vars_off.png", "30"])
+        check(c == 0, f"panel vars/strip off changed nothing: {o}")
+
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
         ("bad_parse.txt", "size 320 240\n# comment\nfly to the moon\n", r"^accelviz: .*bad_parse\.txt:3: unknown command 'fly'\n$"),
@@ -214,6 +254,10 @@ def main():
          r"^accelviz: .*bad_build_step\.txt:3: build-step: no construction recorded yet \(use construct first\)\n$"),
         ("bad_build_args.txt", "build-step back\n",
          r"^accelviz: .*bad_build_args\.txt:1: usage: build-step N \| build-step end \| build-step back N"),
+        ("bad_trap.txt", "trap nope\n", r"^accelviz: .*bad_trap\.txt:1: trap: unknown trap 'nope' \(valid: pq, kd, grid\)\n$"),
+        ("bad_vars.txt", f"size {W} {H}\nscene {SCENE}\nprint-vars\n",
+         r"^accelviz: .*bad_vars\.txt:3: print-vars: no debug ray yet"),
+        ("bad_naive.txt", "print-naive now\n", r"^accelviz: .*bad_naive\.txt:1: 'print-naive' takes no arguments\n$"),
         ("bad_bench.txt", f"size {W} {H}\nload-bench /no/such/bench.json\n",
          r"^accelviz: .*bad_bench\.txt:2: /no/such/bench\.json: cannot read the file\n$"),
     ]

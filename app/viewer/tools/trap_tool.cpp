@@ -1,5 +1,7 @@
 #include "tools/trap_tool.h"
 
+#include <cstdio>
+
 #include <imgui.h>
 
 #include "panels.h"
@@ -10,7 +12,7 @@ namespace {
 
 const ImVec4 kNaiveText(1.0f, 0.35f, 0.85f, 1.0f);  // as on the t-axis strip
 
-void answer_row(const char* who, bool hit, int32_t prim, double t, const ImVec4& color, const char* note) {
+void answer_row(const char* who, bool hit, int32_t prim, double t, const ImVec4& color) {
   ImGui::TableNextRow();
   ImGui::TableSetColumnIndex(0);
   ImGui::TextColored(color, "%s", who);
@@ -19,8 +21,6 @@ void answer_row(const char* who, bool hit, int32_t prim, double t, const ImVec4&
   else ImGui::TextColored(color, "miss");
   ImGui::TableSetColumnIndex(2);
   if (hit) ImGui::TextColored(color, "t = %.6g", t);
-  ImGui::TableSetColumnIndex(3);
-  ImGui::TextColored(ui::kDimText, "%s", note);
 }
 
 }  // namespace
@@ -62,39 +62,41 @@ std::string TrapTool::section() const {
   return pressed;
 }
 
-void TrapTool::window(const PanelPlace& where, const DebugRay& ray, accel::TracePlayer& player) {
-  if (!open_ || !ray.active || player.empty() || !(demo_ || misleads_)) return;
-  const float em = ImGui::GetFontSize();
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(20.0f * em, 0.0f), ImVec2(34.0f * em, 40.0f * em));
-  if (!ImGui::Begin("Lecture trap", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::End();
-    return;
-  }
-  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 32.0f * em);
+bool TrapTool::shown(const DebugRay& ray) const {
+  return open_ && ray.active && !ray.player.empty() && (demo_ || misleads_);
+}
+
+void TrapTool::block(const DebugRay& ray, accel::TracePlayer& player) {
+  if (!shown(ray)) return;
+  if (!ImGui::CollapsingHeader("Lecture trap", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (demo_) {
-    ImGui::TextColored(ui::kCurrentText, "%s", demo_->title.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ui::kCurrentText);
+    ImGui::TextWrapped("%s", demo_->title.c_str());
+    ImGui::PopStyleColor();
     ImGui::TextWrapped("%s", demo_->explanation.c_str());
   } else {
-    ImGui::TextColored(ui::kCurrentText, "On this ray a naive traversal would be wrong");
+    ImGui::PushStyleColor(ImGuiCol_Text, ui::kCurrentText);
+    ImGui::TextWrapped("On this ray a naive traversal would be wrong");
+    ImGui::PopStyleColor();
   }
-  ImGui::PopTextWrapPos();
-  if (ImGui::BeginTable("answers", 4, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_BordersInnerH)) {
-    char note[96];
-    std::snprintf(note, sizeof note, "stops at step %zu", naive_.stop_step + 1);
-    answer_row("naive", naive_.hit, naive_.prim, static_cast<double>(naive_.t), kNaiveText,
-               naive_.hit ? note : "no leaf hit");
-    answer_row("traversal", ray.hit.valid(), ray.hit.prim, static_cast<double>(ray.hit.t), ui::kHitText, "the answer");
-    if (brute_) answer_row("brute force", brute_->prim >= 0, brute_->prim, brute_->t, ui::kHitText, "double precision");
+  if (ImGui::BeginTable("answers", 3, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_BordersInnerH)) {
+    answer_row("naive", naive_.hit, naive_.prim, static_cast<double>(naive_.t), kNaiveText);
+    answer_row("traversal", ray.hit.valid(), ray.hit.prim, static_cast<double>(ray.hit.t), ui::kHitText);
+    if (brute_) answer_row("brute force", brute_->prim >= 0, brute_->prim, brute_->t, ui::kHitText);
     ImGui::EndTable();
   }
-  ImGui::TextDisabled("naive: stop at the first leaf (cell) with a hit, take its closest");
-  if (naive_.hit && ImGui::Button("go to the naive stop")) {
-    player.pause();
-    player.seek(naive_.stop_step);
+  ImGui::PushStyleColor(ImGuiCol_Text, ui::kDimText);
+  ImGui::TextWrapped("naive: stop at the first leaf (cell) with a hit and take its closest");
+  ImGui::PopStyleColor();
+  if (naive_.hit) {
+    char label[64];
+    std::snprintf(label, sizeof label, "go to the naive stop (step %zu)", naive_.stop_step + 1);
+    if (ImGui::Button(label)) {
+      player.pause();
+      player.seek(naive_.stop_step);
+    }
   }
-  ImGui::End();
+  ImGui::Separator();
 }
 
 }  // namespace viz

@@ -2,8 +2,9 @@
 // The lecture's traps (core/traps.h): loads a demonstration (scene, structure, ray) and
 // shows, for the debug ray, what a naive traversal that stops at the first leaf or cell
 // with a hit would answer -- computed from the recorded steps, for display only -- next to
-// the traversal's answer and brute force. The "Lecture trap" window appears while a
-// demonstration is loaded, and for any ray on which the naive answer would be wrong.
+// the traversal's answer and brute force. The "Lecture trap" block (top of the Variables
+// panel) appears while a demonstration is loaded, and for any ray on which the naive
+// answer would be wrong.
 #include <optional>
 #include <string>
 
@@ -38,10 +39,14 @@ class TrapTool {
 
   /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
   std::string section() const;
-  /// Show the window (panel trap on|off).
+  /// Show the block (panel trap on|off).
   void set_open(bool open) { open_ = open; }
-  /// The "Lecture trap" window at `place`; "go to the naive stop" seeks `player`.
-  void window(const PanelPlace& place, const DebugRay& ray, accel::TracePlayer& player);
+  /// Whether block() draws anything for `ray` now.
+  bool shown(const DebugRay& ray) const;
+  /// The "Lecture trap" block at the top of the Variables panel (inside its window): the
+  /// demonstration's explanation and the naive, traversal and brute-force answers; its
+  /// "go to the naive stop" button seeks `player`.
+  void block(const DebugRay& ray, accel::TracePlayer& player);
 
  private:
   std::optional<accel::TrapDemo> demo_;

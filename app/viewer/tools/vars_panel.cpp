@@ -54,8 +54,6 @@ constexpr ImGuiTableFlags kTable = ImGuiTableFlags_SizingFixedFit | ImGuiTableFl
 void grid_vars(const accel::GridDdaVars& v, float closest, ImFont* mono) {
   if (mono) ImGui::PushFont(mono);
   if (ImGui::BeginTable("dda", 4, kTable)) {
-    ImGui::TableSetupColumn("");
-    for (int a = 0; a < 3; ++a) ImGui::TableSetupColumn(a == v.next_axis ? "next" : "");
     ImGui::TableNextRow();
     for (int a = 0; a < 3; ++a) cell(a + 1, std::string(kAxisUpper[a]) + "=" + std::to_string(v.cell[a]));
     cell(0, "cell", kDimText);
@@ -72,16 +70,17 @@ void grid_vars(const accel::GridDdaVars& v, float closest, ImFont* mono) {
   if (mono) ImGui::PopFont();
   const int n = (v.next_axis % 3 + 3) % 3;
   const float exit_t = v.t_max[n];
-  ImGui::TextColored(kCurrentText, "next: %s += step%s (tMax%s = %s is the smallest)", kAxisUpper[n], kAxisUpper[n],
-                     kAxisUpper[n], num(exit_t).c_str());
+  ImGui::PushStyleColor(ImGuiCol_Text, kCurrentText);
+  ImGui::TextWrapped("next: %s += step%s (tMax%s = %s is the smallest)", kAxisUpper[n], kAxisUpper[n], kAxisUpper[n],
+                     num(exit_t).c_str());
+  ImGui::PopStyleColor();
   // The lecture's rule: the walk may stop only at a hit inside the current cell.
   if (std::isfinite(closest)) {
-    if (closest <= exit_t)
-      ImGui::TextColored(kHitText, "closest_hit %s <= tMax%s %s: inside this cell, stop", num(closest).c_str(),
-                         kAxisUpper[n], num(exit_t).c_str());
-    else
-      ImGui::TextColored(kCullText, "closest_hit %s > tMax%s %s: beyond this cell, walk on", num(closest).c_str(),
-                         kAxisUpper[n], num(exit_t).c_str());
+    const bool inside = closest <= exit_t;
+    ImGui::PushStyleColor(ImGuiCol_Text, inside ? kHitText : kCullText);
+    ImGui::TextWrapped("closest_hit %s %s tMax%s %s: %s", num(closest).c_str(), inside ? "<=" : ">", kAxisUpper[n],
+                       num(exit_t).c_str(), inside ? "inside this cell, stop" : "beyond this cell, walk on");
+    ImGui::PopStyleColor();
   }
 }
 
@@ -113,18 +112,22 @@ void kd_split_vars(const accel::KdSplitVars& v, ImFont* mono) {
 }
 
 void kd_exit_vars(const accel::KdExitVars& v, ImFont* mono) {
-  ImGui::TextColored(kQueueText, "pop the far child %u: early exit if t_hit < t_split", v.far_child);
+  ImGui::PushStyleColor(ImGuiCol_Text, kQueueText);
+  ImGui::TextWrapped("pop the far child %u: early exit if t_hit < t_split", v.far_child);
+  ImGui::PopStyleColor();
   if (ImGui::BeginTable("kdexit", 2, kTable)) {
     value_row("t_hit", num(v.t_hit), mono);
     value_row("t_split", num(v.t_split), mono);
     ImGui::EndTable();
   }
+  ImGui::PushStyleColor(ImGuiCol_Text, v.exits ? kHitText : kCullText);
   if (v.exits)
-    ImGui::TextColored(kHitText, "%s < %s: the hit lies before the far child: return it", num(v.t_hit).c_str(),
+    ImGui::TextWrapped("%s < %s: the hit lies before the far child: return it", num(v.t_hit).c_str(),
                        num(v.t_split).c_str());
   else
-    ImGui::TextColored(kCullText, "%s >= %s: a nearer hit may wait in the far child: go on", num(v.t_hit).c_str(),
+    ImGui::TextWrapped("%s >= %s: a nearer hit may wait in the far child: go on", num(v.t_hit).c_str(),
                        num(v.t_split).c_str());
+  ImGui::PopStyleColor();
 }
 
 const char* fate_text(accel::OctreeOrderVars::Fate f) {
@@ -138,7 +141,9 @@ const char* fate_text(accel::OctreeOrderVars::Fate f) {
 }
 
 void octree_vars(const accel::OctreeOrderVars& v, ImFont* mono) {
-  ImGui::TextColored(kDimText, "child order: octant i ^ mask, mask = %u (axes the ray travels down)", v.mask);
+  ImGui::PushStyleColor(ImGuiCol_Text, kDimText);
+  ImGui::TextWrapped("child order: octant i ^ mask, mask = %u (axes the ray travels down)", v.mask);
+  ImGui::PopStyleColor();
   if (mono) ImGui::PushFont(mono);
   if (ImGui::BeginTable("oct", 6, kTable)) {
     for (const char* h : {"#", "octant", "node", "t_enter", "t_exit", "fate"}) ImGui::TableSetupColumn(h);
@@ -191,7 +196,7 @@ void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* m
 }  // namespace
 
 void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel::TraceHighlight& h, TraversalKind kind,
-                      ImFont* mono) {
+                      ImFont* mono, const std::function<void()>& top_block) {
   ui::place(where);
   ImGui::SetNextWindowBgAlpha(0.9f);
   if (!ImGui::Begin("Variables")) {
@@ -199,6 +204,7 @@ void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel:
     return;
   }
   ui::note_docked(where);
+  if (top_block) top_block();
   const auto& events = ray.player.events();
   if (!ray.active || events.empty() || !h.valid) {
     ImGui::TextDisabled("the traversal's variables at the current step: shoot a ray");
@@ -247,7 +253,7 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const float label_w = 5.2f * em;  // the row names on the left
+  const float label_w = 4.4f * em;  // the row names on the left
   const float x0 = p0.x + label_w, x1 = p0.x + avail.x - 0.5f * em;
   const float span = std::max(s.t_hi - s.t_lo, 1e-30f);
   auto x_of = [&](float t) {
@@ -261,10 +267,10 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
   const float y_title = p0.y, y_int = p0.y + row, y_keys = y_int + row, y_axis = y_keys + row;
 
   char title[160];
-  std::snprintf(title, sizeof title, "ray parameter t: %s .. %s", num(s.t_lo).c_str(), num(s.t_hi).c_str());
+  std::snprintf(title, sizeof title, "t in [%s, %s]", num(s.t_lo).c_str(), num(s.t_hi).c_str());
   dl->AddText(ImVec2(p0.x, y_title), white, title);
   dl->AddText(ImVec2(p0.x, y_int), dim, "visited");
-  dl->AddText(ImVec2(p0.x, y_keys), dim, "keys, splits");
+  dl->AddText(ImVec2(p0.x, y_keys), dim, "keys");
   // The visited intervals: earlier ones faint (overlaps add up), the current one bright.
   const float bar_h = 0.55f * em, bar_y = y_int + 0.25f * em;
   for (const TStrip::Interval& iv : s.intervals) {
@@ -306,17 +312,21 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
   if (std::isfinite(s.closest)) {
     const float x = x_of(s.closest);
     dl->AddLine(ImVec2(x, top - 0.2f * em), ImVec2(x, bottom + 0.2f * em), hit, 0.22f * em);
-    const std::string label = "closest_hit " + num(s.closest);
+    // Labelled on the title row, right of the title so the two never overlap.
+    const float title_end = p0.x + ImGui::CalcTextSize(title).x + em;
+    std::string label = "closest_hit " + num(s.closest);
+    if (title_end + ImGui::CalcTextSize(label.c_str()).x > x1) label = "hit " + num(s.closest);  // a narrow view
     const float w = ImGui::CalcTextSize(label.c_str()).x;
-    dl->AddText(ImVec2(std::clamp(x - 0.5f * w, x0, x1 - w), y_title), hit, label.c_str());
+    dl->AddText(ImVec2(std::max(std::min(x - 0.5f * w, x1 - w), title_end), y_title), hit, label.c_str());
   }
   if (naive && naive->hit && (!ray.hit.valid() || naive->prim != ray.hit.prim)) {
     const float x = x_of(naive->t);
     const ImU32 c = ImGui::GetColorU32(kNaiveText);
     for (float y = top; y < bottom; y += 0.5f * em) dl->AddLine(ImVec2(x, y), ImVec2(x, y + 0.3f * em), c, 0.18f * em);
+    // On the keys row, beside the marker (the axis row holds the tmin and tmax labels).
     const std::string label = "naive " + num(naive->t);
-    dl->AddText(ImVec2(std::min(x + 0.3f * em, x1 - ImGui::CalcTextSize(label.c_str()).x), y_axis + 0.1f * em), c,
-                label.c_str());
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    dl->AddText(ImVec2(x + 0.3f * em + w <= x1 ? x + 0.3f * em : x - 0.3f * em - w, y_keys), c, label.c_str());
   }
   ImGui::Dummy(avail);
   ImGui::End();

@@ -4,6 +4,8 @@
 // 3D view (the ray's parameter range with every visited interval, the split distances,
 // the entry keys and the closest hit so far). Both show what the traversal recorded
 // (tools/traversal_numbers.h selects it); neither recomputes the structure's work.
+#include <functional>
+
 #include "pseudo_code.h"
 #include "trace_player.h"
 #include "traps.h"
@@ -17,9 +19,10 @@ namespace viz {
 class VarsPanel {
  public:
   /// The "Variables" window for `ray` at `highlight`'s step, traversal `kind`; `mono`
-  /// (may be null) for the numbers.
+  /// (may be null) for the numbers. `top_block` (optional) draws first inside the window
+  /// (the lecture trap's answers).
   void panel(const PanelPlace& place, const DebugRay& ray, const accel::TraceHighlight& highlight, TraversalKind kind,
-             ImFont* mono);
+             ImFont* mono, const std::function<void()>& top_block = {});
   /// The t-axis strip in `rect` (window coordinates). `naive` (may be null): the answer a
   /// naive first-leaf traversal gives, marked on the axis when it differs from the answer.
   void strip(const WindowRect& rect, const DebugRay& ray, const accel::TraceHighlight& highlight,
