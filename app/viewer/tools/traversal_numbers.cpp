@@ -62,7 +62,10 @@ std::string vars_line(std::span<const accel::RecordedVars> vars, std::span<const
 
 void t_strip_range(std::span<const accel::TraceEvent> events, float tmin, float& t_lo, float& t_hi) {
   t_lo = std::isfinite(tmin) ? tmin : 0.0f;
-  float far = -accel::kInf;
+  float far = -accel::kInf, first = accel::kInf;  // the farthest distance, the first entry
+  for (const accel::TraceEvent& e : events)
+    if ((e.kind == accel::TraceEventKind::Visit || e.kind == accel::TraceEventKind::EnterCell) && std::isfinite(e.t0))
+      first = std::min(first, e.t0);
   auto grow = [&](float t) {
     if (std::isfinite(t)) far = std::max(far, t);
   };
@@ -81,6 +84,9 @@ void t_strip_range(std::span<const accel::TraceEvent> events, float tmin, float&
     }
   }
   t_hi = far > t_lo ? far : t_lo + 1.0f;
+  // A ray that starts far from the scene would squeeze every interval into the right end:
+  // the axis then starts a little before the first entry instead of at tmin.
+  if (std::isfinite(first) && first > t_lo && first < t_hi) t_lo = std::max(t_lo, first - 0.08f * (t_hi - first));
 }
 
 TStrip t_strip_at(std::span<const accel::TraceEvent> events, std::span<const accel::RecordedVars> vars,

@@ -54,8 +54,9 @@ struct TStrip {
   float event_t = std::numeric_limits<float>::quiet_NaN();   ///< the current event's own distance (a test's hit, a key), NaN if none
 };
 
-/// The axis range of a trace: from the ray's tmin to the farthest finite distance any event
-/// records (exits of visited nodes, hits), so every interval fits; [tmin, tmin + 1] when
+/// The axis range of a trace: to the farthest finite distance any event records (exits of
+/// visited nodes, hits), so every interval fits; from the ray's tmin, or from a little before
+/// the first node's entry when the ray starts far from the scene; [tmin, tmin + 1] when
 /// nothing is finite.
 void t_strip_range(std::span<const accel::TraceEvent> events, float tmin, float& t_lo, float& t_hi);
 

@@ -267,7 +267,11 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
   const float y_title = p0.y, y_int = p0.y + row, y_keys = y_int + row, y_axis = y_keys + row;
 
   char title[160];
-  std::snprintf(title, sizeof title, "t in [%s, %s]", num(s.t_lo).c_str(), num(s.t_hi).c_str());
+  if (s.t_lo > ray.ray.tmin)
+    std::snprintf(title, sizeof title, "t in [%s, %s] (tmin %s)", num(s.t_lo).c_str(), num(s.t_hi).c_str(),
+                  num(ray.ray.tmin).c_str());
+  else
+    std::snprintf(title, sizeof title, "t in [%s, %s]", num(s.t_lo).c_str(), num(s.t_hi).c_str());
   dl->AddText(ImVec2(p0.x, y_title), white, title);
   dl->AddText(ImVec2(p0.x, y_int), dim, "visited");
   dl->AddText(ImVec2(p0.x, y_keys), dim, "keys");
