@@ -9,37 +9,14 @@
 #include "ray_gen.h"
 #include "registry.h"
 #include "scene.h"
+#include "trace_events.h"
 #include "trace_player.h"
 
 namespace accel {
 namespace {
 
-TraceEvent event(TraceEventKind kind, NodeId node = kNoNode, float t0 = 0.0f, float t1 = 0.0f) {
-  TraceEvent e;
-  e.kind = kind;
-  e.node = node;
-  e.t0 = t0;
-  e.t1 = t1;
-  return e;
-}
-TraceEvent test_prim(int32_t prim, bool hit, float t = kInf) {
-  TraceEvent e = event(TraceEventKind::TestPrim, kNoNode, hit ? t : kInf, hit ? t : kInf);
-  e.prim = prim;
-  e.hit = hit;
-  return e;
-}
-TraceEvent new_closest(int32_t prim, float t) {
-  TraceEvent e = event(TraceEventKind::NewClosest, kNoNode, t, t);
-  e.prim = prim;
-  e.hit = true;
-  return e;
-}
-TraceEvent done(int32_t prim, float t) {
-  TraceEvent e = event(TraceEventKind::Done, kNoNode, t, t);
-  e.prim = prim;
-  e.hit = prim >= 0;
-  return e;
-}
+using namespace testing::events;
+
 TraceEvent cull(NodeId node, CullReason why, float t = 0.0f) {
   TraceEvent e = event(TraceEventKind::Cull, node, t, t);
   e.reason = why;

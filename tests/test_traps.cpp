@@ -11,6 +11,7 @@
 #include "registry.h"
 #include "scene.h"
 #include "structures/kd_tree.h"
+#include "trace_events.h"
 #include "traps.h"
 
 namespace accel {
@@ -235,20 +236,7 @@ TEST(Traps, ProceduralScenesKnowTheTrapsButDoNotListThem) {
 }
 
 // naive_first_leaf_hit on hand-made event lists.
-TraceEvent event(TraceEventKind kind, NodeId node = kNoNode, float t0 = 0.0f, float t1 = 0.0f) {
-  TraceEvent e;
-  e.kind = kind;
-  e.node = node;
-  e.t0 = t0;
-  e.t1 = t1;
-  return e;
-}
-TraceEvent test_prim(int32_t prim, bool hit, float t = kInf) {
-  TraceEvent e = event(TraceEventKind::TestPrim, kNoNode, hit ? t : kInf, hit ? t : kInf);
-  e.prim = prim;
-  e.hit = hit;
-  return e;
-}
+using namespace testing::events;
 
 TEST(NaiveFirstLeafHit, ClosestOfTheFirstLeafWithAHit) {
   using K = TraceEventKind;
