@@ -48,6 +48,31 @@ size_t last_before(const std::vector<TraceEvent>& events, size_t step, TraceEven
   return events.size();
 }
 
+/// A trap's structure with its ray traced: the events, the answer and the naive answer.
+struct TracedTrap {
+  BuiltTrap b;
+  TraceRecorder rec;
+  Hit correct;
+  NaiveAnswer naive;
+};
+
+TracedTrap trace_trap(const std::string& name) {
+  TracedTrap t;
+  t.b = build_trap(name);
+  if (!t.b.structure) return t;
+  t.correct = t.b.structure->intersect_traced(t.b.demo.ray, t.rec);
+  t.naive = naive_first_leaf_hit(t.rec.events());
+  return t;
+}
+
+/// The step that set the answer: the last NewClosest of triangle `prim` (events.size() if none).
+size_t answer_step(const std::vector<TraceEvent>& events, int32_t prim) {
+  size_t step = events.size();
+  for (size_t i = 0; i < events.size(); ++i)
+    if (events[i].kind == TraceEventKind::NewClosest && events[i].prim == prim) step = i;
+  return step;
+}
+
 /// The triangles of every leaf below `node` (node included), through node_children.
 std::vector<uint32_t> subtree_prims(const Structure& s, NodeId node) {
   std::vector<uint32_t> prims;
@@ -117,23 +142,20 @@ TEST(Traps, NamesAreTheThreeTraps) {
 // pq: the naive traversal stops in the leaf entered first; the nearer hit lies in a leaf
 // popped after it, whose key (entry distance) is below the naive hit.
 TEST(Traps, PqNearestBoxDoesNotHoldTheNearestHit) {
-  const BuiltTrap b = build_trap("pq");
-  ASSERT_TRUE(b.structure);
-  TraceRecorder rec;
-  const Hit correct = b.structure->intersect_traced(b.demo.ray, rec);
-  const auto& ev = rec.events();
-  const NaiveAnswer naive = naive_first_leaf_hit(ev);
+  const TracedTrap t = trace_trap("pq");
+  ASSERT_TRUE(t.b.structure);
+  const BuiltTrap& b = t.b;
+  const auto& ev = t.rec.events();
+  const Hit& correct = t.correct;
+  const NaiveAnswer& naive = t.naive;
   ASSERT_TRUE(naive.hit);
   const size_t naive_visit = last_before(ev, naive.stop_step, TraceEventKind::Visit);
   ASSERT_LT(naive_visit, ev.size());
   const NodeId naive_leaf = ev[naive_visit].node;
   EXPECT_TRUE(b.structure->node_view(naive_leaf).leaf);
-  // The step that set the answer: the last NewClosest of the answer's triangle.
-  size_t answer_step = ev.size();
-  for (size_t i = 0; i < ev.size(); ++i)
-    if (ev[i].kind == TraceEventKind::NewClosest && ev[i].prim == correct.prim) answer_step = i;
-  ASSERT_LT(answer_step, ev.size());
-  const size_t correct_visit = last_before(ev, answer_step, TraceEventKind::Visit);
+  const size_t answered = answer_step(ev, correct.prim);
+  ASSERT_LT(answered, ev.size());
+  const size_t correct_visit = last_before(ev, answered, TraceEventKind::Visit);
   ASSERT_LT(correct_visit, ev.size());
   const NodeId correct_leaf = ev[correct_visit].node;
   EXPECT_NE(correct_leaf, naive_leaf);
@@ -191,21 +213,17 @@ TEST(Traps, KdStraddlerHitBeyondTheSplitPlane) {
 
 // grid: the naive hit lies beyond the exit of the cell in which the naive walk stopped.
 TEST(Traps, GridHitBeyondTheCell) {
-  const BuiltTrap b = build_trap("grid");
-  ASSERT_TRUE(b.structure);
-  TraceRecorder rec;
-  const Hit correct = b.structure->intersect_traced(b.demo.ray, rec);
-  const auto& ev = rec.events();
-  const NaiveAnswer naive = naive_first_leaf_hit(ev);
+  const TracedTrap t = trace_trap("grid");
+  ASSERT_TRUE(t.b.structure);
+  const auto& ev = t.rec.events();
+  const Hit& correct = t.correct;
+  const NaiveAnswer& naive = t.naive;
   ASSERT_TRUE(naive.hit);
   const size_t cell = last_before(ev, naive.stop_step, TraceEventKind::EnterCell);
   ASSERT_LT(cell, ev.size());
   EXPECT_GT(naive.t, ev[cell].t1);
   // The right answer is found in a later cell, which holds the naive hit's point as well.
-  size_t answer_step = ev.size();
-  for (size_t i = 0; i < ev.size(); ++i)
-    if (ev[i].kind == TraceEventKind::NewClosest && ev[i].prim == correct.prim) answer_step = i;
-  const size_t later = last_before(ev, answer_step, TraceEventKind::EnterCell);
+  const size_t later = last_before(ev, answer_step(ev, correct.prim), TraceEventKind::EnterCell);
   ASSERT_LT(later, ev.size());
   EXPECT_GT(later, cell);
   EXPECT_LE(ev[later].t0, correct.t);
