@@ -71,6 +71,7 @@ float Scene::max_abs_coordinate() const {
 Result<Scene> load_scene(const std::string& spec) {
   constexpr std::string_view prefix = "procedural:";
   if (spec.rfind(prefix, 0) == 0) return make_procedural_scene(std::string_view(spec).substr(prefix.size()));
+  if (is_mesh_format(spec)) return load_mesh(spec);
   return load_obj(spec);
 }
 

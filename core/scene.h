@@ -69,6 +69,18 @@ class Scene {
 /// A missing .mtl is not an error.
 Result<Scene> load_obj(const std::string& path);
 
+/// True for the formats load_mesh() reads, by extension (case-insensitive): .ply, .stl,
+/// .gltf, .glb.
+bool is_mesh_format(const std::string& path);
+/// Loads a PLY, STL or glTF 2.0 / GLB file through Assimp, triangles only (docs/hits.md):
+/// meshes in the order the file's node tree reaches them (depth first, children in file
+/// order) with their node transforms applied, each mesh's faces in file order, polygons
+/// fan-triangulated in place as for OBJ; points and lines are skipped. Rejects, with "FILE:
+/// what" messages: missing, empty or unreadable files, Assimp's parse errors, a PLY header
+/// claiming more elements than the file holds, non-finite coordinates, out-of-range
+/// indices, and files with no triangles.
+Result<Scene> load_mesh(const std::string& path);
+
 /// Names accepted by make_procedural_scene(), e.g. "sphere", "soup", "cornell", "stadium";
 /// the large ones ("terrain", ~1M triangles) only with include_large.
 std::vector<std::string> procedural_scene_names(bool include_large = false);
@@ -76,7 +88,8 @@ std::vector<std::string> procedural_scene_names(bool include_large = false);
 std::string procedural_scene_description(std::string_view name);
 /// Builds a procedural scene by name; `seed` varies the random ones. Unknown name -> Error.
 Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed = 1);
-/// Loads "procedural:NAME" via make_procedural_scene, anything else via load_obj.
+/// Loads "procedural:NAME" via make_procedural_scene, .ply/.stl/.gltf/.glb via load_mesh,
+/// anything else via load_obj.
 Result<Scene> load_scene(const std::string& spec);
 
 }  // namespace accel

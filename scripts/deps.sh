@@ -9,6 +9,7 @@ packages=(
   python3-glad                               # GL 3.3 core loader, generated at configure time
   libgl-dev                                  # OpenGL headers/libs for the viewer
   libtinyobjloader-dev                       # OBJ loading
+  libassimp-dev                              # PLY, STL, glTF 2.0 / GLB loading
   libgtest-dev libcli11-dev libstb-dev       # tests, CLI parsing, PNG writing
   libtbb-dev                                 # parallel tracing
   nlohmann-json3-dev                         # the viewer reads the bench's JSON

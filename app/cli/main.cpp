@@ -20,7 +20,7 @@ std::string join(const std::vector<std::string>& items) {
 }
 
 void add_structure_options(CLI::App* cmd, cli::StructureOptions* o) {
-  cmd->add_option("--scene", o->scene, "OBJ file, or procedural:NAME (" + join(accel::procedural_scene_names()) + ")")
+  cmd->add_option("--scene", o->scene, "mesh file (OBJ, PLY, STL, glTF, GLB), or procedural:NAME (" + join(accel::procedural_scene_names()) + ")")
       ->required();
   cmd->add_option("--structure", o->structure, "acceleration structure: " + join(accel::structure_names()))
       ->capture_default_str();
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   cli::BenchOptions bench;
   CLI::App* bench_cmd = app.add_subcommand(
       "bench", "speed against error: build ms, MB, Mrays/s (1 and all threads), errors vs the double reference");
-  bench_cmd->add_option("--scene", bench.scenes, "OBJ file or procedural:NAME (repeatable)")->required();
+  bench_cmd->add_option("--scene", bench.scenes, "mesh file (OBJ, PLY, STL, glTF, GLB) or procedural:NAME (repeatable)")->required();
   bench_cmd->add_option("--structures", bench.structures, "comma list, or all (every structure except brute)")
       ->capture_default_str();
   bench_cmd->add_option("--param", bench.params,

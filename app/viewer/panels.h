@@ -30,7 +30,7 @@ struct FrameTiming {
 
 /// Mutable UI state of the scene section, owned by App.
 struct ScenePanelState {
-  std::string obj_path;                   ///< the "Load OBJ" text field
+  std::string obj_path;                   ///< the "Load mesh" path field
   std::string load_error;                 ///< last load error (shown in red), empty if none
 };
 

@@ -155,10 +155,11 @@ SceneActions StructureSession::scene_section(bool has_saved_view) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("scene, saved camera and saved ray");
   }
   ImGui::SetNextItemWidth(12.0f * em);
-  const bool entered = ImGui::InputTextWithHint("##obj", "path/to/scene.obj", &panel_.obj_path,
+  const bool entered = ImGui::InputTextWithHint("##obj", "path/to/mesh.obj|ply|stl|gltf|glb", &panel_.obj_path,
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  const bool clicked = ImGui::Button("Load OBJ");
+  const bool clicked = ImGui::Button("Load mesh");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("OBJ, PLY, STL, glTF 2.0 or GLB (or drop the file onto the window)");
   if ((entered || clicked) && !panel_.obj_path.empty()) (void)load_scene(panel_.obj_path);  // error shown below
   if (!panel_.load_error.empty()) ui::error_text(panel_.load_error, 19.0f * em);
 
