@@ -12,6 +12,9 @@ pixel known to hit, step from the first to the last step, take a screenshot of e
   * `construct` + `build-step` + `print-build-step` step through the recorded build, and
     its steps look different;
   * `load-bench` + `show-chart on` draw the speed-against-error chart over the view;
+  * print-vars names the lecture's variables; the trap demonstrations' naive answers differ
+    from the traversal's, which brute force (accelviz-cli) confirms;
+  * one mesh as OBJ, PLY, STL and glTF gives the same hit in the viewer and accelviz-cli;
   * script errors exit 2 with "accelviz: SCRIPT:LINE: message".
 Exit 77 (ctest: skipped) when xvfb-run is missing.
 """
@@ -56,6 +59,52 @@ def run(cmd, timeout=300):
 def viewer(args, script_path):
     xvfb = [args.xvfb, "-a", "-s", "-screen 0 1280x1024x24"]
     return run(xvfb + [args.viewer, "--script", script_path])
+
+
+def write_pyramids(work):
+    """A pyramid (quad base fan-triangulated, four sides) as OBJ, PLY, binary STL and glTF
+    with an embedded buffer; the triangles in the same order in each."""
+    import base64
+    import json
+    import struct
+    v = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0), (0, 0, 1)]
+    faces = [(0, 3, 2, 1), (0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
+    tris = [(f[0], f[k - 1], f[k]) for f in faces for k in range(2, len(f))]
+    paths = []
+    p = os.path.join(work, "pyramid.obj")
+    with open(p, "w") as f:
+        f.write("".join(f"v {x} {y} {z}\n" for x, y, z in v))
+        f.write("".join("f " + " ".join(str(i + 1) for i in face) + "\n" for face in faces))
+    paths.append(p)
+    p = os.path.join(work, "pyramid.ply")
+    with open(p, "w") as f:
+        f.write(f"ply\nformat ascii 1.0\nelement vertex {len(v)}\nproperty float x\nproperty float y\n"
+                f"property float z\nelement face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+        f.write("".join(f"{x} {y} {z}\n" for x, y, z in v))
+        f.write("".join(f"{len(face)} " + " ".join(map(str, face)) + "\n" for face in faces))
+    paths.append(p)
+    p = os.path.join(work, "pyramid.stl")
+    with open(p, "wb") as f:
+        f.write(b"binary pyramid".ljust(80, b" ") + struct.pack("<I", len(tris)))
+        for t in tris:
+            f.write(struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *v[i]) for i in t) + b"\0\0")
+    paths.append(p)
+    pos = b"".join(struct.pack("<3f", *p_) for p_ in v)
+    idx = b"".join(struct.pack("<3I", *t) for t in tris)
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
+           "buffers": [{"uri": "data:application/octet-stream;base64," + base64.b64encode(pos + idx).decode(),
+                        "byteLength": len(pos) + len(idx)}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                           {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(v), "type": "VEC3",
+                          "min": [-1, -1, 0], "max": [1, 1, 1]},
+                         {"bufferView": 1, "componentType": 5125, "count": 3 * len(tris), "type": "SCALAR"}]}
+    p = os.path.join(work, "pyramid.gltf")
+    with open(p, "w") as f:
+        json.dump(doc, f)
+    paths.append(p)
+    return paths
 
 
 def main():
@@ -232,6 +281,31 @@ def main():
                     check(row["prim"] == m.group(1), f"trap {trap}: brute force hits {row['prim']}, the viewer {hit}")
         c, o, _ = run([args.png_check, "--differ", f"{work}/vars_on.png", f"{work}/vars_off.png", "30"])
         check(c == 0, f"panel vars/strip off changed nothing: {o}")
+
+    # ---- Mesh formats: one pyramid (a quad base, four sides) written as OBJ, PLY, STL and
+    # glTF loads in the viewer and in accelviz-cli with the same numbering: the same hit.
+    mesh_files = write_pyramids(work)
+    lines = [f"size {W} {H}"]
+    for path in mesh_files:
+        lines += [f"scene {path}", "structure bvh", "ray 0.3 0.2 5 0 0 -1", "print-hit"]
+    script = os.path.join(work, "mesh_formats.txt")
+    with open(script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    code, out, err = viewer(args, script)
+    if check(code == 0, f"mesh formats: viewer exit {code}\n{err}"):
+        got = out.strip().splitlines()
+        check(len(got) == len(mesh_files) and len(set(got)) == 1 and got[0].startswith("hit "),
+              f"mesh formats: the viewer's hits differ or miss: {got}")
+        rays = os.path.join(work, "pyramid_ray.txt")
+        with open(rays, "w") as f:
+            f.write("0.3 0.2 5 0 0 -1\n")
+        for path in mesh_files:
+            hits = path + ".csv"
+            c, _, e = run([args.cli, "trace", "--scene", path, "--structure", "kdtree", "--rays", rays, "--out", hits])
+            if check(c == 0, f"{path}: accelviz-cli trace failed: {e}") and got:
+                with open(hits) as f:
+                    row = list(csv.DictReader(f))[0]
+                check(f"hit {row['prim']} {row['t']}" == got[0], f"{path}: accelviz-cli {row}, the viewer {got[0]}")
 
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
