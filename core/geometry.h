@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "math.h"
+#include "vec_math.h"
 
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU
 
@@ -372,7 +372,7 @@ bool BoxTester::intersect(const Aabb& box, float tmin, float tmax, float* t_ente
   // -0.0 one distance may be NaN and a comparison would pick the wrong side. The max/min
   // below are written so a NaN (0 * inf: origin on a slab plane, zero direction) leaves the
   // interval unchanged instead of poisoning it. No early exit: straight-line code is faster.
-  // The six bounds as one array (min then max, math.h), indexed by near_index / far_index:
+  // The six bounds as one array (min then max, vec_math.h), indexed by near_index / far_index:
   // a select on the sign became a mispredicted branch once per ray at the root.
   const float* bounds = glm::value_ptr(box.min);
   for (int axis = 0; axis < 3; ++axis) {

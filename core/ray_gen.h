@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "math.h"
+#include "vec_math.h"
 #include "result.h"
 #include "scene.h"
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "math.h"
+#include "vec_math.h"
 #include "result.h"
 
 namespace accel {

@@ -13,6 +13,8 @@ packages=(
   libgtest-dev libcli11-dev libstb-dev       # tests, CLI parsing, PNG writing
   libtbb-dev                                 # parallel tracing
   nlohmann-json3-dev                         # the viewer reads the bench's JSON
+  libgif-dev                                 # viewer: animated GIF recordings
+  libavcodec-dev libavformat-dev libswscale-dev libavutil-dev  # viewer: MP4 (H.264) recordings
   libembree-dev                              # industry baseline in the benchmark
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
 )

@@ -4,7 +4,7 @@
 // the mouse (io.WantCaptureMouse), so dragging a slider never spins the scene.
 #include <glm/glm.hpp>
 
-#include "math.h"
+#include "vec_math.h"
 #include "ray_gen.h"
 
 namespace viz {

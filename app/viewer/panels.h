@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "math.h"
+#include "vec_math.h"
 #include "view_layout.h"
 
 struct ImFont;

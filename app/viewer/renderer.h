@@ -22,7 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "gl_objects.h"
-#include "math.h"
+#include "vec_math.h"
 #include "result.h"
 #include "scene.h"
 #include "structure_view.h"

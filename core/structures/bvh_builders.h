@@ -9,7 +9,7 @@
 
 #include "build_control.h"
 #include "build_trace.h"
-#include "math.h"
+#include "vec_math.h"
 #include "params.h"
 #include "scene.h"
 

@@ -37,7 +37,7 @@
 
 #include "build_control.h"
 #include "build_trace.h"
-#include "math.h"
+#include "vec_math.h"
 #include "result.h"
 #include "scene.h"
 #include "trace.h"
