@@ -28,6 +28,7 @@
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
 #include "tools/sweep_tool.h"
+#include "tools/tree_diagram.h"
 #include "view_layout.h"
 
 struct GLFWwindow;
@@ -147,6 +148,7 @@ class App {
   CompareTool compare_;
   SweepTool sweep_;
   HeatmapTool heatmap_;
+  TreeDiagram tree_;  // the "Tree" window (T)
   BenchChartState chart_;  // the "Speed vs error" window (bench_chart_panel.cpp)
 
   // ---- Camera, input and the 3D view

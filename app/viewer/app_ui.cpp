@@ -104,6 +104,7 @@ void App::main_panel() {
     ImGui::TextDisabled("space: play/pause   left/right: step (shift: 10)");
     ImGui::TextDisabled("home/end: first/last step   J: jump to hit");
     ImGui::TextDisabled("[ ]: slower/faster   C: compare   M: heat map");
+    ImGui::TextDisabled("T: tree diagram (click a node, wheel: zoom, drag: pan)");
     ImGui::TextDisabled("F: frame scene   H: hide panels   L: lecture mode");
     ImGui::TextDisabled("B: construct (again: traversal)   P: play/pause build");
     ImGui::TextDisabled(", .: build step (shift: 10)   PgUp/PgDn: first/last");
