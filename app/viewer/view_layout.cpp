@@ -33,7 +33,7 @@ PanelLayout compute_layout(glm::vec2 display, float em, bool lecture, bool main_
   // The tree diagram: under the 3D view, between the columns (from the left edge when the
   // controls are hidden or collapsed), tall enough for a few levels and the node numbers.
   const float tree_x = main_open && !lecture ? cx : pad;
-  const float tree_h = lecture ? 0.4f * h : std::min(0.36f * h, 20.0f * em);
+  const float tree_h = lecture ? 0.42f * h : std::min(0.4f * h, 22.0f * em);
   l.tree = {{tree_x, h - tree_h - pad}, {std::max(rx - pad - tree_x, 10.0f * em), tree_h}};
   return l;
 }

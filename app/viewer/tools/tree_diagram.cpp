@@ -7,6 +7,7 @@
 #include "tools/tree_diagram.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -24,15 +25,17 @@ namespace {
 // few enough that the path stays the diagram's subject. Without a ray more are opened.
 constexpr size_t kBudgetWithTrace = 15;
 constexpr size_t kBudgetWithoutTrace = 63;
-// An isolated subtree draws at most this many nodes in 3D (breadth-first: the top levels).
-constexpr size_t kMaxIsolatedNodes = 40000;
+// An isolated subtree draws at most this many nodes in 3D (breadth-first: the top levels),
+// about what the node display shows of a big tree at first: more only slows the frame.
+constexpr size_t kMaxIsolatedNodes = 4095;
 // Spacing of the diagram in font sizes at zoom 1 (so lecture mode scales with its font).
 constexpr float kSlotEm = 1.7f;
 constexpr float kRowEm = 2.4f;
 constexpr float kNodeEm = 0.45f;  // half size of a node's glyph
 constexpr float kMinZoom = 0.05f, kMaxZoom = 6.0f;
+constexpr float kMinRowScale = 0.45f;  // rows at most this much closer than the zoom's spacing
 // Column width of the node numbers beside the diagram.
-constexpr float kNumbersEm = 17.0f;
+constexpr float kNumbersEm = 15.0f;
 
 const glm::vec4 kSelected3D(1.0f, 0.3f, 0.9f, 1.0f);  // as the diagram's selection ring
 
@@ -314,14 +317,14 @@ void TreeDiagram::panel(const PanelPlace& place) {
       ImGui::TextDisabled(replay_mode_ ? "nothing built yet at this construction step" : "the structure has no nodes");
     } else {
       const size_t total = replay_mode_ ? layout_.items.size() + layout_.collapsed_nodes : index_.nodes();
-      ImGui::Text("%s%s nodes: %zu drawn, %s in collapsed subtrees", replay_mode_ ? "construction: " : "",
-                  ui::with_separators(total).c_str(), layout_.items.size(),
-                  ui::with_separators(layout_.collapsed_nodes).c_str());
-      ImGui::SameLine();
       ImGui::Checkbox("follow", &follow_);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("keep the current node in view");
       ImGui::SameLine();
       if (ImGui::SmallButton("fit")) fit_pending_ = true;
+      ImGui::SameLine();
+      ImGui::TextWrapped("%s%s nodes: %zu drawn, %s in collapsed subtrees", replay_mode_ ? "construction: " : "",
+                         ui::with_separators(total).c_str(), layout_.items.size(),
+                         ui::with_separators(layout_.collapsed_nodes).c_str());
       legend();
       const ImVec2 avail = ImGui::GetContentRegionAvail();
       const float numbers_w = std::min(kNumbersEm * ImGui::GetFontSize(), 0.4f * avail.x);
@@ -351,8 +354,17 @@ void TreeDiagram::legend() {
       {ui::kCullText, "culled: beyond hit"},
       {state_color({}), "not reached"},
   };
+  // Entries wrap onto a new line where the window is narrow (lecture fonts).
+  const float avail = ImGui::GetContentRegionAvail().x;
+  float line_w = 0.0f;
   for (size_t i = 0; i < std::size(entries); ++i) {
-    if (i) ImGui::SameLine(0.0f, 0.8f * em);
+    const float w = 1.0f * em + ImGui::CalcTextSize(entries[i].label).x + 0.8f * em;
+    if (i && line_w + w <= avail) {
+      ImGui::SameLine(0.0f, 0.8f * em);
+      line_w += w;
+    } else {
+      line_w = w;
+    }
     const ImVec2 p = ImGui::GetCursorScreenPos();
     dl->AddRectFilled(ImVec2(p.x, p.y + 0.2f * em), ImVec2(p.x + 0.7f * em, p.y + 0.9f * em), color_u32(entries[i].color));
     ImGui::Dummy(ImVec2(0.8f * em, em));
@@ -360,15 +372,17 @@ void TreeDiagram::legend() {
     ImGui::TextUnformatted(entries[i].label);
   }
   ImGui::SameLine(0.0f, 0.8f * em);
-  ImGui::TextDisabled("(circle inner, square leaf, triangle: collapsed subtree)");
+  ui::help_marker("circle: inner node, square: leaf (its triangle count below), triangle: a subtree no step "
+                  "touches, collapsed (its node count below; click to open). Yellow ring: the current node, "
+                  "magenta ring: the selection. Wheel: zoom, drag: pan, click: select.");
 }
 
 void TreeDiagram::selection_numbers() {
   if (selected_ == kNoNode || !summary_) {
-    ImGui::TextDisabled("click a node: its numbers,");
-    ImGui::TextDisabled("a 3D highlight, isolate");
-    ImGui::TextDisabled("wheel: zoom   drag: pan");
-    ImGui::TextDisabled("click a triangle: open it");
+    ImGui::PushStyleColor(ImGuiCol_Text, ui::kDimText);
+    ImGui::TextWrapped("click a node: its numbers, a 3D highlight, isolate. Wheel: zoom, drag: pan; "
+                       "click a triangle: open that subtree.");
+    ImGui::PopStyleColor();
     return;
   }
   const accel::NodeView& v = selected_view_;
@@ -384,8 +398,8 @@ void TreeDiagram::selection_numbers() {
     ImGui::Text("min %s", ui::format_vec(v.box.min).c_str());
     ImGui::Text("max %s", ui::format_vec(v.box.max).c_str());
   }
-  ImGui::Text("subtree %s nodes, %s leaves", ui::with_separators(s.nodes).c_str(),
-              ui::with_separators(s.leaves).c_str());
+  ImGui::Text("subtree %s nodes", ui::with_separators(s.nodes).c_str());
+  ImGui::Text("  %s leaves", ui::with_separators(s.leaves).c_str());
   const SahConstants k = sah_constants(built_.get());
   ImGui::Text("SAH cost %.4g", s.sah_cost);
   ImGui::SameLine();
@@ -423,36 +437,42 @@ void TreeDiagram::diagram_canvas(float width, float height) {
   const float margin = 1.2f * em;
 
   // Fit: the whole layout when it is small; else a readable zoom around the current node.
+  // Again when the canvas changes size (the layout is applied, lecture fonts) while following.
+  if (follow_ && (width != canvas_size_.x || height != canvas_size_.y)) fit_pending_ = true;
+  canvas_size_ = {width, height};
   if (fit_pending_) {
     fit_pending_ = false;
     const float cols = std::max(layout_.columns - 1.0f, 1.0f), rows = std::max(layout_.rows - 1.0f, 1.0f);
     const float fit_x = (width - 2.0f * margin) / (cols * kSlotEm * em);
-    const float fit_y = (height - 2.0f * margin) / (rows * kRowEm * em);
-    zoom_ = std::clamp(std::min({fit_x, fit_y, 1.0f}), 0.35f, kMaxZoom);
+    const float fit_y = (height - 2.5f * margin) / (rows * kRowEm * em);  // room for the leaves' counts
+    // Width and depth are fitted apart (rows squeezed down to kMinRowScale first): a deep,
+    // narrow path would otherwise shrink to dots.
+    zoom_ = std::clamp(std::min({fit_x, 1.0f, fit_y / kMinRowScale}), 0.35f, kMaxZoom);
+    row_scale_ = std::clamp(fit_y / zoom_, kMinRowScale, 1.0f);
     const float content_w = cols * kSlotEm * em * zoom_;
     pan_ = {std::max((width - 2.0f * margin - content_w) * 0.5f, 0.0f), 0.0f};
     followed_item_ = -1;  // re-centre on the current node if it is out of view
   }
-  const float sx = kSlotEm * em * zoom_, sy = kRowEm * em * zoom_;
-  const float r = std::max(kNodeEm * em * std::min(zoom_, 1.5f), 2.0f);
+  const float sx = kSlotEm * em * zoom_, sy = kRowEm * em * zoom_ * row_scale_;
+  const float r = std::max(std::min(kNodeEm * em * std::min(zoom_, 1.5f), 0.3f * sy), 2.0f);
   auto screen = [&](const TreeItem& it) {
     return ImVec2(p0.x + pan_.x + margin + it.x * sx, p0.y + pan_.y + margin + static_cast<float>(it.depth) * sy);
   };
-  auto centre_on = [&](int item) {
+  // An item out of view is brought to the middle, per axis; one in view stays where it is,
+  // and the view never leaves room above the root (the path reads from the top).
+  auto bring_into_view = [&](int item) {
     const ImVec2 c = screen(layout_.items[static_cast<size_t>(item)]);
-    pan_.x += (p0.x + 0.5f * width) - c.x;
-    pan_.y += (p0.y + 0.45f * height) - c.y;
-    pan_.y = std::min(pan_.y, 0.0f);
+    if (c.x < p0.x + margin || c.x > p1.x - margin) pan_.x += (p0.x + 0.5f * width) - c.x;
+    if (c.y < p0.y + 0.5f * margin || c.y > p1.y - 0.5f * margin)
+      pan_.y = std::min(pan_.y + (p0.y + 0.6f * height) - c.y, 0.0f);
   };
   if (center_on_selected_) {
     center_on_selected_ = false;
-    if (const int i = layout_.find(selected_); i >= 0) centre_on(i);
+    if (const int i = layout_.find(selected_); i >= 0) bring_into_view(i);
   }
   if (follow_ && current_item_ >= 0 && current_item_ != followed_item_) {
     followed_item_ = current_item_;
-    const ImVec2 c = screen(layout_.items[static_cast<size_t>(current_item_)]);
-    if (c.x < p0.x + 2.0f * margin || c.x > p1.x - 2.0f * margin || c.y < p0.y + margin || c.y > p1.y - margin)
-      centre_on(current_item_);
+    bring_into_view(current_item_);
   }
 
   // Zoom about the mouse; drag pans (and stops following).
@@ -492,7 +512,10 @@ void TreeDiagram::diagram_canvas(float width, float height) {
 
   // Nodes, the hovered one found on the way.
   hovered_ = -1;
-  const bool labels = sx >= 1.2f * em;
+  // Counts in a smaller font, shown once the slots are wide enough for a digit or two.
+  const float label_size = 0.8f * em;
+  const bool labels = sx >= 0.8f * em;
+  ImFont* font = ImGui::GetFont();
   const ImU32 outline = ImGui::GetColorU32(ImVec4(0.0f, 0.0f, 0.0f, 0.9f));
   for (size_t i = 0; i < layout_.items.size(); ++i) {
     const TreeItem& it = layout_.items[i];
@@ -506,16 +529,17 @@ void TreeDiagram::diagram_canvas(float width, float height) {
                             ImVec2(c.x + 1.2f * r, c.y + 1.3f * r), color_u32(state_color({}), 0.8f));
       if (labels) {
         const std::string text = short_count(it.subtree_nodes);
-        const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
-        dl->AddText(ImVec2(c.x - 0.5f * ts.x, c.y + 1.4f * r), color_u32(ui::kDimText), text.c_str());
+        const ImVec2 ts = font->CalcTextSizeA(label_size, FLT_MAX, 0.0f, text.c_str());
+        dl->AddText(font, label_size, ImVec2(c.x - 0.5f * ts.x, c.y + 1.4f * r), color_u32(ui::kDimText), text.c_str());
       }
     } else if (it.leaf) {
       dl->AddRectFilled(ImVec2(c.x - r, c.y - r), ImVec2(c.x + r, c.y + r), fill);
       dl->AddRect(ImVec2(c.x - r, c.y - r), ImVec2(c.x + r, c.y + r), outline);
       if (labels) {
         const std::string text = std::to_string(it.prims);
-        const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
-        dl->AddText(ImVec2(c.x - 0.5f * ts.x, c.y + 1.1f * r), ImGui::GetColorU32(ImGuiCol_Text), text.c_str());
+        const ImVec2 ts = font->CalcTextSizeA(label_size, FLT_MAX, 0.0f, text.c_str());
+        dl->AddText(font, label_size, ImVec2(c.x - 0.5f * ts.x, c.y + 1.1f * r), ImGui::GetColorU32(ImGuiCol_Text),
+                    text.c_str());
       }
     } else {
       dl->AddCircleFilled(c, r, fill, 20);
@@ -523,8 +547,8 @@ void TreeDiagram::diagram_canvas(float width, float height) {
       if (it.children.empty() && labels) {  // a touched node whose subtree stays closed
         char text[40];  // (not "+" + std::string: GCC 12 warns falsely on that, -Wrestrict)
         std::snprintf(text, sizeof text, "+%s", short_count(it.subtree_nodes - 1).c_str());
-        const ImVec2 ts = ImGui::CalcTextSize(text);
-        dl->AddText(ImVec2(c.x - 0.5f * ts.x, c.y + 1.1f * r), color_u32(ui::kDimText), text);
+        const ImVec2 ts = font->CalcTextSizeA(label_size, FLT_MAX, 0.0f, text);
+        dl->AddText(font, label_size, ImVec2(c.x - 0.5f * ts.x, c.y + 1.1f * r), color_u32(ui::kDimText), text);
       }
     }
     if (st.state == TreeNodeState::Current)
@@ -581,13 +605,10 @@ void TreeDiagram::grid_table() {
     ImGui::TextDisabled("cell walk: no debug ray yet (click the scene)");
     return;
   }
-  ImGui::Text("cell walk of the 3D-DDA: %zu cells entered; grid %dx%dx%d", grid_rows_.size(), res[0], res[1], res[2]);
-  if (current >= 0) {
-    ImGui::SameLine();
-    ImGui::TextColored(ui::kCurrentText, "  current: row %d", current + 1);
-  }
+  ImGui::TextWrapped("cell walk of the 3D-DDA: %zu cells entered (grid %dx%dx%d), one row per step into a cell; "
+                     "current: row %d", grid_rows_.size(), res[0], res[1], res[2], current + 1);
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV |
-                                ImGuiTableFlags_SizingStretchSame;
+                                ImGuiTableFlags_SizingFixedFit;
   if (!ImGui::BeginTable("##cell_walk", 8, flags, ImGui::GetContentRegionAvail())) return;
   ImGui::TableSetupScrollFreeze(0, 1);
   for (const char* h : {"row", "step", "X", "Y", "Z", "stepped", "t enter", "t exit"}) ImGui::TableSetupColumn(h);

@@ -86,7 +86,9 @@ class TreeDiagram {
   accel::NodeView selected_view_;
   // View: zoom and pan of the canvas; following keeps the current node in view.
   float zoom_ = 1.0f;
+  float row_scale_ = 1.0f;  // rows closer than the zoom alone gives, so the path's depth fits
   glm::vec2 pan_{0.0f};
+  glm::vec2 canvas_size_{0.0f};  // the canvas's size last frame (a new size fits again)
   bool follow_ = true;
   bool fit_pending_ = true;
   int followed_item_ = -1;           // the current item the view last followed
