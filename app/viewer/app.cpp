@@ -352,7 +352,8 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
     build_.draw(*renderer_);  // the partly built structure instead of the finished one
   } else {
     const bool tracing = ray_.ray().active && !ray_.ray().player.empty();
-    if (!tree_.isolating()) nodes_.draw(*renderer_, session_.current(), tracing);  // isolate: the tree draws its subtree
+    // While the tree isolates a subtree it draws that subtree instead of all the nodes.
+    if (!tree_.isolating()) nodes_.draw(*renderer_, session_.current(), tracing);
     ray_.draw(*renderer_);
     tree_.draw(*renderer_);
   }

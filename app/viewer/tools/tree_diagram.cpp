@@ -207,7 +207,8 @@ void TreeDiagram::refresh_states() {
   for (size_t i = 0; i < layout_.items.size(); ++i) {
     const TreeItem& it = layout_.items[i];
     if (it.kind == TreeItem::Kind::Collapsed) continue;  // no event touches it: not reached
-    status_[i] = replay_mode_ && replay_ ? replay_state(*replay_, it.node, replay_current_) : states_.at(it.node, step_);
+    status_[i] = replay_mode_ && replay_ ? replay_state(*replay_, it.node, replay_current_)
+                                         : states_.at(it.node, step_);
   }
   const NodeId current = replay_mode_ ? replay_current_ : states_.current(step_);
   current_item_ = current == kNoNode ? -1 : layout_.find(current);
@@ -222,7 +223,9 @@ accel::Status TreeDiagram::select(NodeId node, bool isolate) {
     return accel::make_error("tree-select: the " + built_->info->label +
                              " has no tree (the Tree window shows its cell walk as a table)");
   on_ = true;
-  if (replay_mode_) return accel::make_error("tree-select: not in construction mode (build-step off: structure NAME)");
+  if (replay_mode_)
+    return accel::make_error(
+        "tree-select: selects a node of the built structure; leave the construction mode first (B)");
   if (structure_ != built_->structure.get()) {
     structure_ = built_->structure.get();
     shape_ = std::make_unique<StructureTreeShape>(*structure_, built_->stats.nodes);
@@ -366,7 +369,8 @@ void TreeDiagram::legend() {
       line_w = w;
     }
     const ImVec2 p = ImGui::GetCursorScreenPos();
-    dl->AddRectFilled(ImVec2(p.x, p.y + 0.2f * em), ImVec2(p.x + 0.7f * em, p.y + 0.9f * em), color_u32(entries[i].color));
+    dl->AddRectFilled(ImVec2(p.x, p.y + 0.2f * em), ImVec2(p.x + 0.7f * em, p.y + 0.9f * em),
+                      color_u32(entries[i].color));
     ImGui::Dummy(ImVec2(0.8f * em, em));
     ImGui::SameLine(0.0f, 0.2f * em);
     ImGui::TextUnformatted(entries[i].label);
@@ -618,7 +622,8 @@ void TreeDiagram::grid_table() {
     grid_scrolled_ = current;
     const float y = static_cast<float>(current) * row_h;
     const float view_h = ImGui::GetWindowHeight() - 2.0f * row_h;
-    if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + view_h) ImGui::SetScrollY(std::max(0.0f, y - 0.4f * view_h));
+    if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + view_h)
+      ImGui::SetScrollY(std::max(0.0f, y - 0.4f * view_h));
   }
   ImGuiListClipper clipper;
   clipper.Begin(static_cast<int>(grid_rows_.size()), row_h);
@@ -629,7 +634,9 @@ void TreeDiagram::grid_table() {
       const bool is_current = i == current;
       const bool passed = i < current || current < 0;
       if (is_current) ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, color_u32(ui::kCurrentText, 0.3f));
-      const ImVec4 color = is_current ? ui::kCurrentText : passed ? ImGui::GetStyleColorVec4(ImGuiCol_Text) : ui::kDimText;
+      const ImVec4 color = is_current ? ui::kCurrentText
+                           : passed   ? ImGui::GetStyleColorVec4(ImGuiCol_Text)
+                                      : ui::kDimText;
       auto cell = [&](const char* fmt, auto... v) {
         ImGui::TableNextColumn();
         ImGui::TextColored(color, fmt, v...);
