@@ -7,6 +7,7 @@
 #include <set>
 
 #include "registry.h"
+#include "tools/build_playback.h"
 #include "tools/tree_layout.h"
 #include "trace_player.h"
 #include "viewer_test_support.h"
@@ -236,6 +237,46 @@ TEST(TreeLayout, RealBvhAgreesWithTheTraceAndItsStats) {
   const accel::BuildStats& st = built.value()->stats;
   const double root = subtree_sah_cost(shape, 0, {st.sah_ct, st.sah_ci});
   EXPECT_NEAR(root, st.sah_cost, 1e-4 * st.sah_cost);
+}
+
+TEST(TreeLayout, ConstructionShowsTheNodesBuiltSoFar) {
+  auto scene = test::scene_of("sphere");
+  StructureRequest req;
+  req.name = "bvh";
+  req.params = {"width=2"};
+  auto rec = record_structure(*scene, req, nullptr);
+  ASSERT_TRUE(rec.ok()) << rec.error().message;
+  accel::BuildReplay replay(*rec.value().trace);
+  // Part way: the nodes built so far, the step's node current and in the layout.
+  replay.seek(replay.steps() / 3);
+  {
+    const ReplayTreeShape shape(replay);
+    const TreeIndex index(shape);
+    EXPECT_EQ(index.nodes(), replay.live_nodes());
+    const NodeId current = replay.current() ? replay.slot(build_event_node(*replay.current())) : kNoNode;
+    size_t built_nodes = 0;
+    for (size_t slot = 0; slot < replay.nodes().size(); ++slot) {
+      const TreeNodeStatus st = replay_state(replay, static_cast<NodeId>(slot), current);
+      built_nodes += st.state == TreeNodeState::Visited;
+      if (slot == current) {
+        EXPECT_EQ(st.state, TreeNodeState::Current);
+      }
+    }
+    EXPECT_GT(built_nodes, 0u);
+    TreeLayoutOptions options;
+    if (current != kNoNode) options.focus = {current};
+    const TreeLayout l = layout_tree(shape, index, options);
+    if (current != kNoNode) {
+      EXPECT_GE(l.find(current), 0);
+    }
+    expect_no_overlaps(l);
+  }
+  // The end: the finished tree, every node of the built structure.
+  replay.seek(replay.steps());
+  const ReplayTreeShape shape(replay);
+  auto built = build_structure_now(scene, req);
+  ASSERT_TRUE(built.ok());
+  EXPECT_EQ(TreeIndex(shape).nodes(), built.value()->stats.nodes);
 }
 
 TEST(TreeLayout, GridWalkRows) {
