@@ -51,6 +51,7 @@ accel::Status App::init(GLFWwindow* window, const std::string& shader_dir, const
   ray_.init_gl();
   build_.init_gl();
   heatmap_.init_gl();
+  tree_.init_gl();
 
   // GLFW callbacks are plain functions: the window's user pointer leads back to us.
   // ImGui's GLFW backend does not use the user pointer, and installs no drop callback.
@@ -82,6 +83,7 @@ void App::shutdown() {
   sweep_.wait();
   // GL objects next: their destructors call into the context main() destroys next.
   heatmap_.release_gl();
+  tree_.release_gl();
   ray_.release_gl();
   build_.release_gl();
   nodes_.release_gl();
@@ -205,6 +207,7 @@ void App::update(float dt) {
   }
   heatmap_.update(dt, heatmap_view());
 
+  tree_.update(session_.current_ptr(), ray_.ray(), build_.active() ? build_.replay() : nullptr);
   apply_lecture_mode();
   const ImGuiIO& io = ImGui::GetIO();
   dock_ = {0.0f, io.DisplaySize.x};
@@ -252,6 +255,7 @@ void App::update(float dt) {
       const std::string noun = shown ? shown->info->node_noun : "nodes";
       heatmap_.legend(place({layout_.legend.pos, {0.0f, 0.0f}}, false), noun, heatmap_view());
     }
+    if (tree_.on()) tree_.panel(place(layout_.tree));  // docks along the bottom
     bench_chart_window(chart_, layout_.chart.pos, layout_.chart.size, layout_apply_);
     if (panels_.strip && !build_.active()) traversal_numbers();
   }
@@ -318,6 +322,7 @@ void App::update_shortcuts() {
         panels_.vars = !(panels_.vars && panels_.strip);
         panels_.strip = panels_.vars;
         break;
+      case GLFW_KEY_T: tree_.toggle(); break;
       // The construction mode: B records (again: back to the traversal), P . , PgUp PgDn - = step it.
       case GLFW_KEY_B:
         if (build_.active()) build_.set_active(false);
@@ -347,11 +352,12 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
   ray_.sync_gl();
   build_.sync_gl();
   heatmap_.sync_gl();
+  tree_.sync_gl();
   // The view keeps its rectangle from update(); clamp it to this framebuffer.
   view_.x = std::clamp(view_.x, 0, framebuffer_.x - 1);
   view_.z = std::clamp(view_.z, 1, framebuffer_.x - view_.x);
   view_.y = 0;
-  view_.w = framebuffer_.y;
+  view_.w = std::clamp(view_.w, 1, framebuffer_.y);  // shorter above a bottom panel (the tree)
   const float aspect = aspect_of(view_size());
   // Frame once the panels are placed: the view's rectangle (and aspect) is known then, so
   // the scene is framed into the part of the window the panels leave free.
@@ -373,8 +379,10 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
     build_.draw(*renderer_);  // the partly built structure instead of the finished one
   } else {
     const bool tracing = ray_.ray().active && !ray_.ray().player.empty();
-    nodes_.draw(*renderer_, session_.current(), tracing);
+    // While the tree isolates a subtree it draws that subtree instead of all the nodes.
+    if (!tree_.isolating()) nodes_.draw(*renderer_, session_.current(), tracing);
     ray_.draw(*renderer_);
+    tree_.draw(*renderer_);
   }
   session_.draw_bounds(*renderer_);
   heatmap_.draw(*renderer_, heatmap_view());

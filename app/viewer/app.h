@@ -30,6 +30,7 @@
 #include "tools/sweep_tool.h"
 #include "tools/trap_tool.h"
 #include "tools/vars_panel.h"
+#include "tools/tree_diagram.h"
 #include "view_layout.h"
 
 struct GLFWwindow;
@@ -153,6 +154,7 @@ class App {
   HeatmapTool heatmap_;
   VarsPanel vars_;  // the traversal's variables and the t-axis strip
   TrapTool trap_;   // the lecture's traps: the naive answer beside the right one
+  TreeDiagram tree_;  // the "Tree" window (T)
   BenchChartState chart_;  // the "Speed vs error" window (bench_chart_panel.cpp)
 
   // ---- Camera, input and the 3D view

@@ -127,6 +127,16 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
     case CommandKind::SahPlot:
       build_.set_sah_plot(c.on);
       return {};
+    case CommandKind::Tree:
+      tree_.set_on(c.on);
+      if (c.on) ui_visible_ = true;
+      return {};
+    case CommandKind::TreeSelect:
+      if (auto st = session_.need_structure(); !st) return accel::make_error("tree-select: " + st.error().message);
+      tree_.update(session_.current_ptr(), ray_.ray(), build_.active() ? build_.replay() : nullptr);
+      if (auto st = tree_.select(static_cast<NodeId>(c.ints[0]), c.on); !st) return st;
+      ui_visible_ = true;
+      return {};
     case CommandKind::Show:
       switch (c.show) {
         case ShowMode::All: nodes_.show_all(); break;

@@ -108,6 +108,7 @@ void App::main_panel() {
     ImGui::TextDisabled("home/end: first/last step   J: jump to hit");
     ImGui::TextDisabled("[ ]: slower/faster   C: compare   M: heat map");
     ImGui::TextDisabled("V: variables panel and t-axis strip");
+    ImGui::TextDisabled("T: tree diagram (click a node, wheel: zoom, drag: pan)");
     ImGui::TextDisabled("F: frame scene   H: hide panels   L: lecture mode");
     ImGui::TextDisabled("B: construct (again: traversal)   P: play/pause build");
     ImGui::TextDisabled(", .: build step (shift: 10)   PgUp/PgDn: first/last");
@@ -125,7 +126,9 @@ void App::traversal_numbers() {
   const float right = (dock_.right < io.DisplaySize.x ? dock_.right : io.DisplaySize.x) - pad;
   const float h = VarsPanel::strip_height(em);
   if (right - left < 12.0f * em) return;  // no room beside the panels
-  const WindowRect rect{{left, io.DisplaySize.y - h - pad}, {right - left, h}};
+  // Above the tree diagram when it is docked along the bottom.
+  const float bottom = dock_.bottom > 0.0f ? dock_.bottom : io.DisplaySize.y;
+  const WindowRect rect{{left, bottom - h - pad}, {right - left, h}};
   vars_.strip(rect, ray_.ray(), ray_.step_highlight(), trap_.misleads() || trap_.marked_step() ? &trap_.naive() : nullptr);
 }
 

@@ -152,6 +152,20 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (n != 1 || !parse_on_off(args[0], &c.on)) return count_error("sah-plot on|off");
     return "";
   }
+  if (verb == "tree") {
+    c.kind = CommandKind::Tree;
+    if (n != 1 || !parse_on_off(args[0], &c.on)) return count_error("tree on|off");
+    return "";
+  }
+  if (verb == "tree-select") {
+    c.kind = CommandKind::TreeSelect;
+    const char* usage = "tree-select NODE [isolate]";
+    if (n < 1 || n > 2 || (n == 2 && args[1] != "isolate")) return count_error(usage);
+    if (!parse_int(args[0], &c.ints[0]) || c.ints[0] < 0)
+      return "tree-select: '" + args[0] + "' is not a node id (an integer >= 0)";
+    c.on = n == 2;  // isolate
+    return "";
+  }
   if (verb == "show") {
     c.kind = CommandKind::Show;
     const char* usage = "show depth=A..B | show depth=A | show leaves | show all";

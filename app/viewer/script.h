@@ -30,6 +30,9 @@
 //   build-step N | build-step end | build-step back N | build-step start
 //   print-build-step                  "build step K/N: TEXT" (K steps applied)
 //   sah-plot on|off                   the construction panel's SAH cost plot
+//   tree on|off                       the "Tree" window: the hierarchy diagram (grid: cell walk)
+//   tree-select NODE [isolate]        select node NODE in the tree (3D highlight, numbers);
+//                                     isolate: draw only its subtree in 3D
 //   print-hit                         "hit PRIM T" or "miss"
 //   print-step                        the current step as one line
 //   print-vars                        "vars: name=value ..." of the current step (the
@@ -59,6 +62,7 @@ enum class CommandKind {
   EmptyCells, Nodes, Opacity, Panel, Large, Compare, Sweep, Screenshot, Frames, PrintHit, PrintStep,
   PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart, Construct, BuildStep, PrintBuildStep, SahPlot,
   PrintVars, Trap, PrintNaive,
+  Tree, TreeSelect,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };

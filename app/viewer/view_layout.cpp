@@ -36,6 +36,12 @@ PanelLayout compute_layout(glm::vec2 display, float em, bool lecture, bool main_
   const float chart_x = main_open && !lecture ? cx : pad;
   l.chart = {{chart_x, pad}, {w - chart_x - pad, h - 2.0f * pad}};
   l.status = {{cx, pad}, {0.0f, 0.0f}};
+  // The tree diagram: under the 3D view, between the columns (the left one holds the
+  // controls and the Variables panel, also in lecture mode), tall enough for a few levels
+  // and the node numbers.
+  const float tree_x = cx;
+  const float tree_h = lecture ? 0.42f * h : std::min(0.4f * h, 22.0f * em);
+  l.tree = {{tree_x, h - tree_h - pad}, {std::max(rx - pad - tree_x, 10.0f * em), tree_h}};
   return l;
 }
 
@@ -43,6 +49,12 @@ void note_docked(DockEdges& edges, float display_width, glm::vec2 pos, glm::vec2
   const float w = display_width;
   if (pos.x < 0.3f * w && pos.x + size.x < 0.5f * w) edges.left = std::max(edges.left, pos.x + size.x);
   if (pos.x + size.x > 0.7f * w && pos.x > 0.5f * w) edges.right = std::min(edges.right, pos.x);
+}
+
+void note_docked_bottom(DockEdges& edges, float display_height, glm::vec2 pos, glm::vec2 size) {
+  const float h = display_height;
+  if (pos.y > 0.3f * h && pos.y + size.y > 0.9f * h)
+    edges.bottom = edges.bottom > 0.0f ? std::min(edges.bottom, pos.y) : pos.y;
 }
 
 glm::ivec4 view_rect(const DockEdges& edges, glm::vec2 display, glm::vec2 scale, bool ui_visible) {
@@ -55,7 +67,11 @@ glm::ivec4 view_rect(const DockEdges& edges, glm::vec2 display, glm::vec2 scale,
   const float sx = scale.x > 0.0f ? scale.x : 1.0f, sy = scale.y > 0.0f ? scale.y : 1.0f;
   const int fb_h = static_cast<int>(std::lround(display.y * sy));
   const int x0 = static_cast<int>(std::lround(left * sx)), x1 = static_cast<int>(std::lround(right * sx));
-  return {x0, 0, std::max(x1 - x0, 1), std::max(fb_h, 1)};
+  // A bottom panel shortens the view from below (the view keeps its top at y = 0).
+  int view_h = fb_h;
+  if (ui_visible && edges.bottom > 0.0f && edges.bottom >= kMinViewHeightFraction * display.y)
+    view_h = static_cast<int>(std::lround(std::min(edges.bottom, display.y) * sy));
+  return {x0, 0, std::max(x1 - x0, 1), std::max(view_h, 1)};
 }
 
 }  // namespace viz

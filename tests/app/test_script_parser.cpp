@@ -145,6 +145,42 @@ TEST(Script, ErrorsNameScriptAndLine) {
   EXPECT_EQ(script_error("a.txt", 7, "boom"), "a.txt:7: boom");
 }
 
+TEST(Script, TreeCommands) {
+  auto parsed = parse_script("tree on\ntree off\ntree-select 12\ntree-select 0 isolate\n", "t.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const std::vector<ScriptCommand>& c = parsed.value();
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[0].kind, CommandKind::Tree);
+  EXPECT_TRUE(c[0].on);
+  EXPECT_EQ(c[1].kind, CommandKind::Tree);
+  EXPECT_FALSE(c[1].on);
+  EXPECT_EQ(c[2].kind, CommandKind::TreeSelect);
+  EXPECT_EQ(c[2].ints[0], 12);
+  EXPECT_FALSE(c[2].on);  // not isolated
+  EXPECT_EQ(c[3].ints[0], 0);
+  EXPECT_TRUE(c[3].on);
+  EXPECT_EQ(c[3].line, 4);
+  struct Case {
+    const char* text;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"tree\n", "t.txt:1: usage: tree on|off"},
+      {"tree maybe\n", "usage: tree on|off"},
+      {"tree-select\n", "usage: tree-select NODE [isolate]"},
+      {"tree-select 3 alone\n", "usage: tree-select NODE [isolate]"},
+      {"tree-select 3 isolate more\n", "usage: tree-select NODE [isolate]"},
+      {"\ntree-select -1\n", "t.txt:2: tree-select: '-1' is not a node id"},
+      {"tree-select root\n", "tree-select: 'root' is not a node id"},
+      {"tree-select 99999999999\n", "is not a node id"},
+  };
+  for (const Case& k : cases) {
+    auto bad = parse_script(k.text, "t.txt");
+    ASSERT_FALSE(bad.ok()) << k.text;
+    EXPECT_NE(bad.error().message.find(k.expected), std::string::npos) << bad.error().message;
+  }
+}
+
 TEST(Script, BenchChartCommands) {
   auto parsed = parse_script("load-bench out/bench.json\nshow-chart on x=t-error speed=1t y=log labels=off group=2\n"
                              "show-chart off\n",

@@ -64,6 +64,34 @@ TEST(ViewLayout, SmallWindowsUseTheWholeWidth) {
   EXPECT_EQ(view_rect(docked(display, 18.0f), display, {1, 1}, true), glm::ivec4(0, 0, 640, 360));
 }
 
+TEST(ViewLayout, TheTreeDiagramDocksAlongTheBottom) {
+  // The tree goes under the 3D view, between the columns; the view ends above it.
+  const glm::vec2 display(1920, 1080);
+  const PanelLayout l = compute_layout(display, 18.0f, false, true);
+  DockEdges d = docked(display, 18.0f);
+  EXPECT_GE(l.tree.pos.x, d.left);
+  EXPECT_LE(l.tree.pos.x + l.tree.size.x, d.right);
+  EXPECT_NEAR(l.tree.pos.y + l.tree.size.y, display.y, 0.01f * display.y);
+  note_docked_bottom(d, display.y, l.tree.pos, l.tree.size);
+  EXPECT_FLOAT_EQ(d.bottom, l.tree.pos.y);
+  const glm::ivec4 v = view_rect(d, display, {1, 1}, true);
+  EXPECT_EQ(v.y, 0);
+  EXPECT_NEAR(v.w, l.tree.pos.y, 1.0);
+  EXPECT_GT(v.w, 540);  // the scene keeps most of the height
+  // Hidden panels: the whole window again; HiDPI: framebuffer pixels.
+  EXPECT_EQ(view_rect(d, display, {1, 1}, false).w, 1080);
+  EXPECT_NEAR(view_rect(d, display, {2, 2}, true).w, 2.0f * l.tree.pos.y, 1.0);
+  // A window in the upper half, or one not reaching the bottom, is no bottom dock.
+  DockEdges top = docked(display, 18.0f);
+  note_docked_bottom(top, display.y, {600, 100}, {400, 300});
+  note_docked_bottom(top, display.y, {600, 700}, {400, 100});
+  EXPECT_EQ(top.bottom, 0.0f);
+  // In lecture mode it is still below the view, taller.
+  const PanelLayout big = compute_layout(display, 30.0f, true, true);
+  EXPECT_GT(big.tree.size.y, l.tree.size.y);
+  EXPECT_NEAR(big.tree.pos.y + big.tree.size.y, display.y, 0.02f * display.y);
+}
+
 TEST(ViewLayout, FramingFitsTheSceneIntoTheViewRectangle) {
   const glm::vec2 display(1280, 720);
   const glm::ivec4 v = view_rect(docked(display, 18.0f), display, {1, 1}, true);

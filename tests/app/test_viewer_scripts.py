@@ -15,6 +15,8 @@ pixel known to hit, step from the first to the last step, take a screenshot of e
   * print-vars names the lecture's variables; the trap demonstrations' naive answers differ
     from the traversal's, which brute force (accelviz-cli) confirms;
   * one mesh as OBJ, PLY, STL and glTF gives the same hit in the viewer and accelviz-cli;
+  * `tree on` shows the tree diagram (a screenshot differs from `tree off`), `tree-select`
+    selects and isolates a node, the grid shows its cell walk, the construction its tree;
   * script errors exit 2 with "accelviz: SCRIPT:LINE: message".
 Exit 77 (ctest: skipped) when xvfb-run is missing.
 """
@@ -306,6 +308,24 @@ def main():
                 with open(hits) as f:
                     row = list(csv.DictReader(f))[0]
                 check(f"hit {row['prim']} {row['t']}" == got[0], f"{path}: accelviz-cli {row}, the viewer {got[0]}")
+    # ---- The tree diagram: on and off differ; selection, isolation, the grid's cell walk, the
+    # construction's tree and lecture mode all run.
+    lines = ["size 1280 720", f"scene {SCENE}", "structure bvh traversal=pqueue width=2", "ray-at-pixel 640 300",
+             "step hit", "tree off", f"screenshot {work}/tree_off.png", "tree on", f"screenshot {work}/tree_on.png",
+             "tree-select 1", f"screenshot {work}/tree_select.png", "tree-select 1 isolate",
+             f"screenshot {work}/tree_isolate.png", "large on", f"screenshot {work}/tree_large.png", "large off",
+             "structure kdtree", "step 5", f"screenshot {work}/tree_kd.png",
+             "structure grid", "step 5", f"screenshot {work}/tree_grid.png",
+             "structure octree", "construct", "build-step 20", f"screenshot {work}/tree_build.png"]
+    script = os.path.join(work, "tree.txt")
+    with open(script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    code, out, err = viewer(args, script)
+    if check(code == 0, f"tree: viewer exit {code}\n{err}"):
+        for a, b in (("tree_off", "tree_on"), ("tree_on", "tree_select"), ("tree_select", "tree_isolate"),
+                     ("tree_on", "tree_large"), ("tree_kd", "tree_grid"), ("tree_grid", "tree_build")):
+            c, o, _ = run([args.png_check, "--differ", f"{work}/{a}.png", f"{work}/{b}.png", "30"])
+            check(c == 0, f"tree: {a} and {b} look the same: {o}")
 
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
@@ -332,6 +352,10 @@ def main():
         ("bad_vars.txt", f"size {W} {H}\nscene {SCENE}\nprint-vars\n",
          r"^accelviz: .*bad_vars\.txt:3: print-vars: no debug ray yet"),
         ("bad_naive.txt", "print-naive now\n", r"^accelviz: .*bad_naive\.txt:1: 'print-naive' takes no arguments\n$"),
+        ("bad_tree_select.txt", f"size {W} {H}\nscene {SCENE}\nstructure bvh\ntree-select 99999999\n",
+         r"^accelviz: .*bad_tree_select\.txt:4: tree-select: node 99999999 does not exist \(the .+ has \d+ nodes, 0\.\.\d+\)\n$"),
+        ("bad_tree_grid.txt", f"size {W} {H}\nscene {SCENE}\nstructure grid\ntree-select 0\n",
+         r"^accelviz: .*bad_tree_grid\.txt:4: tree-select: the .+ has no tree"),
         ("bad_bench.txt", f"size {W} {H}\nload-bench /no/such/bench.json\n",
          r"^accelviz: .*bad_bench\.txt:2: /no/such/bench\.json: cannot read the file\n$"),
     ]

@@ -50,6 +50,9 @@ class BuildPlayer {
   void set_sah_plot(bool on) { sah_plot_ = on; }
   /// Plays on by `seconds`.
   void advance(double seconds) { player_.advance(seconds); }
+  /// The partly built structure as of the current step (nullptr: nothing recorded), for
+  /// the tree diagram.
+  const accel::BuildReplay* replay() const { return replay_.get(); }
   /// Applies the player's step to the replay and rebuilds the view when it changed.
   void update();
 

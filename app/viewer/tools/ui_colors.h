@@ -11,5 +11,9 @@ inline const ImVec4 kHitText(0.35f, 0.95f, 0.45f, 1.0f);
 inline const ImVec4 kMissText(1.0f, 0.45f, 0.45f, 1.0f);
 inline const ImVec4 kQueueText(0.35f, 0.85f, 1.0f, 1.0f);
 inline const ImVec4 kDimText(0.62f, 0.65f, 0.72f, 1.0f);
+// The tree diagram's node states, as the 3D highlights draw them (trail, missed, selection).
+inline const ImVec4 kVisitedText(0.85f, 0.88f, 0.95f, 1.0f);
+inline const ImVec4 kCullMissedText(0.7f, 0.55f, 1.0f, 1.0f);
+inline const ImVec4 kSelectedText(1.0f, 0.3f, 0.9f, 1.0f);
 
 }  // namespace viz::ui
