@@ -238,8 +238,11 @@ void App::update(float dt) {
       }
       if (panels_.steps) ray_.steps_panel(place(layout_.steps));
       if (panels_.code) ray_.code_panel(place(layout_.code), shown, mono);
+      WindowRect vars_rect = layout_.vars;
+      if (lecture_mode_ && tree_.on())
+        vars_rect.size.y = std::max(layout_.tree.pos.y - vars_rect.pos.y - layout_.main.pos.y, 6.0f * ImGui::GetFontSize());
       if (panels_.vars)
-        vars_.panel(place(layout_.vars), ray_.ray(), ray_.step_highlight(),
+        vars_.panel(place(vars_rect), ray_.ray(), ray_.step_highlight(),
                     shown ? shown->kind : TraversalKind::Unknown, mono,
                     [&] { trap_.block(ray_.ray(), ray_.player()); });
     }
@@ -255,7 +258,16 @@ void App::update(float dt) {
       const std::string noun = shown ? shown->info->node_noun : "nodes";
       heatmap_.legend(place({layout_.legend.pos, {0.0f, 0.0f}}, false), noun, heatmap_view());
     }
-    if (tree_.on()) tree_.panel(place(layout_.tree));  // docks along the bottom
+    if (tree_.on()) {  // docks along the bottom; the whole width when the left column is empty
+      WindowRect rect = layout_.tree;
+      // In lecture mode the controls are collapsed: the tree takes the whole width and the
+      // Variables panel the column above it (its larger font needs the room more).
+      if ((!panels_.main && !panels_.vars) || lecture_mode_) {
+        rect.size.x += rect.pos.x - layout_.main.pos.x;
+        rect.pos.x = layout_.main.pos.x;
+      }
+      tree_.panel(place(rect));
+    }
     bench_chart_window(chart_, layout_.chart.pos, layout_.chart.size, layout_apply_);
     if (panels_.strip && !build_.active()) traversal_numbers();
   }
@@ -322,7 +334,10 @@ void App::update_shortcuts() {
         panels_.vars = !(panels_.vars && panels_.strip);
         panels_.strip = panels_.vars;
         break;
-      case GLFW_KEY_T: tree_.toggle(); break;
+      case GLFW_KEY_T:
+        tree_.toggle();
+        layout_frames_ = 2;  // the bottom dock appears or goes: lay the panels out again
+        break;
       // The construction mode: B records (again: back to the traversal), P . , PgUp PgDn - = step it.
       case GLFW_KEY_B:
         if (build_.active()) build_.set_active(false);

@@ -128,6 +128,7 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       build_.set_sah_plot(c.on);
       return {};
     case CommandKind::Tree:
+      if (tree_.on() != c.on) layout_frames_ = 2;  // the bottom dock appears or goes: lay out again
       tree_.set_on(c.on);
       if (c.on) ui_visible_ = true;
       return {};
