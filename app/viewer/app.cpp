@@ -215,6 +215,13 @@ void App::update(float dt) {
   ray_.update(session_.scene(), session_.current());
   trap_.update(ray_.ray(), session_.scene());
   ray_.set_marked_step(trap_.marked_step(), "a naive traversal stops here");
+  // The Variables panel shares the left column with the controls in the traversal mode
+  // only; when it comes or goes the controls change height: lay out again.
+  const bool vars_column = panels_.vars && !build_.active() && !build_.recording();
+  if (vars_column != vars_column_) {
+    vars_column_ = vars_column;
+    layout_frames_ = 2;
+  }
   if (ui_visible_) {
     layout_windows();
     if (panels_.main) main_panel();

@@ -181,6 +181,7 @@ class App {
   bool ui_visible_ = true;
   bool lecture_mode_ = false;  // large fonts, high contrast
   bool lecture_mode_applied_ = false;
+  bool vars_column_ = true;  // the Variables panel is in the left column (main_panel() is shorter)
   FrameTiming timing_;
   Fonts fonts_;
 

@@ -52,7 +52,9 @@ void App::layout_windows() {
 PanelPlace App::place(const WindowRect& rect, bool docks) { return {rect, layout_apply_, docks ? &dock_ : nullptr}; }
 
 void App::main_panel() {
-  const PanelPlace where = place(layout_.main);
+  WindowRect rect = layout_.main;
+  if (!vars_column_) rect.size.y = layout_.vars.pos.y + layout_.vars.size.y - rect.pos.y;  // the whole column
+  const PanelPlace where = place(rect);
   ui::place(where);
   if (layout_apply_) ImGui::SetNextWindowCollapsed(lecture_mode_, ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.9f);
