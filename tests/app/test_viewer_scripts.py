@@ -63,6 +63,14 @@ def viewer(args, script_path):
     return run(xvfb + [args.viewer, "--script", script_path])
 
 
+def run_script(args, work, name, lines):
+    """Writes `lines` to WORK/NAME.txt and runs the viewer on it: (exit code, stdout, stderr)."""
+    script = os.path.join(work, name + ".txt")
+    with open(script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return viewer(args, script)
+
+
 def write_pyramids(work):
     """A pyramid (quad base fan-triangulated, four sides) as OBJ, PLY, binary STL and glTF
     with an embedded buffer; the triangles in the same order in each."""
@@ -253,10 +261,7 @@ def main():
              "panel vars on", "panel strip on"]
     for trap in ("pq", "kd", "grid"):
         lines += [f"trap {trap}", "print-hit", "print-naive", "print-ray"]
-    script = os.path.join(work, "vars_traps.txt")
-    with open(script, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    code, out, err = viewer(args, script)
+    code, out, err = run_script(args, work, "vars_traps", lines)
     if check(code == 0, f"vars and traps: viewer exit {code}\n{err}"):
         got = out.strip().splitlines()
         if check(len(got) == 3 + 3 * 3, f"vars and traps: expected 12 lines:\n{out}"):
@@ -290,10 +295,7 @@ def main():
     lines = [f"size {W} {H}"]
     for path in mesh_files:
         lines += [f"scene {path}", "structure bvh", "ray 0.3 0.2 5 0 0 -1", "print-hit"]
-    script = os.path.join(work, "mesh_formats.txt")
-    with open(script, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    code, out, err = viewer(args, script)
+    code, out, err = run_script(args, work, "mesh_formats", lines)
     if check(code == 0, f"mesh formats: viewer exit {code}\n{err}"):
         got = out.strip().splitlines()
         check(len(got) == len(mesh_files) and len(set(got)) == 1 and got[0].startswith("hit "),
@@ -317,10 +319,7 @@ def main():
              "structure kdtree", "step 5", f"screenshot {work}/tree_kd.png",
              "structure grid", "step 5", f"screenshot {work}/tree_grid.png",
              "structure octree", "construct", "build-step 20", f"screenshot {work}/tree_build.png"]
-    script = os.path.join(work, "tree.txt")
-    with open(script, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    code, out, err = viewer(args, script)
+    code, out, err = run_script(args, work, "tree", lines)
     if check(code == 0, f"tree: viewer exit {code}\n{err}"):
         for a, b in (("tree_off", "tree_on"), ("tree_on", "tree_select"), ("tree_select", "tree_isolate"),
                      ("tree_on", "tree_large"), ("tree_kd", "tree_grid"), ("tree_grid", "tree_build")):
