@@ -176,10 +176,93 @@ accel::Status App::load_trap(const std::string& name) {
   if (auto st = load_scene(demo.scene); !st) return st;
   session_.switch_structure(demo.structure, demo.params);
   sync_session();
-  if (auto st = session_.need_structure(); !st) return st;
+  if (auto st = loaded(); !st) return st;
   trap_.set_demo(demo);
   set_ray(demo.ray, "trap " + demo.name);
   return {};
+}
+
+// ---------------------------------------------------------------------------------------
+// The lecture playlist and the recording
+
+namespace {
+
+/// ScriptHost for a playlist state run in the window: the frames come from the main loop
+/// (one command per frame), so rendering commands have nothing to wait for.
+class InteractiveHost final : public ScriptHost {
+ public:
+  InteractiveHost(GLFWwindow* window, glm::ivec2 framebuffer, Recorder& recorder)
+      : window_(window), framebuffer_(framebuffer), recorder_(recorder) {}
+  accel::Status resize(int width, int height) override {
+    if (window_ != nullptr) glfwSetWindowSize(window_, width, height);
+    return {};
+  }
+  void render(int) override {}
+  accel::Status screenshot(const std::string&) override {
+    recorder_.request_screenshot();  // written at the end of this frame, numbered
+    return {};
+  }
+  double measure_frames(int) override { return 0.0; }
+  glm::ivec2 framebuffer_size() const override { return framebuffer_; }
+  std::string gl_renderer() const override { return ""; }
+
+ private:
+  GLFWwindow* window_;
+  glm::ivec2 framebuffer_;
+  Recorder& recorder_;
+};
+
+}  // namespace
+
+accel::Status App::load_playlist(const std::string& path) {
+  if (auto st = playlist_.load(path); !st) return st;
+  go_to_state(0);
+  return {};
+}
+
+void App::go_to_state(size_t index) {
+  if (playlist_.go(index)) reset_for_playlist();
+}
+
+void App::reset_for_playlist() {
+  // Going back replays from the first state: what a state may have changed returns to the
+  // viewer's defaults first (the scene, structure and ray come from the states themselves).
+  panels_ = Panels{};
+  ui_visible_ = true;
+  tree_.set_on(false);
+  heatmap_.set_on(false);
+  compare_.set_open(false);
+  sweep_.set_open(false);
+  build_.set_active(false);
+  trap_.set_open(true);
+  nodes_.show_all();
+  nodes_.set_visible(true);
+  nodes_.set_opacity(0.55f);
+  nodes_.set_mesh_mode(MeshStyle::Mode::Solid);
+  layout_frames_ = 2;
+}
+
+void App::run_playlist(ScriptHost* host) {
+  while (playlist_.has_pending()) {
+    // In the window: one command per frame, and none while a build runs (the next one
+    // needs its structure); the window stays live meanwhile.
+    if (!host && (session_.building() || build_.recording())) return;
+    const PlaylistTool::Pending next = playlist_.front();
+    playlist_.pop();
+    InteractiveHost interactive(window_, framebuffer_, recorder_);
+    ScriptHost& h = host ? *host : interactive;
+    if (auto st = execute(*next.command, h); !st) {
+      playlist_.fail(script_error(playlist_.playlist().name, next.command->line, st.error().message));
+      return;
+    }
+    sync_session();
+    if (!host) return;
+  }
+}
+
+accel::Status App::toggle_recording() {
+  if (recorder_.recording()) return recorder_.stop();
+  return recorder_.start(recorder_.path_field(), recorder_.options());
 }
 
 HeatmapView App::heatmap_view() const { return {camera_.pinhole(), session_.current_ptr(), view_size()}; }
@@ -194,6 +277,13 @@ void App::update(float dt) {
   build_.poll();
   update_camera_input();
   update_shortcuts();
+  if (!synchronous_) run_playlist(nullptr);
+  // A new step of the animation (traversal or construction) is a new frame of a recording.
+  const StepSeen seen{ray_.player().step(), build_.player().step(), build_.active()};
+  if (!(seen == step_seen_)) {
+    step_seen_ = seen;
+    recorder_.step_changed();
+  }
 
   const double frame_ms = 1000.0 * static_cast<double>(dt);
   timing_.frame_ms = timing_.frame_ms == 0.0
@@ -353,8 +443,24 @@ void App::update_shortcuts() {
       case GLFW_KEY_P: b.toggle(); break;
       case GLFW_KEY_PERIOD: b.pause(); b.step_forward(n); break;
       case GLFW_KEY_COMMA: b.pause(); b.step_back(n); break;
-      case GLFW_KEY_PAGE_UP: b.pause(); b.seek(0); break;
-      case GLFW_KEY_PAGE_DOWN: b.pause(); b.jump_to_end(); break;
+      // A presenter's clicker sends PgDn / PgUp (some: the up and down arrows): with a
+      // playlist they move between its states; shift keeps them for the construction.
+      case GLFW_KEY_PAGE_UP:
+        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.current() > 0 ? playlist_.current() - 1 : 0);
+        else { b.pause(); b.seek(0); }
+        break;
+      case GLFW_KEY_PAGE_DOWN:
+        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.current() + 1);
+        else { b.pause(); b.jump_to_end(); }
+        break;
+      case GLFW_KEY_UP:
+        if (playlist_.loaded()) go_to_state(playlist_.current() > 0 ? playlist_.current() - 1 : 0);
+        break;
+      case GLFW_KEY_DOWN:
+        if (playlist_.loaded()) go_to_state(playlist_.current() + 1);
+        break;
+      case GLFW_KEY_R: (void)toggle_recording(); break;  // the notice says what happened
+      case GLFW_KEY_F12: recorder_.request_screenshot(); break;
       case GLFW_KEY_EQUAL: b.set_speed(b.speed() * 1.5); break;
       case GLFW_KEY_MINUS: b.set_speed(b.speed() / 1.5); break;
       default: break;

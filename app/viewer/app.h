@@ -8,6 +8,7 @@
 //   app.cpp         lifecycle, per-frame update, input, drawing, session events
 //   app_ui.cpp      the window layout, the main panel and the lecture mode
 //   app_script.cpp  the script commands (one table, calling tool methods)
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +26,9 @@
 #include "tools/compare_tool.h"
 #include "tools/heatmap_tool.h"
 #include "tools/node_display.h"
+#include "tools/playlist_tool.h"
 #include "tools/ray_debugger.h"
+#include "tools/recorder.h"
 #include "tools/structure_session.h"
 #include "tools/sweep_tool.h"
 #include "tools/trap_tool.h"
@@ -113,6 +116,16 @@ class App {
   /// The scene currently shown.
   const accel::Scene& scene() const { return session_.scene(); }
 
+  /// Loads a lecture playlist (playlist.h) and queues its first state, which runs once the
+  /// window is up (execute() in a script runs it at once). Errors "FILE:LINE: ...". Needs no GL.
+  accel::Status load_playlist(const std::string& path);
+
+  /// Recording and screenshots read the frame back: main() calls this after the 3D view is
+  /// drawn (with_ui = false) and again after the panels (true), before the buffer swap.
+  void capture(bool with_ui) { recorder_.capture(with_ui, view_, framebuffer_); }
+  /// Whether capture(with_ui) has anything to do this frame.
+  bool wants_capture(bool with_ui) const { return recorder_.wants_capture(with_ui); }
+
   /// Loads a bench JSON file (accelviz-cli bench --out-json) into the "Speed vs error"
   /// chart and opens it. On failure the previous chart stays and the one-line error
   /// ("PATH: ...") is returned and shown in the chart's file row. Needs no GL.
@@ -127,6 +140,16 @@ class App {
   void start_compare();
   accel::Status start_sweep();
   accel::Status load_trap(const std::string& name);
+  // The playlist: go to a state (queued; the viewer reset first when going back), run the
+  // queued commands (`host` null: one per frame in the window, only when no build runs).
+  void go_to_state(size_t index);
+  void run_playlist(ScriptHost* host);
+  void reset_for_playlist();
+  void walk_recorded(size_t from, size_t to, const std::function<void(size_t)>& seek, ScriptHost& host);
+  accel::Status toggle_recording();
+  /// After a command that loads a scene or starts a build: in script mode the structure
+  /// must be there; in the window it builds in the background (the playlist waits for it).
+  accel::Status loaded() const { return synchronous_ ? session_.need_structure() : accel::Status{}; }
   void construct() { build_.construct(session_.scene_ptr(), session_.current_request(), synchronous_); }
   void switch_structure(const StructureChoice& choice) { session_.switch_structure(choice.name, choice.params); }
   HeatmapView heatmap_view() const;
@@ -155,6 +178,13 @@ class App {
   VarsPanel vars_;  // the traversal's variables and the t-axis strip
   TrapTool trap_;   // the lecture's traps: the naive answer beside the right one
   TreeDiagram tree_;  // the "Tree" window (T)
+  PlaylistTool playlist_;  // the lecture playlist (PgDn / PgUp)
+  Recorder recorder_;      // GIF / MP4 of the animation (R), screenshots (F12)
+  struct StepSeen {
+    size_t trace = ~size_t(0), build = ~size_t(0);
+    bool build_mode = false;
+    bool operator==(const StepSeen&) const = default;
+  } step_seen_;  // the animation's step at the last frame: a new one is recorded
   BenchChartState chart_;  // the "Speed vs error" window (bench_chart_panel.cpp)
 
   // ---- Camera, input and the 3D view

@@ -3,6 +3,7 @@
 // mode, so every command sees the result of the previous one; screenshots go through the
 // ScriptHost (main.cpp).
 #include <cstdio>
+#include <functional>
 
 #include "app.h"
 #include "registry.h"
@@ -18,6 +19,15 @@ void print_line(const std::string& line) {
 
 }  // namespace
 
+void App::walk_recorded(size_t from, size_t to, const std::function<void(size_t)>& seek, ScriptHost& host) {
+  // A recording holds one frame per step: walk there one step and one frame at a time.
+  while (from != to) {
+    from = from < to ? from + 1 : from - 1;
+    seek(from);
+    host.render(1);
+  }
+}
+
 accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
   // The camera as it will be drawn: framing waits for the first draw (it needs the aspect
   // ratio), but a ray shot before that must use the framed camera too.
@@ -32,7 +42,7 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       return {};
     case CommandKind::Scene:
       if (auto st = load_scene(c.name); !st) return st;
-      return session_.need_structure();
+      return loaded();
     case CommandKind::Preset: {
       const Preset* p = find_preset(session_.presets(), c.name);
       if (!p) {
@@ -42,18 +52,18 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       }
       host.render(1);  // the current layout: the preset's centre ray goes through the 3D view's centre
       if (auto st = apply_preset(*p); !st) return st;
-      return session_.need_structure();
+      return loaded();
     }
     case CommandKind::Structure:
       session_.switch_structure(c.name, c.params);
       sync_session();
-      return session_.need_structure();
+      return loaded();
     case CommandKind::Kernel: {
       accel::Kernel k = accel::Kernel::Watertight;
       accel::parse_kernel(c.name, &k);  // checked by the parser
       session_.set_kernel(k);
       sync_session();
-      return session_.need_structure();
+      return loaded();
     }
     case CommandKind::Camera: {
       const glm::vec3 eye(c.values[0], c.values[1], c.values[2]), target(c.values[3], c.values[4], c.values[5]);
@@ -92,6 +102,8 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       if (auto st = ray_.need_trace(); !st) return st;
       accel::TracePlayer& p = ray_.player();
       p.pause();
+      build_.set_active(false);  // stepping the ray: back to the traversal's panels
+      const size_t from = p.step();
       switch (c.step) {
         case StepMode::Forward: p.step_forward(static_cast<size_t>(c.ints[0])); break;
         case StepMode::Back: p.step_back(static_cast<size_t>(c.ints[0])); break;
@@ -99,6 +111,7 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
         case StepMode::Hit: p.jump_to_hit(); break;
         case StepMode::Start: p.seek(0); break;
       }
+      if (recorder_.recording()) walk_recorded(from, p.step(), [&](size_t s) { p.seek(s); }, host);
       return {};
     }
     case CommandKind::Construct:
@@ -110,6 +123,7 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       if (auto st = build_.need_trace(); !st) return accel::make_error("build-step: " + st.error().message);
       BuildStepPlayer& p = build_.player();
       p.pause();
+      const size_t from = p.step();
       switch (c.step) {
         case StepMode::Forward: p.step_forward(static_cast<size_t>(c.ints[0])); break;
         case StepMode::Back: p.step_back(static_cast<size_t>(c.ints[0])); break;
@@ -118,6 +132,7 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
         case StepMode::Hit: p.seek(0); break;
       }
       build_.set_active(true);
+      if (recorder_.recording()) walk_recorded(from, p.step(), [&](size_t s) { p.seek(s); }, host);
       return {};
     }
     case CommandKind::PrintBuildStep:
@@ -235,6 +250,36 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
     case CommandKind::PrintNaive:
       if (auto st = ray_.need_trace(); !st) return accel::make_error("print-naive: " + st.error().message);
       print_line(accel::naive_line(accel::naive_first_leaf_hit(ray_.ray().player.events())));
+      return {};
+    case CommandKind::Playlist:
+      if (auto st = load_playlist(c.name); !st) return st;
+      run_playlist(&host);
+      return {};
+    case CommandKind::Next:
+    case CommandKind::Prev:
+      if (!playlist_.loaded()) return accel::make_error("no playlist loaded (use playlist FILE first)");
+      go_to_state(c.kind == CommandKind::Next ? playlist_.current() + 1
+                                              : (playlist_.current() > 0 ? playlist_.current() - 1 : 0));
+      run_playlist(&host);
+      return {};
+    case CommandKind::PrintState:
+      if (!playlist_.loaded()) return accel::make_error("print-state: no playlist loaded");
+      print_line(playlist_.state_line());
+      return {};
+    case CommandKind::Record: {
+      RecordOptions o;
+      o.fps = c.ints[0];
+      o.ui = c.on;
+      o.width = static_cast<int>(c.values[0]);
+      o.height = static_cast<int>(c.values[1]);
+      if (auto st = recorder_.start(c.name, o); !st) return st;
+      host.render(1);  // the first frame: the animation as it stands
+      if (!recorder_.recording()) return accel::make_error("record: " + recorder_.notice());
+      return {};
+    }
+    case CommandKind::RecordStop:
+      if (auto st = recorder_.stop(); !st) return st;
+      print_line(recorder_.notice());  // "wrote PATH (N frames)"
       return {};
     case CommandKind::PrintHit:
       if (auto st = ray_.need_ray(); !st) return st;

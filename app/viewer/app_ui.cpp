@@ -97,6 +97,12 @@ void App::main_panel() {
   if (ImGui::CollapsingHeader("Lecture traps")) {
     if (const std::string name = trap_.section(); !name.empty()) (void)load_trap(name);  // errors: the scene section shows them
   }
+  if (ImGui::CollapsingHeader("Playlist", playlist_.loaded() ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+    if (const auto state = playlist_.section()) go_to_state(*state);
+  }
+  if (ImGui::CollapsingHeader("Recording")) {
+    if (recorder_.section()) (void)toggle_recording();  // the section shows the result
+  }
   if (ImGui::CollapsingHeader("Cost heat map")) heatmap_.section();
   if (ImGui::CollapsingHeader("Parameter sweep")) {
     if (sweep_.section(session_.editor_info())) (void)start_sweep();  // errors shown in the section
@@ -115,6 +121,8 @@ void App::main_panel() {
     ImGui::TextDisabled("B: construct (again: traversal)   P: play/pause build");
     ImGui::TextDisabled(", .: build step (shift: 10)   PgUp/PgDn: first/last");
     ImGui::TextDisabled("- =: build slower/faster");
+    ImGui::TextDisabled("playlist: PgDn/PgUp or down/up: next/previous state");
+    ImGui::TextDisabled("R: record GIF/MP4   F12: screenshot");
   }
   ImGui::End();
 }
@@ -135,11 +143,17 @@ void App::traversal_numbers() {
 }
 
 void App::status_overlay() {
+  // The playlist's title, at the top of the 3D view (window coordinates), with or without
+  // the panels.
+  const float sx = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
+  playlist_.overlay(glm::vec4(static_cast<float>(view_.x) / sx, 0.0f, static_cast<float>(view_.z) / sx, 0.0f),
+                    ImGui::GetTime());
   if (!ui_visible_) return;
   const bool building = session_.building();
   const bool waiting_heatmap = heatmap_.computing();
   const bool recording = build_.recording();
-  if (!building && !waiting_heatmap && !recording) return;
+  const std::string notice = recorder_.notice();
+  if (!building && !waiting_heatmap && !recording && notice.empty()) return;
   const float em = ImGui::GetFontSize();
   glm::vec2 pos = layout_.status.pos;
   if (panels_.legend && heatmap_.on()) pos.y += 7.5f * em;  // below the legend
@@ -157,6 +171,7 @@ void App::status_overlay() {
     ImGui::TextColored(ui::kCurrentText, "recording the construction ... %.1f s", build_.recording_seconds());
     ImGui::ProgressBar(static_cast<float>(build_.recording_fraction()), ImVec2(20.0f * em, 0.4f * em), "");
   }
+  if (!notice.empty()) ImGui::TextColored(ui::kCurrentText, "%s", notice.c_str());
   if (waiting_heatmap) {
     const glm::ivec2 size = heatmap_.computing_size();
     ImGui::TextDisabled("heat map: tracing %dx%d rays ...", size.x, size.y);

@@ -34,6 +34,7 @@ struct Options {
   std::string screenshot;       ///< PNG path; empty = interactive
   std::string script;           ///< command script; empty = none
   std::string bench_json;       ///< bench JSON for the "Speed vs error" chart; empty = none
+  std::string playlist;         ///< lecture playlist; empty = none
   int frames = 3;               ///< frames rendered before the screenshot
   int width = 1280, height = 720;
   bool no_ui = false;           ///< start with the panels hidden
@@ -91,7 +92,7 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   CLI::App cli{"accelviz: interactive viewer for ray-tracing acceleration structures"};
   options.scene = default_scene();
   std::string size_text = "1280x720";
-  cli.add_option("scene", options.scene, "OBJ file or procedural:NAME (NAME: " + names + ")")
+  cli.add_option("scene", options.scene, "mesh file (OBJ, PLY, STL, glTF, GLB) or procedural:NAME (NAME: " + names + ")")
       ->capture_default_str();
   cli.add_option("--screenshot", options.screenshot,
                  "render, write the framebuffer to this PNG file, and exit");
@@ -103,6 +104,9 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
                  "screenshot, print-hit, ...; see app/viewer/script.h), then exit");
   cli.add_option("--bench-json", options.bench_json,
                  "open the speed-against-error chart of this accelviz-cli bench --out-json file");
+  cli.add_option("--playlist", options.playlist,
+                 "open a lecture playlist (state TITLE blocks of script commands; PgDn / PgUp move "
+                 "between its states; see app/viewer/playlist.h)");
   cli.add_flag("--no-ui", options.no_ui, "hide the panels (H shows them): clean screenshots for slides");
   cli.add_option("--msaa", options.msaa, "anti-aliasing samples per pixel, 0 (off) .. 16; 0 is much faster on "
                                          "software renderers (Mesa llvmpipe)")
@@ -163,7 +167,9 @@ glm::ivec2 render_frame(GLFWwindow* window, viz::App& app, float dt) {
   int fb_width = 0, fb_height = 0;
   glfwGetFramebufferSize(window, &fb_width, &fb_height);
   app.draw(fb_width, fb_height);
+  if (app.wants_capture(false)) app.capture(false);  // a recording of the 3D view alone
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (app.wants_capture(true)) app.capture(true);    // with the panels; F12
   return {fb_width, fb_height};
 }
 
@@ -294,6 +300,14 @@ int main(int argc, char** argv) {
   // Likewise a bad bench file: "accelviz: FILE: ..." before any window.
   if (!options.bench_json.empty()) {
     if (const accel::Status st = app.load_bench(options.bench_json); !st) {
+      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
+      return 2;
+    }
+  }
+  // And a bad playlist: "accelviz: FILE:LINE: ..." before any window. Its first state runs
+  // once the window is up.
+  if (!options.playlist.empty()) {
+    if (const accel::Status st = app.load_playlist(options.playlist); !st) {
       std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
       return 2;
     }

@@ -1,5 +1,6 @@
 #include "playlist.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -70,7 +71,18 @@ accel::Result<Playlist> load_playlist(const std::string& path) {
   if (!file) return accel::make_error(path + ": cannot read the playlist");
   std::ostringstream text;
   text << file.rdbuf();
-  return parse_playlist(text.str(), path);
+  auto playlist = parse_playlist(text.str(), path);
+  if (!playlist) return playlist;
+  // Files named in a playlist are relative to the playlist, so it runs from any directory.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(path).parent_path();
+  for (PlaylistState& state : playlist.value().states)
+    for (ScriptCommand& c : state.commands) {
+      const bool names_file = (c.kind == CommandKind::Scene && !c.name.starts_with("procedural:")) ||
+                        c.kind == CommandKind::LoadBench;
+      if (names_file && fs::path(c.name).is_relative()) c.name = (dir / c.name).lexically_normal().string();
+    }
+  return playlist;
 }
 
 std::vector<size_t> PlaylistCursor::go_to(size_t target, bool* from_scratch) {

@@ -36,6 +36,7 @@ struct Playlist {
 /// (playlist, next, prev), or no state at all.
 accel::Result<Playlist> parse_playlist(const std::string& text, const std::string& name);
 /// Reads and parses a playlist file; the error names the file when it cannot be read.
+/// Scene files and bench JSON files named with a relative path are relative to the playlist.
 accel::Result<Playlist> load_playlist(const std::string& path);
 
 /// Which state is shown and how to get from one to another.

@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "rays_io.h"
 #include "registry.h"
 #include "traps.h"
+#include "video_writer.h"
 
 namespace viz {
 namespace {
@@ -266,6 +268,49 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (n != 1) return count_error("trap pq|kd|grid");
     if (auto demo = accel::trap_demo(args[0]); !demo) return "trap: " + demo.error().message;
     c.name = args[0];
+    return "";
+  }
+  if (verb == "playlist") {
+    c.kind = CommandKind::Playlist;
+    if (n != 1) return count_error("playlist FILE");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "next" || verb == "prev" || verb == "print-state") {
+    c.kind = verb == "next" ? CommandKind::Next : verb == "prev" ? CommandKind::Prev : CommandKind::PrintState;
+    return n == 0 ? "" : "'" + verb + "' takes no arguments";
+  }
+  if (verb == "record") {
+    const char* usage = "record PATH.gif|PATH.mp4 [fps=N] [ui=on|off] [size=WxH] | record stop";
+    if (n == 1 && args[0] == "stop") {
+      c.kind = CommandKind::RecordStop;
+      return "";
+    }
+    c.kind = CommandKind::Record;
+    if (n < 1) return count_error(usage);
+    if (auto format = video_format_of(args[0]); !format) return "record: " + format.error().message;
+    c.name = args[0];
+    c.ints[0] = 4;
+    c.on = true;
+    for (size_t i = 1; i < n; ++i) {
+      const std::string& a = args[i];
+      int w = 0, h = 0;
+      char x = 0, extra = 0;
+      if (a.rfind("fps=", 0) == 0) {
+        if (!parse_int(a.substr(4), &c.ints[0]) || c.ints[0] < 1 || c.ints[0] > 60)
+          return "record: fps must be an integer in 1..60, got '" + a.substr(4) + "'";
+      } else if (a.rfind("ui=", 0) == 0) {
+        if (!parse_on_off(a.substr(3), &c.on)) return "record: ui must be on or off, got '" + a.substr(3) + "'";
+      } else if (a.rfind("size=", 0) == 0) {
+        if (std::sscanf(a.c_str() + 5, "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 16 ||
+            h < 16 || w > 8192 || h > 8192)
+          return "record: size must be WxH with W and H in 16..8192, got '" + a.substr(5) + "'";
+        c.values[0] = static_cast<float>(w);
+        c.values[1] = static_cast<float>(h);
+      } else {
+        return count_error(usage);
+      }
+    }
     return "";
   }
   if (verb == "print-frame-time") {

@@ -33,6 +33,14 @@
 //   tree on|off                       the "Tree" window: the hierarchy diagram (grid: cell walk)
 //   tree-select NODE [isolate]        select node NODE in the tree (3D highlight, numbers);
 //                                     isolate: draw only its subtree in 3D
+//   playlist FILE                     load a lecture playlist (playlist.h), show its first state
+//   next | prev                       the playlist's next / previous state
+//   print-state                       "state K/N: TITLE"
+//   record PATH.gif|PATH.mp4 [fps=N] [ui=on|off] [size=WxH]
+//                                     record one frame per step moved (step, build-step)
+//                                     until `record stop`; fps 1..60 (default 4), ui=off:
+//                                     the 3D view only
+//   record stop                       finish the file
 //   print-hit                         "hit PRIM T" or "miss"
 //   print-step                        the current step as one line
 //   print-vars                        "vars: name=value ..." of the current step (the
@@ -63,6 +71,7 @@ enum class CommandKind {
   PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart, Construct, BuildStep, PrintBuildStep, SahPlot,
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
+  Playlist, Next, Prev, PrintState, Record, RecordStop,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };
@@ -76,7 +85,8 @@ struct ScriptCommand {
   std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
   std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
   bool has_fov = false;              ///< camera: FOVY given
-  int ints[2] = {0, 0};              ///< size W H; step / build-step count; sweep steps; frame count
+  int ints[2] = {0, 0};              ///< size W H; step / build-step count; sweep steps; frame count;
+                                     ///< record: fps, and size W H in values[0..1] (0: as captured)
   StepMode step = StepMode::Forward;  ///< step, build-step (no Hit)
   ShowMode show = ShowMode::All;
   bool on = true;                    ///< panel/large/empty-cells/nodes/show-chart/sah-plot on|off

@@ -108,6 +108,12 @@ class GifWriter final : public VideoWriter {
     const int closed = EGifCloseFile(gif_, &error);
     gif_ = nullptr;
     if (closed == GIF_ERROR) return fail("cannot finish the file (" + std::string(GifErrorString(error)) + ")");
+    // giflib creates its file readable by the owner only; a slide's GIF is for sharing.
+    std::error_code ec;
+    std::filesystem::permissions(part_path(),
+                                 std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                                     std::filesystem::perms::group_read | std::filesystem::perms::others_read,
+                                 ec);
     return move_into_place(part_path(), path_);
   }
 
@@ -160,7 +166,7 @@ class Mp4Writer final : public VideoWriter {
     codec_->framerate = AVRational{fps_, 1};
     codec_->pix_fmt = AV_PIX_FMT_YUV420P;
     codec_->gop_size = 2 * fps_;
-    codec_->max_b_frames = 2;
+    codec_->max_b_frames = 0;  // slides step frame by frame: no reordering delay
     if (format_->oformat->flags & AVFMT_GLOBALHEADER) codec_->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
     // Crisp lines on slides: a quality-based rate (CRF 18) rather than a bit rate.
     av_opt_set(codec_->priv_data, "preset", "medium", 0);
@@ -213,6 +219,9 @@ class Mp4Writer final : public VideoWriter {
     int rc = avcodec_send_frame(codec_, frame);
     if (rc < 0) return fail("cannot encode frame " + std::to_string(frames_) + " (" + av_message(rc) + ")");
     while ((rc = avcodec_receive_packet(codec_, packet_)) >= 0) {
+      // Each frame lasts one tick of 1/fps: without a duration the MP4's edit list would end
+      // at the last frame's start and players would drop that frame.
+      if (packet_->duration <= 0) packet_->duration = 1;
       av_packet_rescale_ts(packet_, codec_->time_base, stream_->time_base);
       packet_->stream_index = stream_->index;
       rc = av_interleaved_write_frame(format_, packet_);

@@ -82,13 +82,17 @@ TEST(VideoWriter, Mp4IsH264WithEveryFrame) {
   EXPECT_EQ(par->height, 40);
   // The rate: the frames' timestamps are 1/12 s apart.
   EXPECT_EQ(av_q2d(in->streams[0]->r_frame_rate), 12.0);
+  // Every frame is shown: none is marked to be discarded (beyond the edit list's end).
   AVPacket* pkt = av_packet_alloc();
-  int packets = 0;
+  int packets = 0, discarded = 0;
   while (av_read_frame(in, pkt) >= 0) {
     ++packets;
+    discarded += (pkt->flags & AV_PKT_FLAG_DISCARD) != 0;
     av_packet_unref(pkt);
   }
   EXPECT_EQ(packets, 7);
+  EXPECT_EQ(discarded, 0);
+  EXPECT_NEAR(static_cast<double>(in->duration) / AV_TIME_BASE, 7.0 / 12.0, 1e-3) << "7 frames of 1/12 s";
   av_packet_free(&pkt);
   avformat_close_input(&in);
 }

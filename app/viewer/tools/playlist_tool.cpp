@@ -1,0 +1,91 @@
+#include "tools/playlist_tool.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "tools/ui_colors.h"
+
+namespace viz {
+namespace {
+constexpr double kTitleSeconds = 2.5;
+}
+
+accel::Status PlaylistTool::load(const std::string& path) {
+  auto parsed = load_playlist(path);
+  if (!parsed) return parsed.error();
+  playlist_ = std::move(parsed.value());
+  cursor_.reset(playlist_.states.size());
+  pending_.clear();
+  error_.clear();
+  return {};
+}
+
+bool PlaylistTool::go(size_t index) {
+  bool from_scratch = false;
+  const std::vector<size_t> states = cursor_.go_to(index, &from_scratch);
+  if (states.empty()) return false;
+  pending_.clear();
+  for (size_t s : states)
+    for (const ScriptCommand& c : playlist_.states[s].commands) pending_.push_back({s, &c});
+  error_.clear();
+  shown_at_ = -1.0;
+  return from_scratch;
+}
+
+void PlaylistTool::fail(const std::string& message) {
+  error_ = message;
+  pending_.clear();
+}
+
+void PlaylistTool::overlay(glm::vec4 view, double now) {
+  if (!loaded()) return;
+  if (shown_at_ < 0.0) shown_at_ = now;
+  const bool title = now - shown_at_ < kTitleSeconds || has_pending();
+  if (!title && error_.empty()) return;
+  const float em = ImGui::GetFontSize();
+  ImGui::SetNextWindowPos(ImVec2(view.x + 0.5f * view.z, view.y + 1.5f * em), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  // Within the 3D view: the panels beside it would cover the rest.
+  const float max_w = std::max(view.z - 2.0f * em, 10.0f * em);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(max_w, 20.0f * em));
+  ImGui::Begin("##playlist-title", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+  if (title) {
+    const PlaylistState& s = playlist_.states[cursor_.current()];
+    ImGui::PushTextWrapPos(max_w - 2.0f * em);
+    ImGui::SetWindowFontScale(1.4f);
+    ImGui::PushStyleColor(ImGuiCol_Text, ui::kCurrentText);
+    ImGui::TextWrapped("%s", s.title.c_str());
+    ImGui::PopStyleColor();
+    ImGui::SetWindowFontScale(1.0f);
+    ImGui::PopTextWrapPos();
+    ImGui::TextDisabled("%zu / %zu%s", cursor_.current() + 1, playlist_.states.size(),
+                        has_pending() ? "   loading ..." : "");
+  }
+  if (!error_.empty()) ImGui::TextColored(ui::kMissText, "%s", error_.c_str());
+  ImGui::End();
+}
+
+std::optional<size_t> PlaylistTool::section() {
+  std::optional<size_t> clicked;
+  if (!loaded()) {
+    ImGui::TextDisabled("accelviz --playlist FILE (scenes/lecture.playlist)");
+    return clicked;
+  }
+  ImGui::TextDisabled("%s", playlist_.name.c_str());
+  if (ImGui::Button("< prev (PgUp)") && cursor_.current() > 0) clicked = cursor_.current() - 1;
+  ImGui::SameLine();
+  if (ImGui::Button("next (PgDn) >")) clicked = cursor_.current() + 1;
+  for (size_t i = 0; i < playlist_.states.size(); ++i) {
+    char label[256];
+    std::snprintf(label, sizeof label, "%2zu  %s", i + 1, playlist_.states[i].title.c_str());
+    if (ImGui::Selectable(label, i == cursor_.current())) clicked = i;
+  }
+  if (!error_.empty()) ImGui::TextColored(ui::kMissText, "%s", error_.c_str());
+  return clicked;
+}
+
+}  // namespace viz

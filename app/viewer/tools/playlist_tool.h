@@ -1,0 +1,62 @@
+#pragma once
+// The lecture playlist (playlist.h) in the viewer: which state is shown, the commands still
+// to run to reach the one asked for, the title overlay, and the "Playlist" section. App
+// runs the commands (the same App::execute a script uses): in script mode all at once, in
+// the window one per frame and only while no build is running, so the window stays live
+// while a state loads.
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "playlist.h"
+#include "result.h"
+#include "view_layout.h"
+
+namespace viz {
+
+class PlaylistTool {
+ public:
+  /// Loads `path` (errors "FILE:LINE: ..."); the previous playlist stays on failure.
+  /// Does not show a state yet: go() does.
+  accel::Status load(const std::string& path);
+  bool loaded() const { return !playlist_.states.empty(); }
+  const Playlist& playlist() const { return playlist_; }
+  size_t current() const { return cursor_.current(); }
+
+  /// Moves to state `index` (clamped), `current() + 1` or `current() - 1`: queues the
+  /// commands of the states to apply. Returns true when the viewer must be reset first
+  /// (going back replays from the first state).
+  bool go(size_t index);
+  bool next() { return go(cursor_.current() + 1); }
+  bool prev() { return go(cursor_.current() > 0 ? cursor_.current() - 1 : 0); }
+
+  /// The commands still to run (front first), each with the state it belongs to.
+  struct Pending {
+    size_t state;
+    const ScriptCommand* command;
+  };
+  bool has_pending() const { return !pending_.empty(); }
+  Pending front() const { return pending_.front(); }
+  void pop() { pending_.pop_front(); }
+  /// A command failed: the rest of the state is dropped; the error is shown.
+  void fail(const std::string& message);
+
+  /// "state K/N: TITLE" (print-state).
+  std::string state_line() const { return viz::state_line(playlist_, cursor_.current()); }
+
+  /// The title overlay, for a few seconds after a move (at the top centre of `view`, window
+  /// coordinates x, y, w, h), and the last error until the next move.
+  void overlay(glm::vec4 view, double now);
+  /// The main panel's "Playlist" section: previous / next and the list; returns the state
+  /// clicked, if any.
+  std::optional<size_t> section();
+
+ private:
+  Playlist playlist_;
+  PlaylistCursor cursor_;
+  std::deque<Pending> pending_;
+  double shown_at_ = -1.0;  // ImGui time the title appeared (-1: not yet, set at the first overlay)
+  std::string error_;
+};
+
+}  // namespace viz

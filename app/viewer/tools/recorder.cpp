@@ -1,0 +1,173 @@
+#include "tools/recorder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include <glad/gl.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+extern "C" {
+#include <libswscale/swscale.h>
+}
+
+#include "screenshot.h"
+
+namespace viz {
+namespace {
+
+constexpr double kNoticeSeconds = 4.0;
+
+double clock_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// The back buffer's rectangle `r` (x, y from the top-left) as RGBA rows, top row first.
+std::vector<uint8_t> read_rgba(glm::ivec4 r, int framebuffer_height) {
+  std::vector<uint8_t> px(static_cast<size_t>(r.z) * static_cast<size_t>(r.w) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  // GL counts rows from the bottom.
+  glReadPixels(r.x, framebuffer_height - r.y - r.w, r.z, r.w, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  const size_t row = static_cast<size_t>(r.z) * 4;
+  std::vector<uint8_t> flipped(px.size());
+  for (int y = 0; y < r.w; ++y)
+    std::copy_n(px.data() + static_cast<size_t>(r.w - 1 - y) * row, row, flipped.data() + static_cast<size_t>(y) * row);
+  for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;  // the framebuffer's alpha is not the picture's
+  return flipped;
+}
+
+/// `src` (w x h RGBA) resampled to `out_w` x `out_h` with libswscale (area filter: frames shrink well).
+std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, int out_w, int out_h) {
+  std::vector<uint8_t> out(static_cast<size_t>(out_w) * static_cast<size_t>(out_h) * 4);
+  SwsContext* ctx = sws_getContext(w, h, AV_PIX_FMT_RGBA, out_w, out_h, AV_PIX_FMT_RGBA, SWS_AREA, nullptr, nullptr, nullptr);
+  if (!ctx) return {};
+  const uint8_t* in_planes[1] = {src.data()};
+  const int in_stride[1] = {w * 4};
+  uint8_t* out_planes[1] = {out.data()};
+  const int out_stride[1] = {out_w * 4};
+  sws_scale(ctx, in_planes, in_stride, 0, h, out_planes, out_stride);
+  sws_freeContext(ctx);
+  return out;
+}
+
+}  // namespace
+
+accel::Status Recorder::start(const std::string& path, const RecordOptions& options) {
+  if (recording()) return accel::make_error("record: already recording to " + (writer_ ? writer_->path() : pending_->path) +
+                                            " (record stop first)");
+  if (auto format = video_format_of(path); !format) return accel::make_error("record: " + format.error().message);
+  if (options.fps < VideoWriter::kMinFps || options.fps > VideoWriter::kMaxFps)
+    return accel::make_error("record: fps=" + std::to_string(options.fps) + " is out of range (" +
+                             std::to_string(VideoWriter::kMinFps) + ".." + std::to_string(VideoWriter::kMaxFps) + ")");
+  // The file itself is created with the first frame, when its size is known; check now that
+  // it can be, so a bad path fails here rather than at the first step.
+  const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
+  if (!std::filesystem::is_directory(dir))
+    return accel::make_error("record: " + path + ": the directory " + dir.string() + " does not exist");
+  pending_ = Pending{path, options};
+  options_ = options;
+  path_field_ = path;
+  due_ = true;
+  set_notice("recording " + path);
+  return {};
+}
+
+accel::Status Recorder::stop() {
+  if (pending_) {  // nothing was drawn since start
+    const std::string path = pending_->path;
+    pending_.reset();
+    set_notice("record: nothing recorded to " + path);
+    return accel::make_error("record stop: no frame was recorded to " + path);
+  }
+  if (!writer_) return accel::make_error("record stop: not recording");
+  std::unique_ptr<VideoWriter> w = std::move(writer_);
+  const size_t frames = w->frames();
+  const std::string path = w->path();
+  if (auto st = w->finish(); !st) {
+    set_notice(st.error().message);
+    return st;
+  }
+  set_notice("wrote " + std::filesystem::absolute(path).string() + " (" + std::to_string(frames) + " frames)");
+  return {};
+}
+
+bool Recorder::wants_capture(bool with_ui) const {
+  if (with_ui && screenshot_due_) return true;
+  return recording() && due_ && options_.ui == with_ui;
+}
+
+void Recorder::capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer) {
+  if (!wants_capture(with_ui) || framebuffer.x <= 0 || framebuffer.y <= 0) return;
+  if (with_ui && screenshot_due_) {
+    screenshot_due_ = false;
+    char name[32];
+    for (;; ++next_screenshot_) {
+      std::snprintf(name, sizeof name, "accelviz_%04d.png", next_screenshot_);
+      if (!std::filesystem::exists(name)) break;
+    }
+    const std::string path = std::filesystem::absolute(name).string();
+    if (auto st = save_framebuffer_png(name, framebuffer.x, framebuffer.y); !st) set_notice(st.error().message);
+    else set_notice("screenshot: wrote " + path);
+  }
+  if (!recording() || !due_ || options_.ui != with_ui) return;
+  due_ = false;
+  const glm::ivec4 r = with_ui ? glm::ivec4(0, 0, framebuffer.x, framebuffer.y) : view;
+  if (r.z <= 0 || r.w <= 0) return;
+  std::vector<uint8_t> px = read_rgba(r, framebuffer.y);
+  if (pending_) {
+    const int w = options_.width > 0 ? options_.width : r.z, h = options_.height > 0 ? options_.height : r.w;
+    auto opened = VideoWriter::open(pending_->path, w, h, options_.fps);
+    pending_.reset();
+    if (!opened) {
+      set_notice("record: " + opened.error().message);
+      return;
+    }
+    writer_ = std::move(opened.value());
+  }
+  if (r.z != writer_->width() || r.w != writer_->height()) {
+    // A resized window or an explicit size: every frame has the video's size.
+    px = resize_rgba(px, r.z, r.w, writer_->width(), writer_->height());
+    if (px.empty()) return;
+  }
+  if (auto st = writer_->add_frame(px.data(), static_cast<size_t>(writer_->width()) * 4); !st) {
+    writer_.reset();  // the writer removed its partial file
+    set_notice("record: " + st.error().message);
+  }
+}
+
+bool Recorder::section() {
+  const float em = ImGui::GetFontSize();
+  bool pressed = false;
+  ImGui::SetNextItemWidth(14.0f * em);
+  ImGui::BeginDisabled(recording());
+  ImGui::InputText("file (.gif, .mp4)", &path_field_);
+  ImGui::SetNextItemWidth(8.0f * em);
+  ImGui::SliderInt("steps per second", &options_.fps, VideoWriter::kMinFps, VideoWriter::kMaxFps);
+  ImGui::Checkbox("with the panels", &options_.ui);
+  ImGui::EndDisabled();
+  if (ImGui::Button(recording() ? "Stop recording (R)" : "Record (R)")) pressed = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("one frame per step of the animation: play it (space, or P for the construction)");
+  ImGui::TextDisabled("F12: screenshot to accelviz_NNNN.png");
+  if (const std::string n = notice(); !n.empty()) ImGui::TextWrapped("%s", n.c_str());
+  return pressed;
+}
+
+void Recorder::set_notice(std::string text) {
+  notice_ = std::move(text);
+  notice_until_ = clock_seconds() + kNoticeSeconds;
+}
+
+std::string Recorder::notice() const {
+  if (writer_)
+    return "recording " + writer_->path() + ": " + std::to_string(writer_->frames()) + " frames (R stops)";
+  if (pending_) return "recording " + pending_->path + ": waiting for the first frame";
+  return clock_seconds() < notice_until_ ? notice_ : std::string();
+}
+
+}  // namespace viz
