@@ -17,6 +17,7 @@ packages=(
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev  # viewer: MP4 (H.264) recordings
   libembree-dev                              # industry baseline in the benchmark
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
+  xdotool                                    # the playlist's keyboard test presses keys in Xvfb
 )
 
 missing=()

@@ -100,7 +100,19 @@ void App::shutdown() {
 }
 
 void App::update_window_title() {
-  if (window_ != nullptr) glfwSetWindowTitle(window_, session_.window_title().c_str());
+  if (window_ == nullptr) return;
+  // With a playlist the title names the state too (what the window manager's task bar and
+  // the keyboard test read).
+  std::string title = session_.window_title();
+  if (playlist_.loaded()) {
+    title += " - " + playlist_.state_line();
+    if (playlist_.has_pending()) title += " (loading)";
+    else if (!playlist_.error().empty()) title += " (error)";
+  }
+  if (title != window_title_) {
+    window_title_ = title;
+    glfwSetWindowTitle(window_, title.c_str());
+  }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -222,6 +234,7 @@ accel::Status App::load_playlist(const std::string& path) {
 
 void App::go_to_state(size_t index) {
   if (playlist_.go(index)) reset_for_playlist();
+  update_window_title();
 }
 
 void App::reset_for_playlist() {
@@ -277,7 +290,10 @@ void App::update(float dt) {
   build_.poll();
   update_camera_input();
   update_shortcuts();
-  if (!synchronous_) run_playlist(nullptr);
+  if (!synchronous_ && playlist_.loaded()) {
+    run_playlist(nullptr);
+    update_window_title();
+  }
   // A new step of the animation (traversal or construction) is a new frame of a recording.
   const StepSeen seen{ray_.player().step(), build_.player().step(), build_.active()};
   if (!(seen == step_seen_)) {

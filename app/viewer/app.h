@@ -218,6 +218,7 @@ class App {
   // ---- Window and GL: empty before init() and after shutdown()
   using KeyCallback = void (*)(GLFWwindow*, int key, int scancode, int action, int mods);
   GLFWwindow* window_ = nullptr;
+  std::string window_title_;  // as last set
   KeyCallback previous_key_callback_ = nullptr;  // ImGui's, which ours chains to
   struct KeyPress {
     int key;

@@ -116,7 +116,8 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
     }
     case CommandKind::Construct:
       if (auto st = session_.need_structure(); !st) return st;
-      construct();  // synchronous in script mode
+      construct();  // synchronous in script mode; in the window the playlist waits for it
+      if (!synchronous_) return {};
       if (auto st = build_.need_trace(); !st) return accel::make_error("construct: " + st.error().message);
       return {};
     case CommandKind::BuildStep: {

@@ -37,6 +37,8 @@ bool PlaylistTool::go(size_t index) {
 void PlaylistTool::fail(const std::string& message) {
   error_ = message;
   pending_.clear();
+  // Also where the lecturer started the viewer: the line to fix in the playlist.
+  std::fprintf(stderr, "accelviz: %s\n", message.c_str());
 }
 
 void PlaylistTool::overlay(glm::vec4 view, double now) {

@@ -41,6 +41,8 @@ class PlaylistTool {
   /// A command failed: the rest of the state is dropped; the error is shown.
   void fail(const std::string& message);
 
+  /// The error of the last state run ("FILE:LINE: message"), empty if none.
+  const std::string& error() const { return error_; }
   /// "state K/N: TITLE" (print-state).
   std::string state_line() const { return viz::state_line(playlist_, cursor_.current()); }
 
