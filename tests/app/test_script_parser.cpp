@@ -181,6 +181,52 @@ TEST(Script, TreeCommands) {
   }
 }
 
+TEST(Script, LectureCommands) {
+  // Traversal numbers, traps, playlist, recording.
+  auto parsed = parse_script("print-vars\ntrap kd\nprint-naive\nplaylist talk.playlist\nnext\nprev\nprint-state\n"
+                             "record a.gif\nrecord b.MP4 fps=12 ui=off size=640x360\nrecord stop\n",
+                             "t.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const auto& c = parsed.value();
+  ASSERT_EQ(c.size(), 10u);
+  const CommandKind kinds[] = {CommandKind::PrintVars, CommandKind::Trap,  CommandKind::PrintNaive,
+                               CommandKind::Playlist,  CommandKind::Next,  CommandKind::Prev,
+                               CommandKind::PrintState, CommandKind::Record, CommandKind::Record,
+                               CommandKind::RecordStop};
+  for (size_t i = 0; i < c.size(); ++i) EXPECT_EQ(c[i].kind, kinds[i]) << i;
+  EXPECT_EQ(c[1].name, "kd");
+  EXPECT_EQ(c[3].name, "talk.playlist");
+  EXPECT_EQ(c[7].name, "a.gif");
+  EXPECT_EQ(c[7].ints[0], 4) << "default fps";
+  EXPECT_TRUE(c[7].on) << "default ui=on";
+  EXPECT_EQ(c[7].values[0], 0.0f) << "default size: as captured";
+  EXPECT_EQ(c[8].ints[0], 12);
+  EXPECT_FALSE(c[8].on);
+  EXPECT_EQ(c[8].values[0], 640.0f);
+  EXPECT_EQ(c[8].values[1], 360.0f);
+
+  const std::pair<const char*, const char*> errors[] = {
+      {"trap nope\n", "t.txt:1: trap: unknown trap 'nope' (valid: pq, kd, grid)"},
+      {"trap\n", "usage: trap pq|kd|grid"},
+      {"print-vars now\n", "'print-vars' takes no arguments"},
+      {"next 2\n", "'next' takes no arguments"},
+      {"playlist\n", "usage: playlist FILE"},
+      {"record\n", "usage: record PATH.gif|PATH.mp4"},
+      {"record clip.avi\n", "record: clip.avi: unknown recording format '.avi' (valid: .gif, .mp4)"},
+      {"record a.gif fps=0\n", "record: fps must be an integer in 1..60, got '0'"},
+      {"record a.gif fps=x\n", "record: fps must be an integer in 1..60"},
+      {"record a.gif ui=maybe\n", "record: ui must be on or off"},
+      {"record a.gif size=10x10\n", "record: size must be WxH with W and H in 16..8192"},
+      {"record a.gif size=640x360x\n", "record: size must be WxH"},
+      {"record a.gif speed=2\n", "usage: record PATH.gif|PATH.mp4"},
+  };
+  for (const auto& [text, expected] : errors) {
+    auto bad = parse_script(text, "t.txt");
+    ASSERT_FALSE(bad.ok()) << text;
+    EXPECT_NE(bad.error().message.find(expected), std::string::npos) << bad.error().message;
+  }
+}
+
 TEST(Script, BenchChartCommands) {
   auto parsed = parse_script("load-bench out/bench.json\nshow-chart on x=t-error speed=1t y=log labels=off group=2\n"
                              "show-chart off\n",

@@ -15,6 +15,8 @@ pixel known to hit, step from the first to the last step, take a screenshot of e
   * print-vars names the lecture's variables; the trap demonstrations' naive answers differ
     from the traversal's, which brute force (accelviz-cli) confirms;
   * one mesh as OBJ, PLY, STL and glTF gives the same hit in the viewer and accelviz-cli;
+  * the lecture playlist (scenes/lecture.playlist) runs through every state; `record`
+    writes a GIF and an MP4 with one frame per step moved;
   * `tree on` shows the tree diagram (a screenshot differs from `tree off`), `tree-select`
     selects and isolates a node, the grid shows its cell walk, the construction its tree;
   * script errors exit 2 with "accelviz: SCRIPT:LINE: message".
@@ -43,6 +45,7 @@ STRUCTURES = [
 ]
 # The centre of the framed Cornell room: the back wall or the blocks, always a hit.
 PIXEL = (W // 2, H // 2 + 20)
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH_JSON = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "bench_chart.json")
 
 
@@ -326,6 +329,34 @@ def main():
             c, o, _ = run([args.png_check, "--differ", f"{work}/{a}.png", f"{work}/{b}.png", "30"])
             check(c == 0, f"tree: {a} and {b} look the same: {o}")
 
+    # ---- The lecture playlist, headless: every state in order, back one; then recordings:
+    # one frame per step moved, a GIF with the panels, an MP4 of the construction without.
+    playlist = os.path.join(REPO, "scenes", "lecture.playlist")
+    with open(playlist) as f:
+        n_states = sum(1 for line in f if line.startswith("state "))
+    lines = [f"size {W} {H}", f"playlist {playlist}", "print-state"] + ["next", "print-state"] * (n_states - 1)
+    lines += ["next", "print-state", "prev", "print-state", "panel compare off", "show-chart off"]
+    gif, mp4 = os.path.join(work, "steps.gif"), os.path.join(work, "build.mp4")
+    lines += ["preset cornell", "structure kdtree", "step start",  # the preset's ray: the camera moved
+              f"record {gif} fps=5", "step 5", "record stop",
+              "construct", f"record {mp4} fps=10 ui=off size=320x200", "build-step 12", "record stop"]
+    code, out, err = run_script(args, work, "playlist_record", lines)
+    if check(code == 0, f"playlist and record: viewer exit {code}\n{err}"):
+        states = [l for l in out.splitlines() if l.startswith("state ")]
+        expected = [f"state {k}/{n_states}: " for k in range(1, n_states + 1)] + [f"state {n_states}/{n_states}: ",
+                                                                                  f"state {n_states - 1}/{n_states}: "]
+        check(len(states) == len(expected) and all(a.startswith(b) for a, b in zip(states, expected)),
+              f"playlist: print-state lines {states}")
+        wrote = [l for l in out.splitlines() if l.startswith("wrote ")]
+        check(wrote == [f"wrote {gif} (6 frames)", f"wrote {mp4} (13 frames)"], f"record: {wrote}")
+        for path, magic, offset in ((gif, b"GIF89a", 0), (mp4, b"ftyp", 4)):
+            ok = os.path.exists(path)
+            if ok:
+                with open(path, "rb") as f:
+                    ok = f.read(offset + len(magic))[offset:] == magic
+            check(ok, f"record: {path} is not a {magic.decode()} file")
+            check(not os.path.exists(path + ".part"), f"record: {path}.part left behind")
+
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
         ("bad_parse.txt", "size 320 240\n# comment\nfly to the moon\n", r"^accelviz: .*bad_parse\.txt:3: unknown command 'fly'\n$"),
@@ -351,6 +382,12 @@ def main():
         ("bad_vars.txt", f"size {W} {H}\nscene {SCENE}\nprint-vars\n",
          r"^accelviz: .*bad_vars\.txt:3: print-vars: no debug ray yet"),
         ("bad_naive.txt", "print-naive now\n", r"^accelviz: .*bad_naive\.txt:1: 'print-naive' takes no arguments\n$"),
+        ("bad_record_stop.txt", "record stop\n", r"^accelviz: .*bad_record_stop\.txt:1: record stop: not recording\n$"),
+        ("bad_next.txt", "next\n", r"^accelviz: .*bad_next\.txt:1: no playlist loaded \(use playlist FILE first\)\n$"),
+        ("bad_playlist_ref.txt", f"size {W} {H}\nplaylist {work}/bad.playlist\n",
+         r"^accelviz: .*bad_playlist_ref\.txt:2: .*bad\.playlist:3: unknown command 'fly'\n$"),
+        ("bad_record_dir.txt", f"size {W} {H}\nrecord /no/such/dir/a.gif\n",
+         r"^accelviz: .*bad_record_dir\.txt:2: record: /no/such/dir/a\.gif: the directory /no/such/dir does not exist\n$"),
         ("bad_tree_select.txt", f"size {W} {H}\nscene {SCENE}\nstructure bvh\ntree-select 99999999\n",
          r"^accelviz: .*bad_tree_select\.txt:4: tree-select: node 99999999 does not exist \(the .+ has \d+ nodes, 0\.\.\d+\)\n$"),
         ("bad_tree_grid.txt", f"size {W} {H}\nscene {SCENE}\nstructure grid\ntree-select 0\n",
@@ -358,6 +395,8 @@ def main():
         ("bad_bench.txt", f"size {W} {H}\nload-bench /no/such/bench.json\n",
          r"^accelviz: .*bad_bench\.txt:2: /no/such/bench\.json: cannot read the file\n$"),
     ]
+    with open(os.path.join(work, "bad.playlist"), "w") as f:
+        f.write("state One\nscene procedural:cornell\nfly to the moon\n")
     for file, text, pattern in cases:
         path = os.path.join(work, file)
         with open(path, "w") as f:
