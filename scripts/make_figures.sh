@@ -3,6 +3,9 @@
 # scripts in scripts/figures/viewer_*.txt (accelviz --script), under a virtual X display.
 #   scripts/make_figures.sh             all figures
 #   scripts/make_figures.sh bvh grid    only scripts/figures/viewer_bvh.txt, viewer_grid.txt
+#   scripts/make_figures.sh --recordings [NAME ...]
+#                                       the GIF / MP4 recordings instead, from
+#                                       scripts/recordings/NAME.txt (scripts/make_recordings.sh)
 # The viewer is taken from $ACCEL_BUILD_DIR/bin (default build/, as scripts/build.sh makes it).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -18,15 +21,20 @@ if ! command -v xvfb-run >/dev/null; then
 fi
 cd "$root"  # the scripts write to bench/figures/, relative to the repository root
 mkdir -p bench/figures
+dir=scripts/figures prefix=viewer_ what=figures
+if [[ "${1:-}" == "--recordings" ]]; then
+  shift
+  dir=scripts/recordings prefix= what=recordings
+fi
 if [[ $# -gt 0 ]]; then
   scripts=()
-  for name in "$@"; do scripts+=("scripts/figures/viewer_$name.txt"); done
+  for name in "$@"; do scripts+=("$dir/$prefix$name.txt"); done
 else
-  scripts=(scripts/figures/viewer_*.txt)
+  scripts=("$dir/$prefix"*.txt)
 fi
 for script in "${scripts[@]}"; do
   echo "== $script"
   # 24-bit screen: the default depth may offer no RGB visual for an OpenGL context.
   xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --script "$script"
 done
-echo "figures written to bench/figures/"
+echo "$what written to bench/figures/"

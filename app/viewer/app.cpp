@@ -104,6 +104,7 @@ void App::update_window_title() {
   // With a playlist the title names the state too (what the window manager's task bar and
   // the keyboard test read).
   std::string title = session_.window_title();
+  if (recorder_.recording()) title += " - recording (R stops)";
   if (playlist_.loaded()) {
     title += " - " + playlist_.state_line();
     if (playlist_.has_pending()) title += " (loading)";
@@ -290,10 +291,8 @@ void App::update(float dt) {
   build_.poll();
   update_camera_input();
   update_shortcuts();
-  if (!synchronous_ && playlist_.loaded()) {
-    run_playlist(nullptr);
-    update_window_title();
-  }
+  if (!synchronous_ && playlist_.loaded()) run_playlist(nullptr);
+  if (!synchronous_) update_window_title();  // the playlist's state, a recording (cheap: set on change)
   // A new step of the animation (traversal or construction) is a new frame of a recording.
   const StepSeen seen{ray_.player().step(), build_.player().step(), build_.active()};
   if (!(seen == step_seen_)) {

@@ -152,7 +152,8 @@ void App::status_overlay() {
   const bool building = session_.building();
   const bool waiting_heatmap = heatmap_.computing();
   const bool recording = build_.recording();
-  const std::string notice = recorder_.notice();
+  // A recording with the panels would record its own notice: the title says it instead.
+  const std::string notice = recorder_.recording_ui() ? std::string() : recorder_.notice();
   if (!building && !waiting_heatmap && !recording && notice.empty()) return;
   const float em = ImGui::GetFontSize();
   glm::vec2 pos = layout_.status.pos;

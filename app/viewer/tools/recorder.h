@@ -51,6 +51,8 @@ class Recorder {
   /// One line for the status overlay: the running recording, or the last result (a file
   /// written, an error) for a few seconds; empty when there is nothing to say.
   std::string notice() const;
+  /// Whether a recording with the panels runs (its frames must not show the notice).
+  bool recording_ui() const { return recording() && options_.ui; }
 
  private:
   struct Pending {
