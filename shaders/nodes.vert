@@ -24,15 +24,13 @@ uniform float u_depth_bias;
 
 out vec4 v_color;
 
-// "Turbo" colour map (Mikhailov 2019), degree-5 polynomial fit; the same as viz::turbo().
-vec3 turbo(float x) {
-  x = clamp(x, 0.0, 1.0);
-  float x2 = x * x, x3 = x2 * x, x4 = x2 * x2, x5 = x4 * x;
-  return clamp(vec3(
-      0.13572138 + 4.61539260 * x - 42.66032258 * x2 + 132.13108234 * x3 - 152.94239396 * x4 + 59.28637943 * x5,
-      0.09140261 + 2.19418839 * x + 4.84296658 * x2 - 14.18503333 * x3 + 4.27729857 * x4 + 2.82956604 * x5,
-      0.10667330 + 12.64194608 * x - 60.58204836 * x2 + 110.36276771 * x3 - 89.90310912 * x4 + 27.34824973 * x5),
-      0.0, 1.0);
+// The current colour map (viz::colormap), as kColormapSamples samples set by the renderer
+// and interpolated linearly, so the GPU shows the CPU's colours.
+uniform vec3 u_palette[17];
+vec3 palette(float x) {
+  float f = clamp(x, 0.0, 1.0) * 16.0;
+  int i = min(int(f), 15);
+  return mix(u_palette[i], u_palette[i + 1], f - float(i));
 }
 
 void main() {
@@ -62,10 +60,10 @@ void main() {
 
   vec3 rgb;
   if (u_color_mode == 0) {
-    // Skip turbo's darkest blues: they vanish on the dark background.
-    rgb = turbo(0.12 + 0.86 * depth / u_max_depth);
+    // Skip the map's darkest end: it vanishes on the dark background.
+    rgb = palette(0.12 + 0.86 * depth / u_max_depth);
   } else if (u_color_mode == 1) {
-    rgb = prims < 0.5 ? vec3(0.42, 0.45, 0.52) : turbo(0.15 + 0.85 * log(1.0 + prims) / log(1.0 + u_max_prims));
+    rgb = prims < 0.5 ? vec3(0.42, 0.45, 0.52) : palette(0.15 + 0.85 * log(1.0 + prims) / log(1.0 + u_max_prims));
   } else {
     rgb = u_flat_color.rgb;
   }

@@ -1,5 +1,5 @@
 #version 330 core
-// The cost image (one float per traced ray) through the turbo colour map.
+// The cost image (one float per traced ray) through the current colour map.
 in vec2 v_uv;
 
 uniform sampler2D u_values;
@@ -8,19 +8,17 @@ uniform float u_alpha;
 
 out vec4 frag_color;
 
-// Same polynomial as nodes.vert and viz::turbo().
-vec3 turbo(float x) {
-  x = clamp(x, 0.0, 1.0);
-  float x2 = x * x, x3 = x2 * x, x4 = x2 * x2, x5 = x4 * x;
-  return clamp(vec3(
-      0.13572138 + 4.61539260 * x - 42.66032258 * x2 + 132.13108234 * x3 - 152.94239396 * x4 + 59.28637943 * x5,
-      0.09140261 + 2.19418839 * x + 4.84296658 * x2 - 14.18503333 * x3 + 4.27729857 * x4 + 2.82956604 * x5,
-      0.10667330 + 12.64194608 * x - 60.58204836 * x2 + 110.36276771 * x3 - 89.90310912 * x4 + 27.34824973 * x5),
-      0.0, 1.0);
+// The current colour map (viz::colormap), as kColormapSamples samples set by the renderer
+// and interpolated linearly, so the GPU shows the CPU's colours.
+uniform vec3 u_palette[17];
+vec3 palette(float x) {
+  float f = clamp(x, 0.0, 1.0) * 16.0;
+  int i = min(int(f), 15);
+  return mix(u_palette[i], u_palette[i + 1], f - float(i));
 }
 
 void main() {
   // The image's first row is its top; texture row 0 is at v = 0 (the bottom).
   float value = texture(u_values, vec2(v_uv.x, 1.0 - v_uv.y)).r;
-  frag_color = vec4(turbo(value / u_scale_max), u_alpha);
+  frag_color = vec4(palette(value / u_scale_max), u_alpha);
 }

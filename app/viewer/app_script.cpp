@@ -282,6 +282,14 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       if (auto st = recorder_.stop(); !st) return st;
       print_line(recorder_.notice());  // "wrote PATH (N frames)"
       return {};
+    case CommandKind::Colors: {
+      ColorScheme scheme;
+      parse_colormap(c.name, &scheme.map);  // checked by the parser
+      scheme.cvd_safe_hits = c.on;
+      set_color_scheme(scheme);
+      ray_.recolor();
+      return {};
+    }
     case CommandKind::PrintHit:
       if (auto st = ray_.need_ray(); !st) return st;
       print_line(ray_.hit_line());

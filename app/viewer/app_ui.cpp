@@ -93,6 +93,22 @@ void App::main_panel() {
       session_.set_empty_cells(nodes_.empty_cells());
     }
     ray_.highlight_options();
+    // Colours that carry meaning; the defaults are colour-blind safe (color_scheme.h).
+    ColorScheme scheme = color_scheme();
+    int map = static_cast<int>(scheme.map);
+    const char* maps[] = {"viridis", "cividis", "turbo"};
+    ImGui::SetNextItemWidth(8.0f * ImGui::GetFontSize());
+    bool changed = ImGui::Combo("colour map", &map, maps, 3);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("depths, triangle counts and the heat map; viridis and cividis stay readable with "
+                        "colour-vision deficiency and in greyscale");
+    changed |= ImGui::Checkbox("hit/miss blue/orange", &scheme.cvd_safe_hits);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour-blind safe; off: green/red");
+    if (changed) {
+      scheme.map = static_cast<Colormap>(map);
+      set_color_scheme(scheme);
+      ray_.recolor();
+    }
   }
   if (ImGui::CollapsingHeader("Lecture traps")) {
     if (const std::string name = trap_.section(); !name.empty()) (void)load_trap(name);  // errors: the scene section shows them

@@ -138,6 +138,9 @@ void Shader::set(const char* name, const glm::vec4& value) {
 void Shader::set(const char* name, const glm::vec3& value) {
   glUniform3fv(location(name), 1, glm::value_ptr(value));
 }
+void Shader::set(const char* name, const glm::vec3* values, int count) {
+  glUniform3fv(location(name), count, glm::value_ptr(values[0]));
+}
 void Shader::set(const char* name, const glm::vec2& value) {
   glUniform2fv(location(name), 1, glm::value_ptr(value));
 }

@@ -40,6 +40,8 @@ class Shader {
   void set(const char* name, const glm::mat4& value);
   void set(const char* name, const glm::vec4& value);
   void set(const char* name, const glm::vec3& value);
+  /// A vec3 array uniform (`name` as declared, e.g. "u_palette"), `count` values.
+  void set(const char* name, const glm::vec3* values, int count);
   void set(const char* name, const glm::vec2& value);
   void set(const char* name, float value);
   void set(const char* name, int value);

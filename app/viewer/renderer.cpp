@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <utility>
 
+#include "color_scheme.h"
+
 namespace viz {
 namespace {
 
@@ -351,6 +353,8 @@ void Renderer::draw_nodes(const InstancedNodes& nodes, NodeStyle style) {
   node_shader_.set("u_flat_color", style.flat_color);
   node_shader_.set("u_alpha", style.alpha);
   node_shader_.set("u_depth_bias", std::clamp(style.depth_bias, 0.0f, 0.01f));
+  const auto palette = colormap_samples(color_scheme().map);
+  node_shader_.set("u_palette", palette.data(), kColormapSamples);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);
@@ -373,6 +377,8 @@ void Renderer::draw_overlay(const HeatmapTexture& texture, const OverlayStyle& s
   overlay_shader_.set("u_values", 0);
   overlay_shader_.set("u_scale_max", std::max(style.scale_max, 1e-6f));
   overlay_shader_.set("u_alpha", style.alpha);
+  const auto palette = colormap_samples(color_scheme().map);
+  overlay_shader_.set("u_palette", palette.data(), kColormapSamples);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bench_chart.h"
+#include "color_scheme.h"
 #include "geometry.h"
 #include "params.h"
 #include "rays_io.h"
@@ -310,6 +311,20 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
       } else {
         return count_error(usage);
       }
+    }
+    return "";
+  }
+  if (verb == "colors") {
+    c.kind = CommandKind::Colors;
+    const char* usage = "colors viridis|cividis|turbo [hits=blue-orange|green-red]";
+    Colormap map = Colormap::Viridis;
+    if (n < 1 || n > 2 || !parse_colormap(args[0], &map)) return count_error(usage);
+    c.name = args[0];
+    c.on = true;  // hits=blue-orange
+    if (n == 2) {
+      if (args[1] == "hits=blue-orange") c.on = true;
+      else if (args[1] == "hits=green-red") c.on = false;
+      else return count_error(usage);
     }
     return "";
   }

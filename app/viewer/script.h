@@ -41,6 +41,9 @@
 //                                     until `record stop`; fps 1..60 (default 4), ui=off:
 //                                     the 3D view only
 //   record stop                       finish the file
+//   colors viridis|cividis|turbo [hits=blue-orange|green-red]
+//                                     the colour map of depths, counts and the heat map, and
+//                                     the hit / miss pair (defaults: viridis, blue-orange)
 //   print-hit                         "hit PRIM T" or "miss"
 //   print-step                        the current step as one line
 //   print-vars                        "vars: name=value ..." of the current step (the
@@ -71,7 +74,7 @@ enum class CommandKind {
   PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart, Construct, BuildStep, PrintBuildStep, SahPlot,
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
-  Playlist, Next, Prev, PrintState, Record, RecordStop,
+  Playlist, Next, Prev, PrintState, Record, RecordStop, Colors,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };

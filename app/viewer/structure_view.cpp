@@ -174,17 +174,5 @@ std::vector<glm::vec3> unit_square_triangles() {
   return {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
 }
 
-glm::vec3 turbo(float t) {
-  // Polynomial approximation of the turbo map (degree 5 per channel).
-  const float x = std::clamp(t, 0.0f, 1.0f);
-  const float x2 = x * x, x3 = x2 * x, x4 = x2 * x2, x5 = x4 * x;
-  const float r = 0.13572138f + 4.61539260f * x - 42.66032258f * x2 + 132.13108234f * x3 - 152.94239396f * x4 +
-                  59.28637943f * x5;
-  const float g = 0.09140261f + 2.19418839f * x + 4.84296658f * x2 - 14.18503333f * x3 + 4.27729857f * x4 +
-                  2.82956604f * x5;
-  const float b = 0.10667330f + 12.64194608f * x - 60.58204836f * x2 + 110.36276771f * x3 - 89.90310912f * x4 +
-                  27.34824973f * x5;
-  return glm::clamp(glm::vec3(r, g, b), glm::vec3(0.0f), glm::vec3(1.0f));
-}
 
 }  // namespace viz

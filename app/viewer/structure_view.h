@@ -7,12 +7,13 @@
 //   structure_geometry()   all nodes -> instances: one instanced draw per shape
 //   append_box_segments()  12 thick edges of a box (highlights)
 //   append_sphere_segments three great circles (sphere-tree highlights)
-//   turbo()                the colour map of depths, counts and the heat map
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "color_scheme.h"
 
 #include "structure.h"
 
@@ -113,7 +114,6 @@ std::vector<glm::vec3> unit_cube_edges();
 std::vector<glm::vec3> unit_sphere_circles(int segments = 48);
 std::vector<glm::vec3> unit_square_triangles();
 
-/// The "turbo" colour map (Mikhailov 2019, Google AI blog), polynomial fit; t in [0, 1].
-glm::vec3 turbo(float t);
+
 
 }  // namespace viz

@@ -267,7 +267,7 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
   }
   for (uint32_t s : order) {
     const accel::ReplayNode& n = nodes[s];
-    const glm::vec3 rgb = turbo(0.15f + 0.8f * static_cast<float>(n.depth) / static_cast<float>(max_depth));
+    const glm::vec3 rgb = colormap(0.15f + 0.8f * static_cast<float>(n.depth) / static_cast<float>(max_depth));
     const glm::vec4 color(rgb, n.unrecorded ? 0.35f : 0.75f);
     if (n.sphere.radius >= 0.0f) append_sphere_lines(v.lines, n.sphere, color);
     else append_box_edges(v.lines, n.box, color);
@@ -284,7 +284,7 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
       const int y = static_cast<int>((c / size_t(g.res[0])) % size_t(g.res[1]));
       const int z = static_cast<int>(c / (size_t(g.res[0]) * size_t(g.res[1])));
       const float t = std::min(1.0f, static_cast<float>(g.cells[c].size()) / 8.0f);
-      append_box_edges(v.lines, cell_box(g, x, y, z), glm::vec4(turbo(0.15f + 0.8f * t), 0.5f));
+      append_box_edges(v.lines, cell_box(g, x, y, z), glm::vec4(colormap(0.15f + 0.8f * t), 0.5f));
       ++drawn;
     }
   }

@@ -16,13 +16,13 @@ using accel::BuildEvent;
 using accel::BuildEventKind;
 using ui::kCurrentText;
 using ui::kDimText;
-using ui::kHitText;
+using ui::hit_text;
 using ui::kQueueText;
 
 ImVec4 event_color(const BuildEvent& e) {
   switch (e.kind) {
     case BuildEventKind::Node: return kCurrentText;
-    case BuildEventKind::Leaf: return kHitText;
+    case BuildEventKind::Leaf: return hit_text();
     case BuildEventKind::Split:
     case BuildEventKind::Subdivide:
     case BuildEventKind::Merge: return ImVec4(1.0f, 0.55f, 0.9f, 1.0f);
@@ -154,7 +154,7 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     ImGui::SameLine();
     if (ImGui::Button("Traversal mode")) active_ = false;
   }
-  if (!error_.empty()) ImGui::TextColored(ui::kMissText, "%s", error_.c_str());
+  if (!error_.empty()) ImGui::TextColored(ui::miss_text(), "%s", error_.c_str());
   if (!trace_) {
     ImGui::TextWrapped("Construct records every step of the current structure's build and plays it.");
     ImGui::End();

@@ -12,7 +12,7 @@
 namespace viz {
 
 using ui::kCullText;
-using ui::kMissText;
+using ui::miss_text;
 
 void CompareTool::start(std::shared_ptr<const accel::Scene> scene, const accel::Ray& ray,
                         const StructureRequest& current, bool synchronous) {
@@ -86,7 +86,7 @@ std::optional<StructureChoice> CompareTool::panel(const PanelPlace& where, const
       ImGui::TextUnformatted(r.label.c_str());
       if (!r.ok) {
         ImGui::TableSetColumnIndex(1);
-        ImGui::TextColored(kMissText, "%s", r.error.c_str());
+        ImGui::TextColored(miss_text(), "%s", r.error.c_str());
         continue;
       }
       ImGui::TableSetColumnIndex(1);

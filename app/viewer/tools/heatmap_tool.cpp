@@ -103,7 +103,7 @@ void HeatmapTool::legend(const PanelPlace& where, const std::string& node_noun, 
   const float bar_w = 16.0f * em, bar_h = 1.0f * em;
   for (int i = 0; i < 64; ++i) {
     const float t0 = static_cast<float>(i) / 64.0f, t1 = static_cast<float>(i + 1) / 64.0f;
-    const glm::vec3 c = turbo(t0);
+    const glm::vec3 c = colormap(t0);
     dl->AddRectFilled(ImVec2(p.x + t0 * bar_w, p.y), ImVec2(p.x + t1 * bar_w + 0.5f, p.y + bar_h),
                       ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
   }

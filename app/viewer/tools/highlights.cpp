@@ -15,8 +15,9 @@ const glm::vec4 kMissedColor(0.7f, 0.55f, 1.0f, 0.6f);     // skipped: ray misse
 const glm::vec4 kBeyondColor(1.0f, 0.45f, 0.15f, 0.8f);    // skipped: beyond the closest hit
 const glm::vec4 kPendingColor(0.25f, 0.85f, 1.0f, 0.65f);  // on the stack / queue
 const glm::vec4 kPoppedColor(1.0f, 1.0f, 1.0f, 0.95f);
-const glm::vec4 kTestHitColor(0.25f, 0.95f, 0.35f, 0.85f);
-const glm::vec4 kTestMissColor(1.0f, 0.25f, 0.3f, 0.75f);
+// Triangle tests: the colour scheme's hit / miss pair (blue / orange unless set otherwise).
+glm::vec4 test_hit_color() { return glm::vec4(hit_rgb(), 0.85f); }
+glm::vec4 test_miss_color() { return glm::vec4(miss_rgb(), 0.75f); }
 const glm::vec4 kClosestColor(1.0f, 0.78f, 0.05f, 0.95f);
 const glm::vec4 kHitPointColor(1.0f, 0.2f, 0.9f, 1.0f);
 
@@ -127,7 +128,7 @@ Highlights build_highlights(const DebugRay& debug, const accel::Scene& scene, co
   // Triangles tested in the current node (hit / miss), then the closest hit so far.
   for (const accel::TestedPrim& t : h.tested) {
     if (t.prim == h.closest_prim) continue;
-    const glm::vec4& c = t.hit ? kTestHitColor : kTestMissColor;
+    const glm::vec4 c = t.hit ? test_hit_color() : test_miss_color();
     append_triangle(out.triangles, scene, t.prim, c);
     append_triangle_outline(out.segments, scene, t.prim, c, 2.0f);
   }

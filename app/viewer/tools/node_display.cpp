@@ -119,7 +119,7 @@ bool NodeDisplay::section(const BuiltStructure* built) {
   const float bar_w = 12.0f * em, bar_h = 0.7f * em;
   for (int i = 0; i < 32; ++i) {
     const float t0 = static_cast<float>(i) / 32.0f, t1 = static_cast<float>(i + 1) / 32.0f;
-    const glm::vec3 c = turbo(by_count ? 0.15f + 0.85f * t0 : 0.12f + 0.86f * t0);
+    const glm::vec3 c = colormap(by_count ? 0.15f + 0.85f * t0 : 0.12f + 0.86f * t0);
     dl->AddRectFilled(ImVec2(p.x + t0 * bar_w, p.y), ImVec2(p.x + t1 * bar_w, p.y + bar_h),
                       ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
   }

@@ -67,7 +67,7 @@ void PlaylistTool::overlay(glm::vec4 view, double now) {
     ImGui::TextDisabled("%zu / %zu%s", cursor_.current() + 1, playlist_.states.size(),
                         has_pending() ? "   loading ..." : "");
   }
-  if (!error_.empty()) ImGui::TextColored(ui::kMissText, "%s", error_.c_str());
+  if (!error_.empty()) ImGui::TextColored(ui::miss_text(), "%s", error_.c_str());
   ImGui::End();
 }
 
@@ -86,7 +86,7 @@ std::optional<size_t> PlaylistTool::section() {
     std::snprintf(label, sizeof label, "%2zu  %s", i + 1, playlist_.states[i].title.c_str());
     if (ImGui::Selectable(label, i == cursor_.current())) clicked = i;
   }
-  if (!error_.empty()) ImGui::TextColored(ui::kMissText, "%s", error_.c_str());
+  if (!error_.empty()) ImGui::TextColored(ui::miss_text(), "%s", error_.c_str());
   return clicked;
 }
 

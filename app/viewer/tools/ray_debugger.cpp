@@ -15,8 +15,8 @@ namespace {
 using ui::kCullText;
 using ui::kCurrentText;
 using ui::kDimText;
-using ui::kHitText;
-using ui::kMissText;
+using ui::hit_text;
+using ui::miss_text;
 using ui::kQueueText;
 
 ImVec4 event_color(const accel::TraceEvent& e) {
@@ -26,7 +26,7 @@ ImVec4 event_color(const accel::TraceEvent& e) {
     case accel::TraceEventKind::Cull: return kCullText;
     case accel::TraceEventKind::Push:
     case accel::TraceEventKind::Pop: return kQueueText;
-    case accel::TraceEventKind::TestPrim: return e.hit ? kHitText : kMissText;
+    case accel::TraceEventKind::TestPrim: return e.hit ? hit_text() : miss_text();
     case accel::TraceEventKind::NewClosest:
     case accel::TraceEventKind::Done: return ImVec4(1.0f, 1.0f, 1.0f, 1.0f);
   }
@@ -265,9 +265,9 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
     ImGui::TextColored(kQueueText, "pending on the stack / queue (thick: popped next)");
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.15f, 1.0f), "skipped: entered beyond the closest hit");
     ImGui::TextColored(ImVec4(0.7f, 0.55f, 1.0f, 1.0f), "skipped: the ray misses its bounds");
-    ImGui::TextColored(kHitText, "triangle tested: hit");
+    ImGui::TextColored(hit_text(), "triangle tested: hit");
     ImGui::SameLine();
-    ImGui::TextColored(kMissText, "  miss");
+    ImGui::TextColored(miss_text(), "  miss");
     ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.05f, 1.0f), "closest hit so far");
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.2f, 0.9f, 1.0f), "  hit point");

@@ -29,6 +29,8 @@ class RayDebugger {
   void replay(const BuiltStructure* built);
   /// Forgets the ray (a new scene).
   void reset();
+  /// The colour scheme changed: rebuild the highlights' colours.
+  void recolor() { dirty_ = true; }
   /// Plays the animation on by `seconds`.
   void advance(double seconds);
   /// Rebuilds the highlights when the step (or what they show) changed.

@@ -81,8 +81,8 @@ void TrapTool::block(const DebugRay& ray, accel::TracePlayer& player) {
   }
   if (ImGui::BeginTable("answers", 3, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_BordersInnerH)) {
     answer_row("naive", naive_.hit, naive_.prim, static_cast<double>(naive_.t), kNaiveText);
-    answer_row("traversal", ray.hit.valid(), ray.hit.prim, static_cast<double>(ray.hit.t), ui::kHitText);
-    if (brute_) answer_row("brute force", brute_->prim >= 0, brute_->prim, brute_->t, ui::kHitText);
+    answer_row("traversal", ray.hit.valid(), ray.hit.prim, static_cast<double>(ray.hit.t), ui::hit_text());
+    if (brute_) answer_row("brute force", brute_->prim >= 0, brute_->prim, brute_->t, ui::hit_text());
     ImGui::EndTable();
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ui::kDimText);

@@ -264,7 +264,7 @@ void TreeDiagram::rebuild_highlight() {
       for (NodeId n : level) {
         if (drawn++ >= kMaxIsolatedNodes) break;
         const accel::NodeView v = structure_->node_view(n);
-        const glm::vec3 c = turbo(static_cast<float>(v.depth - top) / span);
+        const glm::vec3 c = colormap(static_cast<float>(v.depth - top) / span);
         const glm::vec4 color(c, v.leaf ? 0.85f : 0.6f);
         if (!v.sphere.empty()) {
           static const std::vector<glm::vec3> circle = unit_sphere_circles(32);

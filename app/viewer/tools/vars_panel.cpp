@@ -18,7 +18,7 @@ namespace {
 using ui::kCullText;
 using ui::kCurrentText;
 using ui::kDimText;
-using ui::kHitText;
+using ui::hit_text;
 using ui::kQueueText;
 
 constexpr const char* kAxisUpper[3] = {"X", "Y", "Z"};
@@ -77,7 +77,7 @@ void grid_vars(const accel::GridDdaVars& v, float closest, ImFont* mono) {
   // The lecture's rule: the walk may stop only at a hit inside the current cell.
   if (std::isfinite(closest)) {
     const bool inside = closest <= exit_t;
-    ImGui::PushStyleColor(ImGuiCol_Text, inside ? kHitText : kCullText);
+    ImGui::PushStyleColor(ImGuiCol_Text, inside ? hit_text() : kCullText);
     ImGui::TextWrapped("closest_hit %s %s tMax%s %s: %s", num(closest).c_str(), inside ? "<=" : ">", kAxisUpper[n],
                        num(exit_t).c_str(), inside ? "inside this cell, stop" : "beyond this cell, walk on");
     ImGui::PopStyleColor();
@@ -120,7 +120,7 @@ void kd_exit_vars(const accel::KdExitVars& v, ImFont* mono) {
     value_row("t_split", num(v.t_split), mono);
     ImGui::EndTable();
   }
-  ImGui::PushStyleColor(ImGuiCol_Text, v.exits ? kHitText : kCullText);
+  ImGui::PushStyleColor(ImGuiCol_Text, v.exits ? hit_text() : kCullText);
   if (v.exits)
     ImGui::TextWrapped("%s < %s: the hit lies before the far child: return it", num(v.t_hit).c_str(),
                        num(v.t_split).c_str());
@@ -185,7 +185,7 @@ void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* m
       ImGui::TableNextRow();
       cell(0, std::to_string(p.node), i == 0 ? kCurrentText : kWhite);
       cell(1, num(p.key));
-      cell(2, skip ? "> closest: skip" : "<= closest: visit", skip ? kCullText : kHitText);
+      cell(2, skip ? "> closest: skip" : "<= closest: visit", skip ? kCullText : hit_text());
     }
     ImGui::EndTable();
   }
@@ -223,7 +223,7 @@ void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel:
   }
   ImGui::Separator();
   if (std::isfinite(h.closest_t))
-    ImGui::TextColored(kHitText, "closest_hit = %s (triangle %d)", num(h.closest_t).c_str(), h.closest_prim);
+    ImGui::TextColored(hit_text(), "closest_hit = %s (triangle %d)", num(h.closest_t).c_str(), h.closest_prim);
   else
     ImGui::TextColored(kDimText, "closest_hit = inf (nothing hit yet)");
   if (keeps_pending(kind)) pending_table(h, kind, mono);
