@@ -3,6 +3,7 @@
 in vec2 v_uv;
 
 uniform sampler2D u_values;
+uniform float u_scale_min;  // value at the bottom of the colour map (values below saturate)
 uniform float u_scale_max;  // value at the top of the colour map (values above saturate)
 uniform float u_alpha;
 
@@ -20,5 +21,5 @@ vec3 palette(float x) {
 void main() {
   // The image's first row is its top; texture row 0 is at v = 0 (the bottom).
   float value = texture(u_values, vec2(v_uv.x, 1.0 - v_uv.y)).r;
-  frag_color = vec4(palette(value / u_scale_max), u_alpha);
+  frag_color = vec4(palette((value - u_scale_min) / max(u_scale_max - u_scale_min, 1e-6)), u_alpha);
 }

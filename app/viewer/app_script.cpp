@@ -282,6 +282,33 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       if (auto st = recorder_.stop(); !st) return st;
       print_line(recorder_.notice());  // "wrote PATH (N frames)"
       return {};
+    case CommandKind::HeatmapScale: {
+      HeatmapScale scale;
+      scale.fixed = c.on;
+      scale.lo = c.values[0];
+      scale.hi = c.values[1];
+      heatmap_.set_scale(scale);
+      return {};
+    }
+    case CommandKind::HeatmapDiff: {
+      std::optional<StructureRequest> other;
+      if (c.on) {
+        other.emplace();
+        other->name = c.name;
+        other->params = c.params;
+      }
+      heatmap_.set_difference(other);
+      if (heatmap_.on()) {
+        settle_camera();
+        if (auto st = session_.need_structure(); !st) return st;
+        heatmap_.compute_now(heatmap_view());
+        if (!heatmap_.error().empty()) return accel::make_error(heatmap_.error());
+      }
+      return {};
+    }
+    case CommandKind::PrintHeatmap:
+      print_line(heatmap_.summary());
+      return {};
     case CommandKind::Colors: {
       ColorScheme scheme;
       parse_colormap(c.name, &scheme.map);  // checked by the parser

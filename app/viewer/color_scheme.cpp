@@ -78,6 +78,19 @@ std::array<glm::vec3, kColormapSamples> colormap_samples(Colormap map) {
   return s;
 }
 
+glm::vec3 diverging(float t) {
+  // Blue (Okabe & Ito's) through a light grey to orange, lightness falling off to both ends.
+  const glm::vec3 blue(0.0f, 0.45f, 0.70f), mid(0.93f, 0.93f, 0.90f), orange(0.90f, 0.55f, 0.0f);
+  const float x = std::clamp(t, 0.0f, 1.0f);
+  return x < 0.5f ? glm::mix(blue, mid, x * 2.0f) : glm::mix(mid, orange, (x - 0.5f) * 2.0f);
+}
+
+std::array<glm::vec3, kColormapSamples> diverging_samples() {
+  std::array<glm::vec3, kColormapSamples> s;
+  for (int i = 0; i < kColormapSamples; ++i) s[i] = diverging(static_cast<float>(i) / (kColormapSamples - 1));
+  return s;
+}
+
 // Okabe & Ito's colour-blind-safe blue and orange (lightened for a dark background), or the
 // classic green / red.
 glm::vec3 hit_rgb() { return g_scheme.cvd_safe_hits ? glm::vec3(0.34f, 0.70f, 0.95f) : glm::vec3(0.30f, 0.95f, 0.40f); }

@@ -37,6 +37,12 @@ bool parse_colormap(const std::string& name, Colormap* out);
 inline constexpr int kColormapSamples = 17;
 std::array<glm::vec3, kColormapSamples> colormap_samples(Colormap map);
 
+/// The difference view's diverging map: t = 0 blue (the first structure costs less), 0.5
+/// near white (the same), 1 orange (it costs more); blue / orange stays apart for
+/// colour-blind viewers.
+glm::vec3 diverging(float t);
+std::array<glm::vec3, kColormapSamples> diverging_samples();
+
 /// A triangle test that hits / misses, in the current scheme.
 glm::vec3 hit_rgb();
 glm::vec3 miss_rgb();

@@ -375,10 +375,11 @@ void Renderer::draw_overlay(const HeatmapTexture& texture, const OverlayStyle& s
   overlay_shader_.use();
   texture.bind(0);
   overlay_shader_.set("u_values", 0);
-  overlay_shader_.set("u_scale_max", std::max(style.scale_max, 1e-6f));
+  overlay_shader_.set("u_scale_min", style.scale_min);
+  overlay_shader_.set("u_scale_max", std::max(style.scale_max, style.scale_min + 1e-6f));
   overlay_shader_.set("u_alpha", style.alpha);
   const auto palette = colormap_samples(color_scheme().map);
-  overlay_shader_.set("u_palette", palette.data(), kColormapSamples);
+  overlay_shader_.set("u_palette", style.palette ? style.palette : palette.data(), kColormapSamples);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);

@@ -77,7 +77,11 @@ struct NodeStyle {
 
 /// How the heat map overlay is drawn.
 struct OverlayStyle {
+  float scale_min = 0.0f;  ///< value mapped to the bottom of the colour map
   float scale_max = 1.0f;  ///< value mapped to the top of the colour map
+  /// kColormapSamples colours instead of the current colour map (the difference view's
+  /// diverging map); nullptr: the colour scheme's map.
+  const glm::vec3* palette = nullptr;
   float alpha = 0.75f;
 };
 

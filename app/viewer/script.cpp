@@ -314,6 +314,37 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     }
     return "";
   }
+  if (verb == "heatmap-scale") {
+    c.kind = CommandKind::HeatmapScale;
+    const char* usage = "heatmap-scale auto | heatmap-scale LO HI";
+    if (n == 1 && args[0] == "auto") {
+      c.on = false;
+      return "";
+    }
+    if (n != 2) return count_error(usage);
+    if (std::string e = floats(0, 2, usage); !e.empty()) return "heatmap-scale: " + e;
+    if (!(c.values[0] >= 0.0f && c.values[0] < c.values[1]))
+      return "heatmap-scale: expected 0 <= LO < HI, got " + args[0] + " " + args[1];
+    c.on = true;
+    return "";
+  }
+  if (verb == "heatmap-diff") {
+    c.kind = CommandKind::HeatmapDiff;
+    if (n < 1) return count_error("heatmap-diff NAME [key=value ...] | heatmap-diff off");
+    c.on = !(n == 1 && args[0] == "off");
+    if (!c.on) return "";
+    c.name = args[0];
+    c.params.assign(args.begin() + 1, args.end());
+    auto info = accel::find_structure(c.name);
+    if (!info) return "heatmap-diff: " + info.error().message;
+    auto set = accel::ParamSet::parse(info.value()->params, c.params, c.name);
+    if (!set) return "heatmap-diff: " + set.error().message;
+    return "";
+  }
+  if (verb == "print-heatmap") {
+    c.kind = CommandKind::PrintHeatmap;
+    return n == 0 ? "" : "'" + verb + "' takes no arguments";
+  }
   if (verb == "colors") {
     c.kind = CommandKind::Colors;
     const char* usage = "colors viridis|cividis|turbo [hits=blue-orange|green-red]";

@@ -14,6 +14,13 @@
 //   step N | step end | step back N | step hit | step start
 //   show depth=A..B | show depth=A | show leaves | show all
 //   heatmap off|nodes|prims
+//   heatmap-scale auto | heatmap-scale LO HI
+//                                     the heat map's colour scale: 0..p99 of each image, or
+//                                     fixed (kept across structures, so their images compare)
+//   heatmap-diff NAME [key=value ...] | heatmap-diff off
+//                                     the difference view: the current structure's cost
+//                                     minus NAME's per pixel, diverging colours
+//   print-heatmap                     "heat map: METRIC WxH, scale LO..HI (auto|fixed), mean M, max X"
 //   mesh solid|translucent|wireframe|off
 //   empty-cells on|off                grid: draw empty cells too
 //   nodes on|off                      draw the structure's nodes (the ray's highlights stay)
@@ -74,7 +81,7 @@ enum class CommandKind {
   PrintRay, PrintStats, PrintFrameTime, LoadBench, ShowChart, Construct, BuildStep, PrintBuildStep, SahPlot,
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
-  Playlist, Next, Prev, PrintState, Record, RecordStop, Colors,
+  Playlist, Next, Prev, PrintState, Record, RecordStop, Colors, HeatmapScale, PrintHeatmap, HeatmapDiff,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };

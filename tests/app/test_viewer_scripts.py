@@ -357,6 +357,28 @@ def main():
             check(ok, f"record: {path} is not a {magic.decode()} file")
             check(not os.path.exists(path + ".part"), f"record: {path}.part left behind")
 
+    # ---- The heat map's scale: automatic per image, fixed and shared by two structures; the
+    # colour schemes switch.
+    lines = [f"size {W} {H}", "preset stadium", "structure grid", "heatmap prims", "print-heatmap",
+             "structure bvh", "heatmap prims", "print-heatmap", "heatmap-scale 0 30", "print-heatmap",
+             "structure grid", "heatmap prims", "print-heatmap", "heatmap-diff bvh", "print-heatmap",
+             "heatmap-diff off", "colors cividis hits=green-red",
+             f"screenshot {work}/cividis.png", "colors viridis", f"screenshot {work}/viridis.png"]
+    code, out, err = run_script(args, work, "heatmap_scale", lines)
+    if check(code == 0, f"heatmap-scale: viewer exit {code}\n{err}"):
+        got = out.strip().splitlines()
+        if check(len(got) == 5 and all(l.startswith("heat map: prims ") for l in got), f"print-heatmap: {got}"):
+            check("(auto)" in got[0] and "(auto)" in got[1] and got[0].split(",")[1] != got[1].split(",")[1],
+                  f"auto scales follow each image: {got[:2]}")
+            check(all("scale 0..30 (fixed)" in l for l in got[2:4]), f"a fixed scale stays across structures: {got[2:4]}")
+            # grid minus bvh on a symmetric fixed scale; its mean is the two means' difference.
+            m = re.search(r"heat map: prims minus bvh \d+x\d+, scale -30\.\.30 \(fixed\), mean (\S+),", got[4])
+            means = [float(re.search(r"mean ([^,]+),", l).group(1)) for l in got[1:4]]
+            check(m is not None and abs(float(m.group(1)) - (means[2] - means[0])) < 1e-2,
+                  f"difference view: '{got[4]}' against the means {means}")
+        c, o, _ = run([args.png_check, "--differ", f"{work}/cividis.png", f"{work}/viridis.png", "30"])
+        check(c == 0, f"colors cividis and viridis look the same: {o}")
+
     # ---- Errors: parse errors (before any window) and execution errors, with SCRIPT:LINE.
     cases = [
         ("bad_parse.txt", "size 320 240\n# comment\nfly to the moon\n", r"^accelviz: .*bad_parse\.txt:3: unknown command 'fly'\n$"),
@@ -382,6 +404,10 @@ def main():
         ("bad_vars.txt", f"size {W} {H}\nscene {SCENE}\nprint-vars\n",
          r"^accelviz: .*bad_vars\.txt:3: print-vars: no debug ray yet"),
         ("bad_naive.txt", "print-naive now\n", r"^accelviz: .*bad_naive\.txt:1: 'print-naive' takes no arguments\n$"),
+        ("bad_heatmap_diff.txt", "heatmap-diff nope\n", r"^accelviz: .*bad_heatmap_diff\.txt:1: heatmap-diff: .*nope"),
+        ("bad_heatmap_scale.txt", "heatmap-scale 5 2\n",
+         r"^accelviz: .*bad_heatmap_scale\.txt:1: heatmap-scale: expected 0 <= LO < HI, got 5 2\n$"),
+        ("bad_colors.txt", "colors jet\n", r"^accelviz: .*bad_colors\.txt:1: usage: colors viridis\|cividis\|turbo"),
         ("bad_record_stop.txt", "record stop\n", r"^accelviz: .*bad_record_stop\.txt:1: record stop: not recording\n$"),
         ("bad_next.txt", "next\n", r"^accelviz: .*bad_next\.txt:1: no playlist loaded \(use playlist FILE first\)\n$"),
         ("bad_playlist_ref.txt", f"size {W} {H}\nplaylist {work}/bad.playlist\n",

@@ -3,8 +3,10 @@
 // one primary ray per pixel (debounced while the view moves), the image and its GL
 // texture, the main panel's section and the legend window.
 #include <optional>
+#include <string>
 
 #include "heatmap.h"
+#include "tools/heatmap_scale.h"
 #include "ray_gen.h"
 #include "renderer.h"
 #include "view_layout.h"
@@ -38,6 +40,18 @@ class HeatmapTool {
   void set_on(bool on) { on_ = on; }
   /// Chooses what a pixel counts.
   void set_metric(accel::CostMetric metric) { metric_ = metric; }
+  /// The colour scale: automatic (0 .. the image's 99th percentile) or fixed to [lo, hi],
+  /// which then stays across structures and views (heatmap-scale).
+  void set_scale(const HeatmapScale& scale) { scale_ = scale; }
+  /// "heat map: nodes, scale 0..12 (auto), mean 10.1, max 68" for print-heatmap.
+  std::string summary() const;
+  /// The difference view: the shown structure's cost minus `other`'s per pixel, on a
+  /// diverging scale (nullopt: the plain heat map). `other` is built over the same scene
+  /// when the image is computed (and kept while the scene stays).
+  void set_difference(std::optional<StructureRequest> other);
+  const std::optional<StructureRequest>& difference() const { return other_; }
+  /// The last error of the difference view (the other structure failed to build).
+  const std::string& error() const { return error_; }
   /// The M key: off -> nodes -> triangles -> off.
   void cycle();
   /// An image is being computed for the shown overlay.
@@ -66,9 +80,10 @@ class HeatmapTool {
     const BuiltStructure* built = nullptr;
     accel::CostMetric metric = accel::CostMetric::NodesVisited;
     glm::ivec2 size{0, 0};
+    int other_version = 0;  // the difference view's structure (set_difference bumps it)
     bool operator==(const Inputs& o) const {
       return camera.eye == o.camera.eye && camera.target == o.camera.target && camera.fovy_deg == o.camera.fovy_deg &&
-             built == o.built && metric == o.metric && size == o.size;
+             built == o.built && metric == o.metric && size == o.size && other_version == o.other_version;
     }
   };
   Inputs inputs(const HeatmapView& view) const;
@@ -77,7 +92,24 @@ class HeatmapTool {
   accel::CostMetric metric_ = accel::CostMetric::NodesVisited;
   int divisor_ = 4;  // image resolution = view / divisor
   float alpha_ = 0.78f;
-  Job<accel::CostImage> job_;
+  HeatmapScale scale_;
+  /// A job's result: the image, and for the difference view the other structure's image
+  /// and the other structure (built in the job when the scene changed).
+  struct Images {
+    accel::CostImage image, other;
+    BuiltPtr other_built;
+    bool difference = false;
+    std::string error;
+  };
+  /// Runs on the job's thread: everything it reads is passed in (a copy of other_).
+  static Images compute(const BuiltPtr& built, const Inputs& in, const std::optional<StructureRequest>& other,
+                        BuiltPtr other_built, const std::atomic<bool>* cancel);
+  void take(Images images);
+  std::optional<StructureRequest> other_;
+  int other_version_ = 0;
+  BuiltPtr other_built_;  // the difference view's structure, for other_built_->scene
+  std::string error_;
+  Job<Images> job_;
   Inputs running_;  // inputs of the job in flight
   Inputs shown_;    // inputs of image_
   Inputs last_;     // inputs seen last frame (for the debounce)
