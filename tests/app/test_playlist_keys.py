@@ -26,8 +26,13 @@ def main():
             print("skipped: xvfb-run or xdotool not found (Debian packages xvfb, xdotool)")
             return 77
         # One X server for the whole run; this script again inside it.
-        return subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", sys.executable, __file__,
-                               "--viewer", args.viewer, "--playlist", args.playlist, "--inner"]).returncode
+        # xvfb-run's temporary directory in one of our own (see test_viewer_scripts.py).
+        tmp = tempfile.mkdtemp(prefix="accel_keys_xvfb_")
+        code = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", sys.executable, __file__,
+                               "--viewer", args.viewer, "--playlist", args.playlist, "--inner"],
+                              env=dict(os.environ, TMPDIR=tmp)).returncode
+        shutil.rmtree(tmp, ignore_errors=True)
+        return code
     failures = []
     work = tempfile.mkdtemp(prefix="accel_keys_")
     viewer = subprocess.Popen([args.viewer, "--playlist", os.path.abspath(args.playlist), "--msaa", "0",

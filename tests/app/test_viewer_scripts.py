@@ -56,14 +56,19 @@ def check(cond, what):
     return cond
 
 
-def run(cmd, timeout=300):
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+def run(cmd, timeout=300, env=None):
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
     return p.returncode, p.stdout, p.stderr
 
 
 def viewer(args, script_path):
     xvfb = [args.xvfb, "-a", "-s", "-screen 0 1280x1024x24"]
-    return run(xvfb + [args.viewer, "--script", script_path])
+    # xvfb-run keeps its X authority file in a temporary directory it removes at the end; in
+    # one of our own (TMPDIR) nothing else running beside the test can disturb that clean-up
+    # (it once failed, and xvfb-run then exits 5 whatever the viewer returned).
+    tmp = os.path.join(os.path.dirname(script_path), "xvfb-tmp")
+    os.makedirs(tmp, exist_ok=True)
+    return run(xvfb + [args.viewer, "--script", script_path], env=dict(os.environ, TMPDIR=tmp))
 
 
 def run_script(args, work, name, lines):
