@@ -53,10 +53,12 @@ def main():
             return subprocess.run(["xdotool", "getwindowname", window], capture_output=True, text=True).stdout.strip()
 
         def settled(timeout=60.0):
+            # The window first has GLFW's title ("accelviz"); the viewer names the state once
+            # it is up, and says "(loading)" until the state's commands have run.
             end = time.time() + timeout
             while time.time() < end:
                 t = title()
-                if "(loading)" not in t:
+                if " state " in t and "(loading)" not in t:
                     return t
                 time.sleep(0.1)
             return title()
