@@ -52,13 +52,14 @@ def main():
         def title():
             return subprocess.run(["xdotool", "getwindowname", window], capture_output=True, text=True).stdout.strip()
 
-        def settled(timeout=60.0):
+        def settled(pattern=r" state \d+/", timeout=60.0):
             # The window first has GLFW's title ("accelviz"); the viewer names the state once
-            # it is up, and says "(loading)" until the state's commands have run.
+            # it is up (and once it has taken the key: frames are slow on a busy machine), and
+            # says "(loading)" until the state's commands have run.
             end = time.time() + timeout
             while time.time() < end:
                 t = title()
-                if " state " in t and "(loading)" not in t:
+                if re.search(pattern, t) and "(loading)" not in t:
                     return t
                 time.sleep(0.1)
             return title()
@@ -74,35 +75,41 @@ def main():
             return 1
         n = int(m.group(1))
         for k in range(1, n + 1):
-            t = settled()
+            t = settled(rf"state {k}/{n}: ")
             if not re.search(rf"state {k}/{n}: ", t) or "(error)" in t:
                 failures.append(f"after {k - 1} x Page Down: '{t}'")
             if k < n:
                 key("Next")
         key("Next")  # past the end: stays on the last state
+        time.sleep(1.0)
         if not re.search(rf"state {n}/{n}: ", settled()):
             failures.append(f"Page Down past the end: '{title()}'")
         key("Prior")
+        settled(rf"state {n - 1}/{n}: ")
         key("Up")
-        t = settled()
+        t = settled(rf"state {n - 2}/{n}: ")
         if not re.search(rf"state {n - 2}/{n}: ", t) or "(error)" in t:
             failures.append(f"Page Up then up arrow from {n}: '{t}'")
+        def appears(path, timeout=15.0):
+            end = time.time() + timeout
+            while time.time() < end and not os.path.exists(path):
+                time.sleep(0.1)
+            return os.path.exists(path)
+
         key("F12")
-        time.sleep(1.0)
-        if not os.path.exists(os.path.join(work, "accelviz_0001.png")):
+        if not appears(os.path.join(work, "accelviz_0001.png")):
             failures.append("F12 wrote no accelviz_0001.png")
         # Record the traversal of the first state while it plays.
         key("Home")
-        key("Up")
-        key("Up")
-        settled()
+        for k in range(n - 3, 0, -1):  # up to the first state (its traversal plays)
+            key("Up")
+            settled(rf"state {k}/{n}: ")
         key("r")
         key("space")
         time.sleep(3.0)
         key("r")
-        time.sleep(1.0)
         gif = os.path.join(work, "accelviz.gif")
-        if not os.path.exists(gif) or os.path.getsize(gif) < 100:
+        if not appears(gif) or os.path.getsize(gif) < 100:
             failures.append("R, space, R recorded no accelviz.gif")
         else:
             with open(gif, "rb") as f:
