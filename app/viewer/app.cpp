@@ -461,18 +461,18 @@ void App::update_shortcuts() {
       // A presenter's clicker sends PgDn / PgUp (some: the up and down arrows): with a
       // playlist they move between its states; shift keeps them for the construction.
       case GLFW_KEY_PAGE_UP:
-        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.current() > 0 ? playlist_.current() - 1 : 0);
+        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.prev_index());
         else { b.pause(); b.seek(0); }
         break;
       case GLFW_KEY_PAGE_DOWN:
-        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.current() + 1);
+        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.next_index());
         else { b.pause(); b.jump_to_end(); }
         break;
       case GLFW_KEY_UP:
-        if (playlist_.loaded()) go_to_state(playlist_.current() > 0 ? playlist_.current() - 1 : 0);
+        if (playlist_.loaded()) go_to_state(playlist_.prev_index());
         break;
       case GLFW_KEY_DOWN:
-        if (playlist_.loaded()) go_to_state(playlist_.current() + 1);
+        if (playlist_.loaded()) go_to_state(playlist_.next_index());
         break;
       case GLFW_KEY_R: (void)toggle_recording(); break;  // the notice says what happened
       case GLFW_KEY_F12: recorder_.request_screenshot(); break;

@@ -259,8 +259,7 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
     case CommandKind::Next:
     case CommandKind::Prev:
       if (!playlist_.loaded()) return accel::make_error("no playlist loaded (use playlist FILE first)");
-      go_to_state(c.kind == CommandKind::Next ? playlist_.current() + 1
-                                              : (playlist_.current() > 0 ? playlist_.current() - 1 : 0));
+      go_to_state(c.kind == CommandKind::Next ? playlist_.next_index() : playlist_.prev_index());
       run_playlist(&host);
       return {};
     case CommandKind::PrintState:

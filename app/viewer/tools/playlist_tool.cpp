@@ -78,9 +78,9 @@ std::optional<size_t> PlaylistTool::section() {
     return clicked;
   }
   ImGui::TextDisabled("%s", playlist_.name.c_str());
-  if (ImGui::Button("< prev (PgUp)") && cursor_.current() > 0) clicked = cursor_.current() - 1;
+  if (ImGui::Button("< prev (PgUp)") && cursor_.current() > 0) clicked = prev_index();
   ImGui::SameLine();
-  if (ImGui::Button("next (PgDn) >")) clicked = cursor_.current() + 1;
+  if (ImGui::Button("next (PgDn) >")) clicked = next_index();
   for (size_t i = 0; i < playlist_.states.size(); ++i) {
     char label[256];
     std::snprintf(label, sizeof label, "%2zu  %s", i + 1, playlist_.states[i].title.c_str());

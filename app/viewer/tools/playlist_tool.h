@@ -23,12 +23,14 @@ class PlaylistTool {
   const Playlist& playlist() const { return playlist_; }
   size_t current() const { return cursor_.current(); }
 
-  /// Moves to state `index` (clamped), `current() + 1` or `current() - 1`: queues the
+  /// Moves to state `index` (clamped): queues the
   /// commands of the states to apply. Returns true when the viewer must be reset first
   /// (going back replays from the first state).
   bool go(size_t index);
-  bool next() { return go(cursor_.current() + 1); }
-  bool prev() { return go(cursor_.current() > 0 ? cursor_.current() - 1 : 0); }
+  /// The states after and before the current one (go() clamps past the last; the first
+  /// has none before it).
+  size_t next_index() const { return cursor_.current() + 1; }
+  size_t prev_index() const { return cursor_.current() > 0 ? cursor_.current() - 1 : 0; }
 
   /// The commands still to run (front first), each with the state it belongs to.
   struct Pending {

@@ -1,12 +1,10 @@
 #include "tools/recorder.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
 
-#include <glad/gl.h>
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -23,22 +21,6 @@ constexpr double kNoticeSeconds = 4.0;
 
 double clock_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// The back buffer's rectangle `r` (x, y from the top-left) as RGBA rows, top row first.
-std::vector<uint8_t> read_rgba(glm::ivec4 r, int framebuffer_height) {
-  std::vector<uint8_t> px(static_cast<size_t>(r.z) * static_cast<size_t>(r.w) * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  glReadBuffer(GL_BACK);
-  // GL counts rows from the bottom.
-  glReadPixels(r.x, framebuffer_height - r.y - r.w, r.z, r.w, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-  const size_t row = static_cast<size_t>(r.z) * 4;
-  std::vector<uint8_t> flipped(px.size());
-  for (int y = 0; y < r.w; ++y)
-    std::copy_n(px.data() + static_cast<size_t>(r.w - 1 - y) * row, row, flipped.data() + static_cast<size_t>(y) * row);
-  for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;  // the framebuffer's alpha is not the picture's
-  return flipped;
 }
 
 /// `src` (w x h RGBA) resampled to `out_w` x `out_h` with libswscale (area filter: frames shrink well).
@@ -118,7 +100,8 @@ void Recorder::capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer) {
   due_ = false;
   const glm::ivec4 r = with_ui ? glm::ivec4(0, 0, framebuffer.x, framebuffer.y) : view;
   if (r.z <= 0 || r.w <= 0) return;
-  std::vector<uint8_t> px = read_rgba(r, framebuffer.y);
+  std::vector<uint8_t> px = read_back_buffer(r, framebuffer.y, 4);
+  for (size_t i = 3; i < px.size(); i += 4) px[i] = 255;  // the framebuffer's alpha is not the picture's
   if (pending_) {
     const int w = options_.width > 0 ? options_.width : r.z, h = options_.height > 0 ? options_.height : r.w;
     auto opened = VideoWriter::open(pending_->path, w, h, options_.fps);

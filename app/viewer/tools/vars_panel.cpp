@@ -25,12 +25,7 @@ constexpr const char* kAxisUpper[3] = {"X", "Y", "Z"};
 const ImVec4 kWhite(1.0f, 1.0f, 1.0f, 1.0f);
 const ImVec4 kNaiveText(1.0f, 0.35f, 0.85f, 1.0f);  // the naive traversal's (wrong) answer
 
-std::string num(float v) {
-  char buf[48];
-  if (std::isinf(v)) std::snprintf(buf, sizeof buf, "%sinf", v < 0 ? "-" : "");
-  else std::snprintf(buf, sizeof buf, "%.5g", static_cast<double>(v));
-  return buf;
-}
+std::string num(float v) { return ui::fmt("%.5g", static_cast<double>(v)); }
 
 void cell(int column, const std::string& text, const ImVec4& color = kWhite) {
   ImGui::TableSetColumnIndex(column);
@@ -207,7 +202,9 @@ void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel:
   if (top_block) top_block();
   const auto& events = ray.player.events();
   if (!ray.active || events.empty() || !h.valid) {
-    ImGui::TextDisabled("the traversal's variables at the current step: shoot a ray");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("the traversal's variables at the current step: click into the scene to shoot a ray");
+    ImGui::PopStyleColor();
     ImGui::End();
     return;
   }
