@@ -3,13 +3,18 @@
 // (a fraction in [0, 1]), cancellation in. The viewer builds on a background thread and
 // reads the fraction from its UI thread, so both sides are atomics. Builders poll
 // cancelled() at coarse points (per node, per batch of triangles, between phases) and then
-// return cancelled_error(); the CLI, the bench and the tests pass no control at all.
+// return cancelled_error(); the CLI, the bench and the tests may pass no control at all.
+// The control also carries the build's limits: the memory budget every builder checks its
+// allocations against (memory_budget.h) and a time limit, which turns a build that would
+// run for minutes into an error in the CLI (the viewer shows progress and Cancel instead).
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <utility>
 
+#include "memory_budget.h"
 #include "result.h"
 
 namespace accel {
@@ -29,8 +34,30 @@ class BuildControl {
 
   /// Asks the build to stop at its next check (any thread, any number of times).
   void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
-  /// True once cancel() was called. Cheap (one relaxed load): builders may poll it per node.
-  bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+  /// True once cancel() was called or the time limit passed. Cheap (a relaxed load, and a
+  /// clock read only with a time limit): builders may poll it per node.
+  bool cancelled() const {
+    if (cancelled_.load(std::memory_order_relaxed)) return true;
+    if (deadline_ == Clock::time_point::max() || Clock::now() < deadline_) return false;
+    timed_out_.store(true, std::memory_order_relaxed);
+    return true;
+  }
+
+  /// The memory budget of the build in bytes (set before the build starts); 0 = the
+  /// default, default_memory_limit().
+  void set_memory_limit(size_t bytes) { memory_limit_ = bytes; }
+  size_t memory_limit() const { return memory_limit_ ? memory_limit_ : default_memory_limit(); }
+
+  /// Stops the build, as cancel() does, once `seconds` have passed from now (<= 0: none).
+  void set_time_limit(double seconds) {
+    time_limit_ = seconds;
+    deadline_ = seconds > 0.0 ? Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                   std::chrono::duration<double>(seconds))
+                              : Clock::time_point::max();
+  }
+  double time_limit() const { return time_limit_; }
+  /// True when the build stopped because the time limit passed (not by cancel()).
+  bool timed_out() const { return timed_out_.load(std::memory_order_relaxed); }
 
   /// Stores the fraction of the build done, clamped to [0, 1] (build thread). Builders
   /// report a non-decreasing sequence ending at 1.0 on success; the control does not
@@ -44,8 +71,13 @@ class BuildControl {
   double fraction() const { return fraction_.load(std::memory_order_relaxed); }
 
  private:
+  using Clock = std::chrono::steady_clock;
   std::atomic<bool> cancelled_{false};
+  mutable std::atomic<bool> timed_out_{false};
   std::atomic<double> fraction_{0.0};
+  size_t memory_limit_ = 0;
+  double time_limit_ = 0.0;
+  Clock::time_point deadline_ = Clock::time_point::max();
   ProgressFn on_progress_;
 };
 
@@ -53,8 +85,12 @@ class BuildControl {
 /// the text).
 inline Error cancelled_error() { return make_error("build cancelled"); }
 
-/// Null-safe helpers: a build without a control neither reports nor stops.
+/// Null-safe helpers: a build without a control neither reports nor stops, and has the
+/// default memory budget.
 inline bool build_cancelled(const BuildControl* control) { return control && control->cancelled(); }
+inline size_t build_memory_limit(const BuildControl* control) {
+  return control ? control->memory_limit() : default_memory_limit();
+}
 /// Reports `fraction` when there is a control.
 inline void report_progress(BuildControl* control, double fraction) {
   if (control) control->report(fraction);

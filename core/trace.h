@@ -4,6 +4,7 @@
 // the sink at each step. NullSink compiles to nothing (the fast path), StatsSink counts, and
 // TraceRecorder keeps every step for the viewer's animation -- so the animation shows
 // exactly what the real query does. TraversalSink names the contract.
+#include <algorithm>
 #include <concepts>
 #include <cstddef>
 #include <span>
@@ -183,16 +184,26 @@ struct StatsSink {
 };
 
 /// Records every step in order, for the animation and for tests of the traversal order.
+/// The recording is bounded (a ray through a grid of 5,000 identical triangles per cell
+/// makes millions of steps): past `budget_bytes` further steps are dropped, truncated()
+/// says so, and the final Done event is always kept, so the traversal -- which never
+/// depends on the recorder -- and its answer stay whole.
 class TraceRecorder {
  public:
   static constexpr bool kRecords = true;   ///< keeps every step, cull reasons included
   static constexpr bool kObserves = true;
+  /// 256 MiB: about 8 million steps, far more than anyone steps through.
+  static constexpr size_t kDefaultBudgetBytes = size_t(256) << 20;
+
+  explicit TraceRecorder(size_t budget_bytes = kDefaultBudgetBytes)
+      : max_events_(std::max<size_t>(2, budget_bytes / (sizeof(TraceEvent) + sizeof(RecordedVars)))) {}
+
   void visit(NodeId n, int depth, float t0, float t1) { add(TraceEventKind::Visit, n, depth, t0, t1); }
   void enter_cell(NodeId n, float t0, float t1) { add(TraceEventKind::EnterCell, n, 0, t0, t1); }
   void cull(NodeId n, int depth, CullReason why, float t0) {
     TraceEvent e = make(TraceEventKind::Cull, n, depth, t0, t0);
     e.reason = why;
-    events_.push_back(e);
+    keep(e);
   }
   void push(NodeId n, int depth, float key) { add(TraceEventKind::Push, n, depth, key, key); }
   void pop(NodeId n, int depth, float key) { add(TraceEventKind::Pop, n, depth, key, key); }
@@ -200,29 +211,35 @@ class TraceRecorder {
     TraceEvent e = make(TraceEventKind::TestPrim, kNoNode, 0, hit ? t : kInf, hit ? t : kInf);
     e.prim = int32_t(prim);
     e.hit = hit;
-    events_.push_back(e);
+    keep(e);
   }
   void new_closest(uint32_t prim, float t) {
     TraceEvent e = make(TraceEventKind::NewClosest, kNoNode, 0, t, t);
     e.prim = int32_t(prim);
     e.hit = true;
-    events_.push_back(e);
+    keep(e);
   }
   void done(const Hit& h) {
     TraceEvent e = make(TraceEventKind::Done, kNoNode, 0, h.t, h.t);
     e.prim = h.prim;
     e.hit = h.valid();
-    events_.push_back(e);
+    events_.push_back(e);  // always: the answer ends every recording, truncated or not
   }
-  void vars(const StepVars& v) { vars_.push_back({events_.empty() ? 0 : events_.size() - 1, v}); }
+  void vars(const StepVars& v) {
+    if (!truncated_) vars_.push_back({events_.empty() ? 0 : events_.size() - 1, v});
+  }
   const std::vector<TraceEvent>& events() const { return events_; }
   /// The variables recorded (grid, kd-tree and octree), each after the event it belongs to.
   const std::vector<RecordedVars>& recorded_vars() const { return vars_; }
+  /// True when steps were dropped to stay within the budget (the Done event is kept).
+  bool truncated() const { return truncated_; }
   void clear() {
     events_.clear();
     vars_.clear();
+    truncated_ = false;
   }
-  /// Counters derived from the recorded events (equal to StatsSink's by construction).
+  /// Counters derived from the recorded events (equal to StatsSink's by construction, when
+  /// not truncated).
   QueryStats stats() const;
 
  private:
@@ -235,7 +252,15 @@ class TraceRecorder {
     e.t1 = t1;
     return e;
   }
-  void add(TraceEventKind k, NodeId n, int depth, float t0, float t1) { events_.push_back(make(k, n, depth, t0, t1)); }
+  void add(TraceEventKind k, NodeId n, int depth, float t0, float t1) { keep(make(k, n, depth, t0, t1)); }
+  void keep(const TraceEvent& e) {
+    if (events_.size() + 1 < max_events_)  // one place stays free for Done
+      events_.push_back(e);
+    else
+      truncated_ = true;
+  }
+  size_t max_events_;
+  bool truncated_ = false;
   std::vector<TraceEvent> events_;
   std::vector<RecordedVars> vars_;
 };

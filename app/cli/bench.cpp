@@ -328,6 +328,8 @@ int run_bench(const BenchOptions& o) {
       for (const std::string& q : params_for(*info, {p})) used |= !q.empty();
     if (!used) return fail("--param '" + p + "' matches no parameter of the benchmarked structures");
   }
+  accel::BuildControl limits;  // carries the budget only; each build gets its own control
+  if (auto ok = apply_build_limits(o.memory_limit, o.time_limit, &limits); !ok) return fail(ok.error().message);
   const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   const bool with_embree = o.embree && embree_available();
   // tinybvh's unit is AVX2 code throughout (BVH4_CPU included): never call it without AVX2.
@@ -448,8 +450,12 @@ int run_bench(const BenchOptions& o) {
       tbb::task_arena build_arena(threads);
       for (int rep = 0; rep < kBuildReps; ++rep) {
         structure.reset();  // one structure in memory at a time: the terrain's are large
-        auto built = build_arena.execute([&] { return accel::build_structure(*structures[k], s, param_sets[k]); });
-        if (!built) return fail(built.error().message);
+        accel::BuildControl control;
+        control.set_memory_limit(limits.memory_limit());
+        control.set_time_limit(o.time_limit);
+        auto built = build_arena.execute(
+            [&] { return accel::build_structure(*structures[k], s, param_sets[k], accel::Kernel::Watertight, &control); });
+        if (!built) return fail(build_error(built.error(), name, control).message);
         structure = std::move(built.value());
         best_build_ms = std::min(best_build_ms, structure->build_stats().build_ms);
       }

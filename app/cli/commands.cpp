@@ -30,6 +30,28 @@ struct Built {
   const accel::StructureInfo* info = nullptr;
 };
 
+}  // namespace
+
+accel::Status apply_build_limits(const std::string& memory_limit, double time_limit, accel::BuildControl* control) {
+  if (!memory_limit.empty()) {
+    auto bytes = accel::parse_memory_size(memory_limit, "--memory-limit");
+    if (!bytes) return bytes.error();
+    control->set_memory_limit(bytes.value());
+  }
+  control->set_time_limit(time_limit);
+  return {};
+}
+
+accel::Error build_error(const accel::Error& error, const std::string& structure, const accel::BuildControl& control) {
+  if (!control.timed_out()) return error;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%g", control.time_limit());
+  return accel::make_error(structure + ": the build stopped at --time-limit " + seconds +
+                           " s; lower its parameters or raise --time-limit");
+}
+
+namespace {
+
 accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) {
   accel::Kernel kernel;
   if (!accel::parse_kernel(o.kernel, &kernel))
@@ -39,6 +61,8 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   if (!info) return info.error();
   auto params = accel::ParamSet::parse(info.value()->params, o.params, o.structure);
   if (!params) return params.error();
+  accel::BuildControl control;
+  if (auto limits = apply_build_limits(o.memory_limit, o.time_limit, &control); !limits) return limits.error();
   auto scene = accel::load_scene(o.scene);
   if (!scene) return scene.error();
   auto built = std::make_unique<Built>();
@@ -47,8 +71,9 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   built->param_set = params.value();
   built->kernel = kernel;
   built->info = info.value();
-  auto structure = accel::build_structure(*info.value(), built->scene, params.value(), kernel);
-  if (!structure) return structure.error();
+  control.set_time_limit(o.time_limit);  // from the build's start, not the load's
+  auto structure = accel::build_structure(*info.value(), built->scene, params.value(), kernel, &control);
+  if (!structure) return build_error(structure.error(), o.structure, control);
   built->structure = std::move(structure.value());
   return built;
 }

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "build_control.h"
+
 namespace cli {
 
 /// Options shared by the subcommands that build a structure.
@@ -12,6 +14,10 @@ struct StructureOptions {
   std::string structure = "brute";
   std::vector<std::string> params;
   std::string kernel = "watertight";
+  /// The build's memory budget ("4G", "512M", "25%"; empty: memory_budget.h's default).
+  std::string memory_limit;
+  /// Seconds a build may take before it stops with an error (0: no limit).
+  double time_limit = 0.0;
 };
 
 struct TraceOptions {
@@ -41,11 +47,19 @@ struct BenchOptions {
   bool embree = true;
   bool tinybvh = true;    ///< the tinybvh peer rows (when built with tinybvh and the CPU has AVX2)
   double min_time = 0.5;  ///< seconds each timing sample lasts at least
+  std::string memory_limit;  ///< as StructureOptions
+  double time_limit = 0.0;   ///< as StructureOptions, per build
 };
 
 int run_trace(const TraceOptions& options);
 int run_bench(const BenchOptions& options);
 int run_stats(const StatsOptions& options);
+
+/// Sets the control's memory and time limits from the options' text; the error names
+/// --memory-limit.
+accel::Status apply_build_limits(const std::string& memory_limit, double time_limit, accel::BuildControl* control);
+/// A build's error as the CLI prints it: a build stopped by the time limit says so.
+accel::Error build_error(const accel::Error& error, const std::string& structure, const accel::BuildControl& control);
 
 /// Exit code for bad input.
 inline constexpr int kExitBadInput = 2;

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "memory_budget.h"
 #include "registry.h"
 #include "scene.h"
 #include "tinybvh_baseline.h"
@@ -19,6 +20,17 @@ std::string join(const std::vector<std::string>& items) {
   return s;
 }
 
+/// --memory-limit and --time-limit, the budget of every build (memory_budget.h).
+void add_limit_options(CLI::App* cmd, std::string* memory_limit, double* time_limit) {
+  cmd->add_option("--memory-limit", *memory_limit,
+                  "memory a build may use, e.g. 4G, 512M or 25% (default: " +
+                      std::to_string(int(accel::kDefaultMemoryFraction * 100)) + "% of physical memory, " +
+                      accel::format_bytes(double(accel::default_memory_limit())) + " here)");
+  cmd->add_option("--time-limit", *time_limit, "seconds a build may take before it stops with an error (0 = none)")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
+}
+
 void add_structure_options(CLI::App* cmd, cli::StructureOptions* o) {
   cmd->add_option("--scene", o->scene, "mesh file (OBJ, PLY, STL, glTF, GLB), or procedural:NAME (" + join(accel::procedural_scene_names()) + ")")
       ->required();
@@ -26,6 +38,7 @@ void add_structure_options(CLI::App* cmd, cli::StructureOptions* o) {
       ->capture_default_str();
   cmd->add_option("--param", o->params, "structure parameter key=value (repeatable); see 'accelviz-cli params'");
   cmd->add_option("--kernel", o->kernel, "ray/triangle test: " + accel::kernel_names_text("|"))->capture_default_str();
+  add_limit_options(cmd, &o->memory_limit, &o->time_limit);
 }
 
 int print_params() {
@@ -84,6 +97,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--min-time", bench.min_time, "seconds each of the 3 timing samples lasts at least")
       ->check(CLI::Range(0.001, 60.0))
       ->capture_default_str();
+  add_limit_options(bench_cmd, &bench.memory_limit, &bench.time_limit);
   bench_cmd->add_option("--out-md", bench.out_md, "write the table as Markdown");
   bench_cmd->add_option("--out-csv", bench.out_csv, "write the rows as CSV");
   bench_cmd->add_option("--out-json", bench.out_json, "write the rows as a JSON array");

@@ -128,7 +128,12 @@ void BuildRunner::wait() {
 void DebugRay::record(const accel::Structure& s, bool keep_step) {
   accel::TraceRecorder recorder;
   hit = s.intersect_traced(ray, recorder);
-  stats = recorder.stats();
+  truncated = recorder.truncated();
+  // A truncated recording lacks steps to count: the same query through the counting sink.
+  if (truncated)
+    s.intersect(ray, &stats);
+  else
+    stats = recorder.stats();
   vars = recorder.recorded_vars();
   player.load(recorder.events(), keep_step);
 }

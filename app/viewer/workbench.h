@@ -178,6 +178,9 @@ struct DebugRay {
   accel::TracePlayer player;
   /// The loop's variables recorded with the trace (grid, kd-tree, octree); see vars_at().
   std::vector<accel::RecordedVars> vars;
+  /// The traversal made more steps than the recorder's budget keeps: the player has the
+  /// first ones and the answer; `stats` count the whole traversal all the same.
+  bool truncated = false;
 
   /// Records the ray's traversal of `s` (its real intersect_traced). keep_step: the same ray
   /// replayed after a rebuild keeps its step, clamped.

@@ -54,6 +54,14 @@ struct BvhBuildOptions {
   float leaf_cost(size_t n) const { return ci * float((n + size_t(prims_per_test) - 1) / size_t(prims_per_test)); }
 };
 
+/// A hierarchy's memory is linear in its references (the triangles; sbvh: up to
+/// sbvh_budget times as many), so it is estimated before the build rather than tracked:
+/// an error naming `structure`, the builder and the parameter to lower when the builder's
+/// tree, the layout's nodes (`layout_bytes_per_node` each, two nodes per reference) and the
+/// builders' scratch would not fit `memory_limit`.
+Status check_bvh_memory(const std::string& structure, const Scene& scene, const BvhBuildOptions& options,
+                        size_t layout_bytes_per_node, size_t memory_limit);
+
 /// The builder's parameter name: "median", "sah", ... (the declaration is hierarchy_params.h).
 const char* builder_name(BvhBuilderKind kind);
 

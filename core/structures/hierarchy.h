@@ -121,6 +121,11 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// also checked before and after the tree build and per node while flattening.
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override {
     if (build_cancelled(control)) return cancel_build();
+    const size_t layout_bytes = sizeof(Node) + sizeof(Aabb) + sizeof(uint16_t);  // nodes_, boxes_, depth_
+    if (Status fits = check_bvh_memory(this->name(), scene, hierarchy_options(params).build, layout_bytes,
+                                       build_memory_limit(control));
+        !fits)
+      return fits;
     ProgressSpan tree_span(control, 0.0, kTreeBuiltFraction);
     BuildTree tree = build_tree(scene, params, 1, &tree_span, recorder);
     if (build_cancelled(control)) return cancel_build();

@@ -461,8 +461,8 @@ void KdBuilder::over_budget(const char* what, size_t limit) {
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "kdtree parameter 'max_depth' = %s (leaf_size = %d, split = %s): the tree would need more than "
-                "%zu %s (limit); lower max_depth, raise leaf_size, or use split=sah",
-                depth, o_.leaf_size, kd_split_name(o_.split), limit, what);
+                "%zu %s (limit, within the memory limit of %s); lower max_depth, raise leaf_size, or use split=sah",
+                depth, o_.leaf_size, kd_split_name(o_.split), limit, what, format_bytes(double(o_.memory_limit)).c_str());
   fail(make_error(buf));
 }
 
@@ -1034,6 +1034,17 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
   if (scene_.triangle_count() > kKdMaxIndex) return make_error("kdtree: scene has too many triangles (limit 2^30)");
   node_cap_ = std::min<size_t>(o_.node_limit, kKdMaxIndex);
   reporter_ = std::this_thread::get_id();
+  // Two events per triangle and axis at the root, checked before they are allocated.
+  if (6 * prims.size() > o_.event_limit) {
+    const double bytes = double(6 * prims.size()) * sizeof(Event);
+    if (o_.event_limit < o_.memory_limit / 2 / sizeof(Event))  // the fixed limit, not the budget
+      return make_error("kdtree: " + std::to_string(prims.size()) + " triangles need " +
+                        std::to_string(6 * prims.size()) + " build events (limit " + std::to_string(o_.event_limit) +
+                        "); use a bvh for scenes this large");
+    return make_error("kdtree: " + std::to_string(prims.size()) + " triangles make build events of " +
+                      format_bytes(bytes) + ", more than the half of the memory limit (" +
+                      format_bytes(double(o_.memory_limit)) + ") they may use; raise the memory limit");
+  }
   NodeTask root;
   for (std::vector<Event>& list : root.events.axis) list.reserve(2 * prims.size());
   for (uint32_t prim : prims) {
@@ -1044,7 +1055,7 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
   if (build_cancelled(control_)) return cancelled_error();
   auto sort_axis = [&root](int k) { std::sort(root.events.axis[k].begin(), root.events.axis[k].end(), EventLess{}); };
   tbb::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
-  if (root.events.size() > o_.event_limit) return make_error("kdtree: scene too large for the build's event budget");
+
   root.n = prims.size();
   root.box = out_.root_box;
   root.share = 1.0;
@@ -1066,9 +1077,14 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
 
 }  // namespace
 
-Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& options, BuildControl* control,
+Result<KdTreeData> build_kd_tree(const Scene& scene, const KdBuildOptions& given, BuildControl* control,
                                  BuildRecorder* recorder) {
   if (build_cancelled(control)) return cancelled_error();
+  KdBuildOptions options = given;
+  const size_t quarter = options.memory_limit / 4;
+  options.node_limit = std::min(options.node_limit, std::max<size_t>(1, quarter / sizeof(KdNode)));
+  options.reference_limit = std::min(options.reference_limit, std::max<size_t>(1, quarter / sizeof(uint32_t)));
+  options.event_limit = std::min(options.event_limit, std::max<size_t>(1, 2 * quarter / sizeof(Event)));
   // Recording builds serially (the steps in depth-first order, the same tree).
   const bool parallel = recorder == nullptr;
   if (options.max_depth > 0) return KdBuilder(scene, options, control, 0.0, parallel, true).run(recorder);

@@ -112,6 +112,10 @@ struct KdBuildOptions {
   size_t node_limit = size_t(1) << 26;       ///< build fails beyond this many nodes (512 MiB)
   size_t reference_limit = size_t(1) << 27;  ///< ... or this many triangle references (512 MiB)
   size_t event_limit = size_t(1) << 27;      ///< ... or this many live build events (1 GiB)
+  /// The build's memory budget (memory_budget.h). build_kd_tree() lowers the three limits
+  /// above to fit it: the nodes and the references a quarter of it each, the live build
+  /// events (freed as leaves are made) the other half.
+  size_t memory_limit = SIZE_MAX;
 };
 
 /// The automatic depth limit for `n` triangles: round(8 + 1.3 log2 n), at most kKdMaxDepth

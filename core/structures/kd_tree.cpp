@@ -51,7 +51,8 @@ const ParamTable<KdBuildOptions>& KdTree::param_table() {
 Status KdTree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   scene_ = nullptr;
   data_ = KdTreeData{};
-  const KdBuildOptions o = param_table().apply(params);
+  KdBuildOptions o = param_table().apply(params);
+  o.memory_limit = build_memory_limit(control);
   auto built = build_kd_tree(scene, o, control, recorder);
   if (!built) return built.error();
   data_ = std::move(built.value());

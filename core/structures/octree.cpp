@@ -176,7 +176,7 @@ class OctreeBuilder {
         progress_(control, 0.0, 1.0), owner_(std::this_thread::get_id()), sink_(sink) {}
 
   /// The failure a build stopped with (checked in this order of priority by build_octree()).
-  enum class Failure : int { None, Cancelled, Nodes, References };
+  enum class Failure : int { None, Cancelled, Nodes, References, Memory };
 
   Result<OctreeData> run() {
     OctreeData data;
@@ -225,13 +225,31 @@ class OctreeBuilder {
     switch (failure()) {
       case Failure::Nodes: return limit_error("nodes", options_.node_limit);
       case Failure::References: return limit_error("triangle references", options_.reference_limit);
+      case Failure::Memory:
+        return make_error(driving_params_text() + ": " +
+                          over_budget_text(memory_bytes(nodes_total_, refs_total_), options_.memory_limit) +
+                          "; lower max_depth or raise max_prims");
       default: return cancelled_error();
     }
   }
 
+  std::string driving_params_text() const {
+    return "octree parameter 'max_depth' = " + std::to_string(options_.max_depth) +
+           " (with max_prims = " + std::to_string(options_.max_prims) + ")";
+  }
+
+  /// What the build holds with `nodes` nodes and `refs` references: per triangle its
+  /// OctreePrim, per node its entry, parent and depth, per reference an id -- twice, as a
+  /// task's part is copied into its parent's when the two are spliced.
+  double memory_bytes(size_t nodes, size_t refs) const {
+    const double node_bytes = sizeof(OctreeNode) + sizeof(uint32_t) + sizeof(uint8_t);
+    return double(scene_.triangle_count()) * sizeof(OctreePrim) +
+           2.0 * (double(nodes) * node_bytes + double(refs) * sizeof(uint32_t));
+  }
+  bool over_memory() const { return memory_bytes(nodes_total_, refs_total_) > double(options_.memory_limit); }
+
   Error limit_error(const std::string& what, size_t limit) const {
-    return make_error("octree parameter 'max_depth' = " + std::to_string(options_.max_depth) +
-                      " (with max_prims = " + std::to_string(options_.max_prims) + "): would create more than " +
+    return make_error(driving_params_text() + ": would create more than " +
                       std::to_string(limit) + " " + what + " (the build's memory limit); lower max_depth or raise max_prims");
   }
 
@@ -287,6 +305,7 @@ class OctreeBuilder {
     // The limit over all tasks: an over-limit reservation fails the build without allocating.
     if (refs_total_.fetch_add(count, std::memory_order_relaxed) + count > options_.reference_limit)
       return fail(Failure::References);
+    if (over_memory()) return fail(Failure::Memory);
     *out = OctreeNode{uint32_t(part.prim_ids.size()), uint32_t(count)};
     part.prim_ids.insert(part.prim_ids.end(), prims, prims + count);
     ++*reason;
@@ -400,6 +419,7 @@ class OctreeBuilder {
     }
 
     if (nodes_total_.fetch_add(8, std::memory_order_relaxed) + 8 > options_.node_limit) return fail(Failure::Nodes);
+    if (over_memory()) return fail(Failure::Memory);
     const uint32_t first = uint32_t(part.nodes.size());
     for (int k = 0; k < 8; ++k) add_node(part, self, depth + 1);
     *out = OctreeNode{first, OctreeNode::kInner};
@@ -514,7 +534,8 @@ const ParamTable<OctreeOptions>& Octree::param_table() {
 
 Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   scene_ = &scene;
-  const OctreeOptions all = param_table().apply(params);
+  OctreeOptions all = param_table().apply(params);
+  all.build.memory_limit = build_memory_limit(control);
   const OctreeBuildOptions& options = all.build;
   order_ = all.order;
   auto built = build_octree(scene, options, control, recorder);

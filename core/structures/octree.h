@@ -95,6 +95,7 @@ struct OctreeBuildOptions {
   OctreeInsert insert = OctreeInsert::Exact;       ///< child assignment test
   size_t node_limit = size_t(1) << 25;             ///< build fails beyond this many nodes (256 MiB)
   size_t reference_limit = size_t(1) << 27;        ///< build fails beyond this many triangle references
+  size_t memory_limit = SIZE_MAX;                  ///< ... or when its nodes and references pass these bytes
 };
 
 /// How many leaves stopped for which reason (stats and tests).

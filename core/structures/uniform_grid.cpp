@@ -91,18 +91,18 @@ DVec3 resolution_avgsize(const Scene& scene, const DVec3& extent, double lambda)
 }
 
 /// Rounds a rule's real-valued resolution to whole cells in [1, kGridMaxRes] per axis and at
-/// most kGridMaxCells in all. Over either limit every axis shrinks by the same factor, so the
+/// most `max_cells` in all. Over either limit every axis shrinks by the same factor, so the
 /// cells keep the shape the rule gave them.
-GridResolution fit_resolution(DVec3 n) {
+GridResolution fit_resolution(DVec3 n, size_t max_cells) {
   GridResolution out;
   n = glm::max(n, DVec3(1.0));
   double f = std::min(1.0, double(kGridMaxRes) / std::max({n.x, n.y, n.z}));
   const double wanted = n.x * n.y * n.z * f * f * f;
-  if (wanted > double(kGridMaxCells)) f *= std::cbrt(double(kGridMaxCells) / wanted);
+  if (wanted > double(max_cells)) f *= std::cbrt(double(max_cells) / wanted);
   out.clamped_to_budget = f < 1.0;
   for (int a = 0; a < 3; ++a) out.res[a] = std::clamp(int(std::lround(std::max(1.0, n[a] * f))), 1, kGridMaxRes);
   // Rounding up may overshoot the budget by a little: take whole cells off the largest axis.
-  while (size_t(out.res[0]) * size_t(out.res[1]) * size_t(out.res[2]) > kGridMaxCells) {
+  while (size_t(out.res[0]) * size_t(out.res[1]) * size_t(out.res[2]) > max_cells) {
     int& largest = *std::max_element(out.res.begin(), out.res.end());
     largest = std::max(1, largest - 1);
   }
@@ -288,8 +288,30 @@ bool triangle_box_overlap(const DVec3& box_min, const DVec3& box_max, const Vec3
   return true;
 }
 
+namespace {
+
+/// Bytes a grid of `cells` cells with `references` triangle references needs while it is
+/// built: the offsets and the references it keeps, and per triangle its cell range and, for
+/// insert=exact, the memo of overlap answers (one bit per candidate cell).
+double grid_build_bytes(const GridConfig& config, size_t triangles, double cells, double references) {
+  double bytes = 4.0 * (cells + 1.0) + 4.0 * references + double(triangles) * sizeof(CellRange);
+  if (config.insertion == GridInsertion::Exact) bytes += double(triangles + 1) * sizeof(size_t) + references / 8.0;
+  return bytes;
+}
+
+/// The most cells the budget leaves room for next to the triangles' scratch (cells take at
+/// most half of it: the references need the rest).
+size_t max_cells_in_budget(const GridConfig& config, size_t triangles) {
+  const double scratch = grid_build_bytes(config, triangles, 0.0, 0.0);
+  const double room = (double(config.memory_limit) - scratch) / 2.0 / 4.0;
+  return size_t(std::clamp(room, 1.0, double(kGridMaxCells)));
+}
+
+}  // namespace
+
 Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, const GridConfig& config) {
   const DVec3 extent = DVec3(bounds.extent());
+  const size_t triangles = scene.valid_prims().size();
   if (config.explicit_res) {
     GridResolution out;
     for (int a = 0; a < 3; ++a) out.res[a] = std::clamp(config.res[a], 1, kGridMaxRes);
@@ -297,12 +319,18 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
     if (cells > kGridMaxCells)
       return make_error(driving_param_text(config) + ": would create " + res_text(out.res) + " = " +
                         std::to_string(cells) + " cells (limit " + std::to_string(kGridMaxCells) + "); lower it");
+    const double bytes = grid_build_bytes(config, triangles, double(cells), 0.0);
+    if (bytes > double(config.memory_limit))
+      return make_error(driving_param_text(config) + ": " + res_text(out.res) + " cells " +
+                        over_budget_text(bytes, config.memory_limit) + "; lower it");
     return out;
   }
   // A rule of thumb (avgsize on a teapot in a stadium, or a large lambda) may ask for more
   // than the budget: it is shrunk to fit rather than refused.
-  if (config.rule == GridResolutionRule::AvgSize) return fit_resolution(resolution_avgsize(scene, extent, config.lambda));
-  return fit_resolution(resolution_cbrt(extent, scene.valid_prims().size(), config.lambda));
+  const size_t max_cells = max_cells_in_budget(config, triangles);
+  if (config.rule == GridResolutionRule::AvgSize)
+    return fit_resolution(resolution_avgsize(scene, extent, config.lambda), max_cells);
+  return fit_resolution(resolution_cbrt(extent, triangles, config.lambda), max_cells);
 }
 
 namespace {
@@ -375,13 +403,27 @@ Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, B
           return sum;
         },
         std::plus<>());
-    if (candidates <= config.max_references) break;
-    if (config.explicit_res || g.cell_count() == 1)
-      return make_error(driving_param_text(config) + ": would create " + std::to_string(candidates) +
-                        " triangle references in " + res_text(g.res) + " cells (limit " +
+    const double bytes = grid_build_bytes(config, valid.size(), double(g.cell_count()), double(candidates));
+    const bool over_memory = bytes > double(config.memory_limit);
+    if (candidates <= config.max_references && !over_memory) break;
+    if (config.explicit_res || g.cell_count() == 1) {
+      const std::string refs = "would create " + std::to_string(candidates) + " triangle references in " +
+                               res_text(g.res) + " cells";
+      if (over_memory && !config.explicit_res)  // one cell: the scene alone is over the budget
+        return make_error("grid: " + std::to_string(valid.size()) + " triangles in one cell " +
+                          over_budget_text(bytes, config.memory_limit) + "; raise the memory limit");
+      if (over_memory)
+        return make_error(driving_param_text(config) + ": " + refs + " and " +
+                          over_budget_text(bytes, config.memory_limit) + "; lower it");
+      return make_error(driving_param_text(config) + ": " + refs + " (limit " +
                         std::to_string(config.max_references) + "); lower it");
+    }
     // References shrink at least as fast as the cell count's cube root: one or two rounds.
-    const double f = std::min(0.9, std::cbrt(double(config.max_references) / double(candidates)));
+    // The memory's share of references is what the budget leaves after the cells.
+    const double room = (double(config.memory_limit) - grid_build_bytes(config, valid.size(), double(g.cell_count()), 0.0)) /
+                        (config.insertion == GridInsertion::Exact ? 4.125 : 4.0);
+    const double fit = std::max(1.0, std::min(double(config.max_references), room));
+    const double f = std::min(0.9, std::cbrt(fit / double(candidates)));
     for (int& n : g.res) n = std::max(1, int(double(n) * f));
     g.clamped_to_budget = true;
   }
@@ -502,6 +544,7 @@ Status UniformGrid::build_impl(const Scene& scene, const ParamSet& params, Build
   UniformGridOptions options = param_table().apply(params);
   GridConfig& config = options.build;
   config.explicit_res = params.is_set("res");  // a given res overrides the rule
+  config.memory_limit = build_memory_limit(control);
   mailbox_ = options.mailbox;
 
   auto built = build_grid(scene, config, control, recorder);

@@ -29,7 +29,9 @@
 namespace accel {
 
 inline constexpr int kGridMaxRes = 1024;                  ///< cells per axis, at most
-inline constexpr size_t kGridMaxCells = size_t(1) << 26;  ///< memory budget: cells (256 MB of offsets)
+/// The most cells a grid has (256 MB of offsets) whatever the memory budget: past it a
+/// rule's resolution is shrunk, so a rule of thumb never makes a grid slow to walk.
+inline constexpr size_t kGridMaxCells = size_t(1) << 26;
 
 /// How the grid resolution is chosen when `res` is not given.
 enum class GridResolutionRule : uint8_t {
@@ -50,9 +52,12 @@ struct GridConfig {
   bool explicit_res = false;           ///< use `res` instead of the rule
   std::array<int, 3> res{16, 16, 16};  ///< cells per axis when explicit_res
   GridInsertion insertion = GridInsertion::Exact;
-  /// Memory budget on triangle references (tests lower it). A rule's resolution shrinks to
-  /// fit it; an explicit res over it is an error.
+  /// Most triangle references (tests lower it). A rule's resolution shrinks to fit it and
+  /// the memory limit; an explicit res over either is an error.
   size_t max_references = size_t(1) << 28;
+  /// The build's memory budget in bytes (memory_budget.h): the cells, the references and
+  /// the build's per-triangle scratch must fit it.
+  size_t memory_limit = SIZE_MAX;
 };
 
 /// The built grid: plain data in compressed-sparse-row form.

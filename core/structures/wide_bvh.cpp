@@ -34,6 +34,13 @@ Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, Buil
   clear();
   if (build_cancelled(control)) return cancelled_error();
   const HierarchyOptions options = hierarchy_options(params);
+  // Per binary node: its entry, box and depth, and its share of a wide node (W - 1 binary
+  // inner nodes collapse into one).
+  const size_t layout_bytes = sizeof(Entry) + sizeof(Aabb) + sizeof(uint16_t) +
+                              (sizeof(Node) + sizeof(std::array<NodeId, W>)) / (W - 1);
+  if (Status fits = check_bvh_memory(name(), scene, options.build, layout_bytes, build_memory_limit(control));
+      !fits)
+    return fits;
   options_ = options.build;
   // The wide layouts test a leaf's triangles four at a time: the SAH builders know it.
   options_.prims_per_test = 4;

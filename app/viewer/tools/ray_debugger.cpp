@@ -223,6 +223,10 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
       row("total", {ray_.stats.nodes_visited, ray_.stats.nodes_culled, ray_.stats.prims_tested, p.size()});
       ImGui::EndTable();
     }
+    if (ray_.truncated)
+      ImGui::TextWrapped("The traversal made more steps than a recording keeps (%zu MiB): the first %zu steps and the "
+                         "answer are shown; the totals count every step.",
+                         accel::TraceRecorder::kDefaultBudgetBytes >> 20, p.size() - 1);
     if (h.closest_prim >= 0)
       ImGui::Text("closest so far: triangle %d at t=%.5g", h.closest_prim, static_cast<double>(h.closest_t));
     if (ray_.hit.valid())
