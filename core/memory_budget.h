@@ -32,8 +32,4 @@ std::string format_bytes(double bytes);
 /// build stopped on its way there.
 std::string over_budget_text(double needed, size_t limit);
 
-/// Saturating size arithmetic for estimates (a count times a size may exceed size_t on
-/// adversarial parameters; an estimate is compared, never allocated).
-inline double bytes_of(double count, size_t element_size) { return count * double(element_size); }
-
 }  // namespace accel

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,30 +37,82 @@ std::string one_line(std::string msg) {
   return msg;
 }
 
-/// A PLY header that claims more elements than the file can hold is rejected before Assimp
-/// reserves memory for them (a 100-byte file claiming 10^12 vertices must not be an
-/// out-of-memory kill). Each vertex needs at least 3 bytes (ASCII "0 0 0" minus spacing is
-/// already more; binary floats are 12), each face at least 4.
-Status check_ply_counts(const std::string& path, uintmax_t file_size) {
+/// The PLY header, checked before Assimp sees the file: the format line, elements with
+/// their counts, typed properties, `end_header`. Assimp 5.2's PLY reader loops forever on
+/// some malformed headers (a property of an unknown type, found by tests/fuzz's fuzz_mesh),
+/// so nothing it does not define gets through. A header that claims more elements than the
+/// file can hold is rejected here too, before Assimp reserves memory for them (a 100-byte
+/// file claiming 10^12 vertices must not be an out-of-memory kill): each vertex needs at
+/// least 3 bytes (ASCII "0 0 0" minus spacing is already more; binary floats are 12), each
+/// face at least 4.
+Status check_ply_header(const std::string& path, uintmax_t file_size) {
+  static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+                                       "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+  const auto is_type = [](const std::string& t, bool integral_only) {
+    for (const char* k : kTypes)
+      if (t == k) return !integral_only || (t.find("float") == std::string::npos && t != "double");
+    return false;
+  };
+  const auto fail = [&](int line, const std::string& what) {
+    return make_error(path + ":" + std::to_string(line) + ": PLY header: " + what);
+  };
   std::ifstream in(path, std::ios::binary);
   std::string line;
   uintmax_t vertices = 0, faces = 0;
-  for (int n = 0; n < 1000 && std::getline(in, line); ++n) {
+  bool in_element = false;
+  for (int n = 1; n <= 1000 && std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line == "end_header") break;
-    unsigned long long count = 0;
-    char kind[32] = {};
-    if (std::sscanf(line.c_str(), "element %31s %llu", kind, &count) == 2) {
-      if (std::string(kind) == "vertex") vertices = count;
-      else if (std::string(kind) == "face") faces = count;
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (n == 1) {
+      if (line != "ply") return fail(n, "the first line must be 'ply'");
+      continue;
     }
+    if (n == 2) {
+      if (line != "format ascii 1.0" && line != "format binary_little_endian 1.0" &&
+          line != "format binary_big_endian 1.0")
+        return fail(n, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      continue;
+    }
+    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "end_header") {
+      const uintmax_t budget = file_size + 1;
+      if (vertices > budget / 3 || faces > budget / 4)
+        return make_error(path + ": the PLY header declares " + std::to_string(vertices) + " vertices and " +
+                          std::to_string(faces) + " faces, more than a file of " + std::to_string(file_size) +
+                          " bytes can hold");
+      return {};
+    }
+    std::string a, b, c, extra;
+    if (keyword == "element") {
+      if (!(words >> a >> b) || (words >> extra) || b.find_first_not_of("0123456789") != std::string::npos ||
+          b.size() > 19)
+        return fail(n, "expected 'element NAME COUNT'");
+      const uintmax_t count = std::stoull(b);
+      if (a == "vertex") vertices = count;
+      else if (a == "face") faces = count;
+      in_element = true;
+      continue;
+    }
+    if (keyword == "property") {
+      if (!in_element) return fail(n, "a property before the first element");
+      if (!(words >> a)) return fail(n, "expected 'property TYPE NAME'");
+      if (a == "list") {
+        if (!(words >> a >> b >> c) || (words >> extra) || !is_type(a, true) || !is_type(b, true))
+          return fail(n, "expected 'property list COUNT_TYPE INDEX_TYPE NAME' with integer types");
+      } else if (!(words >> b) || (words >> extra) || !is_type(a, false)) {
+        return fail(n, "expected 'property TYPE NAME' with TYPE one of char, uchar, short, ushort, int, uint, "
+                       "float, double (or int8 ... float64)");
+      }
+      continue;
+    }
+    std::string shown = line.substr(0, 40);
+    for (char& ch : shown)
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = '?';  // one printable line
+    return fail(n, "unexpected line '" + shown + "'");
   }
-  const uintmax_t budget = file_size + 1;
-  if (vertices > budget / 3 || faces > budget / 4)
-    return make_error(path + ": the PLY header declares " + std::to_string(vertices) + " vertices and " +
-                      std::to_string(faces) + " faces, more than a file of " + std::to_string(file_size) +
-                      " bytes can hold");
-  return {};
+  return make_error(path + ": PLY header: no 'end_header' line within the first 1000 lines");
 }
 
 struct Collector {
@@ -139,7 +192,7 @@ Result<Scene> load_mesh(const std::string& path) {
   if (ec) return make_error(path + ": cannot read the file size");
   if (size == 0) return make_error(path + ": the file is empty");
   if (extension_of(path) == ".ply")
-    if (Status st = check_ply_counts(path, size); !st) return st.error();
+    if (Status st = check_ply_header(path, size); !st) return st.error();
 
   Assimp::Importer importer;
   const aiScene* scene = nullptr;

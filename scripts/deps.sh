@@ -18,6 +18,7 @@ packages=(
   libembree-dev                              # industry baseline in the benchmark
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
   xdotool                                    # the playlist's keyboard test presses keys in Xvfb
+  clang libclang-rt-dev                      # the sanitizer build and its libFuzzer targets (tests/fuzz)
 )
 
 missing=()

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs missing packages, builds, and runs every test (the viewer's under xvfb-run).
 # Then repeats the core and CLI tests in a second build instrumented with AddressSanitizer
-# and UBSan (build-asan/), with smaller ray counts (ACCEL_TEST_RAY_SCALE) to keep CI short.
+# and UBSan (build-asan/, clang), with smaller ray counts (ACCEL_TEST_RAY_SCALE) to keep CI
+# short, and runs each libFuzzer target of that build for ACCEL_FUZZ_SECONDS (default 45).
 #   ACCEL_SKIP_SANITIZERS=1 scripts/test.sh   # only the Release run
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -13,13 +14,18 @@ echo "== Release build and tests"
 (cd "$root/build" && ctest --output-on-failure -j"$jobs")
 
 if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
-  echo "== AddressSanitizer + UBSan build and tests"
-  # -g1: line tables for the sanitizers' stack traces, without the full debug information
-  # (measured alone: 9 instead of about 14 minutes for this build on 2 cores).
-  cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACCEL_SANITIZE=ON \
+  echo "== AddressSanitizer + UBSan build (clang, with the libFuzzer targets) and tests"
+  # -g1: line tables for the sanitizers' stack traces, without the full debug information.
+  # clang: libFuzzer comes with it, so one build holds the tests, the CLI and tests/fuzz.
+  cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACCEL_SANITIZE=ON -DACCEL_FUZZ=ON \
+        -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
         -DACCEL_BUILD_APP=OFF >/dev/null
   cmake --build "$root/build-asan" -j"$jobs"
+  # The reference answers the instrumented suite compares with, computed by the Release
+  # tests into build-asan's cache (the same double-precision brute force, not instrumented).
+  ACCEL_TEST_RAY_SCALE=0.1 ACCEL_TEST_CACHE_DIR="$root/build-asan/tests/reference_cache" \
+    "$root/build/bin/accel_tests" --gtest_filter='SuiteWarmup.*' >/dev/null
   # Two hard-suite configurations are left to the Release pass: their builds over 3000
   # overlapping coplanar triangles take over a minute each under ASan, and the same code
   # (kd-tree, grid) runs here in the default configurations.
@@ -27,4 +33,6 @@ if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
      ctest --output-on-failure -j"$jobs" \
        -E "HardCases.WatertightKernelPassesEveryCase/(kdtree_split_middle|grid_resolution_avgsize)")
+  echo "== Fuzzing (each libFuzzer target for a bounded time, scripts/fuzz.sh)"
+  ACCEL_FUZZ_BUILD="$root/build-asan" "$root/scripts/fuzz.sh" "${ACCEL_FUZZ_SECONDS:-45}"
 fi

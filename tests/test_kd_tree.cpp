@@ -516,10 +516,12 @@ TEST(KdTreeBuild, SameTreeOnOneAndFourThreads) {
   round_robin.axis = KdAxis::RoundRobin;
   round_robin.max_depth = 24;
   configs.push_back({"median axis=round_robin max_depth=24", round_robin});
-  for (const auto& [what, o] : configs) {
+  for (const auto& config : configs) {
+    const auto& [what, o] = config;
+    const KdBuildOptions& options = o;  // clang before 16 cannot capture a structured binding
     tbb::task_arena one(1), four(4);
-    auto serial = one.execute([&] { return build_kd_tree(scene, o); });
-    auto parallel = four.execute([&] { return build_kd_tree(scene, o); });
+    auto serial = one.execute([&] { return build_kd_tree(scene, options); });
+    auto parallel = four.execute([&] { return build_kd_tree(scene, options); });
     ASSERT_TRUE(serial && parallel) << what;
     EXPECT_GT(serial.value().nodes.size(), 1000u) << what;
     expect_same_tree(serial.value(), parallel.value(), what);

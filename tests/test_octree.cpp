@@ -449,7 +449,7 @@ TEST(OctreeBuild, ManyTrianglesSharingAVertexDoNotExplode) {
 }
 
 TEST(OctreeBuild, NodeBudgetGivesAClearError) {
-  // The real limits (2^25 nodes, 2^27 references) take seconds to reach; the same code path
+  // The real limits (2^32 nodes and references, the memory budget first) take long to reach; the same code path
   // with small limits: 10k random triangles at max_prims = 1 need far more than 10000 nodes.
   const Scene scene = make_procedural_scene("soup").value();
   OctreeBuildOptions options;

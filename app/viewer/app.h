@@ -108,6 +108,8 @@ class App {
   /// Script mode: builds, heat maps, comparisons and sweeps run synchronously, and the
   /// animation does not advance on its own.
   void set_synchronous(bool synchronous);
+  /// The builds' memory budget in bytes (0: the default); rebuilds the current structure.
+  void set_memory_limit(size_t bytes) { session_.set_memory_limit(bytes); }
 
   /// Runs one script command; rendering commands go through `host`. Errors are the
   /// message only (the caller adds "SCRIPT:LINE: ").

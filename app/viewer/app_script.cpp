@@ -185,6 +185,10 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
     case CommandKind::Nodes:
       nodes_.set_visible(c.on);
       return {};
+    case CommandKind::MemoryLimit:
+      session_.set_memory_limit(c.bytes);
+      sync_session();
+      return loaded();
     case CommandKind::Opacity:
       nodes_.set_opacity(c.values[0]);
       return {};

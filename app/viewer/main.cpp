@@ -20,6 +20,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "app.h"
+#include "memory_budget.h"
 #include "paths.h"
 #include "renderer.h"
 #include "scene.h"
@@ -39,6 +40,7 @@ struct Options {
   int width = 1280, height = 720;
   bool no_ui = false;           ///< start with the panels hidden
   int msaa = 4;                 ///< multisample anti-aliasing samples (0 = off)
+  size_t memory_limit = 0;      ///< the builds' memory budget in bytes (0 = the default)
 };
 
 constexpr int kMinSize = 64;
@@ -113,6 +115,10 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   cli.add_option("--size", size_text, "window size WxH, W and H in 64..8192")->capture_default_str();
+  std::string memory_limit_text;
+  cli.add_option("--memory-limit", memory_limit_text,
+                 "memory a structure build may use, e.g. 4G, 512M or 25% (default: 50% of physical memory); "
+                 "as accelviz-cli's, also set in the Structure panel");
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -127,6 +133,14 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   }
   options.width = size->first;
   options.height = size->second;
+  if (!memory_limit_text.empty()) {
+    auto bytes = accel::parse_memory_size(memory_limit_text, "--memory-limit");
+    if (!bytes) {
+      std::fprintf(stderr, "accelviz: %s\n", bytes.error().message.c_str());
+      return 2;
+    }
+    options.memory_limit = bytes.value();
+  }
   if (options.scene.empty()) {
     std::fprintf(stderr, "accelviz: no scene given and the core has no procedural scenes\n");
     return 2;
@@ -293,6 +307,7 @@ int main(int argc, char** argv) {
   // the background while the window opens (synchronously for a script).
   viz::App app;
   app.set_synchronous(script_mode);
+  if (options.memory_limit) app.set_memory_limit(options.memory_limit);
   if (const accel::Status st = app.load_scene(options.scene); !st) {
     std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
     return 2;

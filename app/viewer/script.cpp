@@ -9,6 +9,7 @@
 #include "bench_chart.h"
 #include "color_scheme.h"
 #include "geometry.h"
+#include "memory_budget.h"
 #include "params.h"
 #include "rays_io.h"
 #include "registry.h"
@@ -199,6 +200,15 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (n != 1 || (args[0] != "solid" && args[0] != "translucent" && args[0] != "wireframe" && args[0] != "off"))
       return count_error("mesh solid|translucent|wireframe|off");
     c.name = args[0];
+    return "";
+  }
+  if (verb == "memory-limit") {
+    c.kind = CommandKind::MemoryLimit;
+    if (n != 1) return "usage: memory-limit SIZE (512M, 4G, 25%) or memory-limit default";
+    if (args[0] == "default") return "";
+    auto bytes = accel::parse_memory_size(args[0], "memory-limit");
+    if (!bytes) return bytes.error().message;
+    c.bytes = bytes.value();
     return "";
   }
   if (verb == "opacity") {

@@ -8,6 +8,9 @@
 //   preset NAME                       a preset: scene, camera, ray (see presets.h)
 //   structure NAME [key=value ...]    as accelviz-cli --structure NAME --param key=value
 //   kernel watertight|moller|double
+//   memory-limit SIZE | memory-limit default
+//                                     the builds' memory budget, as accelviz-cli --memory-limit
+//                                     (512M, 4G, 25%); a build over it is a script error
 //   camera EX EY EZ TX TY TZ [FOVY_DEG]
 //   ray-at-pixel X Y                  shoot like a click; pixel from the top-left
 //   ray OX OY OZ DX DY DZ
@@ -82,6 +85,7 @@ enum class CommandKind {
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
   Playlist, Next, Prev, PrintState, Record, RecordStop, Colors, HeatmapScale, PrintHeatmap, HeatmapDiff,
+  MemoryLimit,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };
@@ -95,6 +99,7 @@ struct ScriptCommand {
   std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
   std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
   bool has_fov = false;              ///< camera: FOVY given
+  size_t bytes = 0;                  ///< memory-limit (0: the default)
   int ints[2] = {0, 0};              ///< size W H; step / build-step count; sweep steps; frame count;
                                      ///< record: fps, and size W H in values[0..1] (0: as captured)
   StepMode step = StepMode::Forward;  ///< step, build-step (no Hit)

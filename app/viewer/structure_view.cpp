@@ -98,6 +98,37 @@ std::vector<NodeInstance> filter_nodes(const std::vector<NodeInstance>& nodes, c
   return out;
 }
 
+std::vector<NodeInstance> limit_drawn_nodes(std::vector<NodeInstance> nodes, size_t max_nodes) {
+  if (nodes.size() <= max_nodes) return nodes;
+  std::vector<size_t> per_depth;
+  for (const NodeInstance& n : nodes) {
+    const size_t d = static_cast<size_t>(std::max(0.0f, n.depth));
+    if (d >= per_depth.size()) per_depth.resize(d + 1, 0);
+    ++per_depth[d];
+  }
+  // Levels shallower than `cut` fit whole; of level `cut`, `share` nodes fit.
+  size_t cut = 0, room = max_nodes;
+  while (cut < per_depth.size() && per_depth[cut] <= room) room -= per_depth[cut++];
+  const size_t at_cut = cut < per_depth.size() ? per_depth[cut] : 0;
+  std::vector<NodeInstance> out;
+  out.reserve(max_nodes);
+  size_t seen_at_cut = 0, kept_at_cut = 0;
+  for (const NodeInstance& n : nodes) {
+    const size_t d = static_cast<size_t>(std::max(0.0f, n.depth));
+    if (d < cut) {
+      out.push_back(n);
+    } else if (d == cut) {
+      // Evenly spaced: keep the k-th node when it brings the kept share up to k * room / at_cut.
+      ++seen_at_cut;
+      if (kept_at_cut < room && kept_at_cut * at_cut < seen_at_cut * room) {
+        out.push_back(n);
+        ++kept_at_cut;
+      }
+    }
+  }
+  return out;
+}
+
 int depth_for_budget(const StructureGeometry& g, size_t budget) {
   std::vector<size_t> per_depth(static_cast<size_t>(std::max(g.max_depth, 0)) + 1, 0);
   for (const auto* list : {&g.boxes, &g.spheres})

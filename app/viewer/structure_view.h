@@ -90,6 +90,13 @@ struct NodeFilter {
 /// changes, so a filtered view also costs the GPU less (never per frame).
 std::vector<NodeInstance> filter_nodes(const std::vector<NodeInstance>& nodes, const NodeFilter& filter);
 
+/// The level-of-detail limit on what is drawn: at most `max_nodes` of `nodes`, the
+/// shallowest levels whole (in a tree each parent covers its children, so the coarse levels
+/// summarise what is dropped) and an evenly spaced share of the first level that does not
+/// fit (a grid's cells, all at depth 0, thin out evenly). Order is kept. A 10M-triangle
+/// scene's BVH has millions of boxes, which no projector shows readably or draws fast.
+std::vector<NodeInstance> limit_drawn_nodes(std::vector<NodeInstance> nodes, size_t max_nodes);
+
 /// The deepest depth d such that the nodes of depth <= d number at most `budget` (boxes and
 /// spheres counted); -1 when even the root level is over budget. For a readable (and fast)
 /// first view of structures with millions of nodes.

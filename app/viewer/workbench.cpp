@@ -90,6 +90,7 @@ void BuildRunner::request(std::shared_ptr<const accel::Scene> scene, const Struc
 
 void BuildRunner::start(Pending pending, bool synchronous) {
   control_ = std::make_shared<accel::BuildControl>();
+  control_->set_memory_limit(memory_limit_);
   job_.start(
       [build = build_, control = control_, pending = std::move(pending)](const std::atomic<bool>&) {
         return build(pending.scene, pending.request, control.get());
@@ -117,9 +118,13 @@ double BuildRunner::fraction() const {
 }
 
 void BuildRunner::wait() {
+  cancel();
+  job_.wait();
+}
+
+void BuildRunner::cancel() {
   next_.reset();
   if (control_) control_->cancel();
-  job_.wait();
 }
 
 // ---------------------------------------------------------------------------------------

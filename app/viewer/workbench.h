@@ -146,6 +146,14 @@ class BuildRunner {
   double seconds() const { return job_.seconds(); }
   /// Cancels the running build, forgets the waiting one, and waits for the thread.
   void wait();
+  /// Stops the running build and forgets the waiting one without waiting (the Cancel
+  /// button): the thread returns at the builder's next check and poll() drops its result.
+  void cancel();
+  /// The memory budget of the builds started from now on, in bytes (0: the default,
+  /// accel::default_memory_limit()). A build over it fails with an error naming the
+  /// parameter to lower, as in the CLI's --memory-limit.
+  void set_memory_limit(size_t bytes) { memory_limit_ = bytes; }
+  size_t memory_limit() const { return memory_limit_; }
 
  private:
   struct Pending {
@@ -158,6 +166,7 @@ class BuildRunner {
   Job<accel::Result<BuiltPtr>> job_;
   std::shared_ptr<accel::BuildControl> control_;  // of the running build; the job holds it too
   std::optional<Pending> next_;                   // asked for while a build was running
+  size_t memory_limit_ = 0;
 };
 
 /// Replaces `key`'s value in a key=value list (appends it when absent).

@@ -250,7 +250,7 @@ class OctreeBuilder {
 
   Error limit_error(const std::string& what, size_t limit) const {
     return make_error(driving_params_text() + ": would create more than " +
-                      std::to_string(limit) + " " + what + " (the build's memory limit); lower max_depth or raise max_prims");
+                      std::to_string(limit) + " " + what + " (what its 32-bit indices hold); lower max_depth or raise max_prims");
   }
 
   /// Records the first failure (any thread); every task stops at its next check.

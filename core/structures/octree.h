@@ -93,8 +93,11 @@ struct OctreeBuildOptions {
   int max_prims = 8;                               ///< a cell with <= max_prims triangles is a leaf
   int max_depth = 16;                              ///< deepest level (root = 0), <= kOctreeMaxDepth
   OctreeInsert insert = OctreeInsert::Exact;       ///< child assignment test
-  size_t node_limit = size_t(1) << 25;             ///< build fails beyond this many nodes (256 MiB)
-  size_t reference_limit = size_t(1) << 27;        ///< build fails beyond this many triangle references
+  /// The build fails beyond this many nodes or triangle references: what OctreeNode's 32-bit
+  /// child ids and offsets hold. The memory budget (memory_limit) is what stops a build
+  /// first on any real machine; tests set these lower to reach the failure quickly.
+  size_t node_limit = OctreeNode::kInner - 8;
+  size_t reference_limit = OctreeNode::kInner - 1;
   size_t memory_limit = SIZE_MAX;                  ///< ... or when its nodes and references pass these bytes
 };
 

@@ -121,6 +121,8 @@ TEST(BenchChart, BadFilesGiveOneLineNamingFileRowAndKey) {
   const Case cases[] = {
       {"", "t.json: not valid JSON: parse error at line 1, column 1: "},
       {"[{\"scene\": \n", "t.json: not valid JSON: parse error at line 2, column 1: "},
+      // A number beyond double's range is nlohmann's out_of_range, not a parse_error (fuzz_bench_json).
+      {bench_array({bench_row({{"build_ms", "2e308"}})}), "t.json: not valid JSON: number overflow parsing '2e308'"},
       {"{\"rows\": []}", "t.json: expected a JSON array of rows (accelviz-cli bench --out-json), got an object"},
       {"[]", "t.json: no rows (the array is empty)"},
       {"[" + good + ", 7]", "t.json: row 2: expected an object, got a number"},

@@ -112,6 +112,42 @@ TEST(BuildRunner, WaitCancelsTheRunningBuild) {
   EXPECT_FALSE(runner.busy());
 }
 
+TEST(BuildRunner, CancelStopsTheBuildWithoutWaitingAndDropsItsResult) {
+  auto scene = scene_of("sphere");
+  FakeBuilds fake;
+  BuildRunner runner(fake.fn());
+  runner.request(scene, named("slow"), false);
+  while (!fake.slow_running) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  runner.request(scene, named("waiting"), false);
+  runner.cancel();  // the Cancel button: returns at once, the waiting request is forgotten too
+  for (int i = 0; i < 20000 && runner.busy(); ++i) {
+    EXPECT_FALSE(runner.poll().has_value());  // a cancelled build hands out nothing
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_FALSE(runner.busy());
+  EXPECT_EQ(fake.cancelled.load(), 1);
+  EXPECT_EQ(fake.started.load(), 1);
+}
+
+TEST(BuildRunner, BuildsRunWithinTheMemoryLimitSet) {
+  // A grid of 2^24 cells needs far more than 1 MiB: the viewer's setting reaches the builder,
+  // whose error names the parameter and the limit.
+  auto scene = scene_of("sphere");
+  BuildRunner runner;
+  runner.set_memory_limit(size_t(1) << 20);
+  runner.request(scene, named("grid", {"res=256,256,256"}), false);
+  auto result = poll_until_result(runner);
+  ASSERT_TRUE(result.has_value());
+  ASSERT_FALSE(result->ok());
+  EXPECT_NE(result->error().message.find("'res'"), std::string::npos) << result->error().message;
+  EXPECT_NE(result->error().message.find("memory limit 1 MiB"), std::string::npos) << result->error().message;
+  runner.set_memory_limit(0);  // back to the default: the same grid fits
+  runner.request(scene, named("grid", {"res=256,256,256"}), false);
+  result = poll_until_result(runner);
+  ASSERT_TRUE(result.has_value());
+  EXPECT_TRUE(result->ok()) << result->error().message;
+}
+
 TEST(BuildRunner, RealBuildsTheNewestRequestWins) {
   // Real structures: the first (a kd-tree over the stadium) is cancelled mid-way or, on a
   // fast machine, finishes first and is dropped; either way the grid is what comes out.

@@ -145,6 +145,32 @@ TEST(DepthFilter, LargeStructuresOpenWithTheirTopLevels) {
   EXPECT_EQ(s.hi, 16);
 }
 
+TEST(DepthFilter, TheLevelOfDetailLimitKeepsTheShallowestLevelsWhole) {
+  StructureGeometry big = binary_tree(16);  // 131,071 boxes, 2^d at depth d, in depth order
+  for (size_t i = 0; i < big.boxes.size(); ++i) big.boxes[i].lo.x = float(i);  // which one it was
+  const std::vector<NodeInstance> kept = limit_drawn_nodes(big.boxes, 1000);
+  ASSERT_EQ(kept.size(), 1000u);
+  std::vector<size_t> per_depth(17, 0);
+  float last_at_9 = 0.0f;
+  for (const NodeInstance& n : kept) {
+    ++per_depth[static_cast<size_t>(n.depth)];
+    if (n.depth == 9.0f) last_at_9 = n.lo.x;
+  }
+  for (int d = 0; d <= 8; ++d) EXPECT_EQ(per_depth[d], size_t(1) << d) << "depth " << d;  // 511 whole
+  EXPECT_EQ(per_depth[9], 1000u - 511u);  // the rest of the room from depth 9, none deeper
+  for (int d = 10; d <= 16; ++d) EXPECT_EQ(per_depth[d], 0u);
+  // Evenly spread over depth 9 (boxes 511..1022): not just its first 489.
+  EXPECT_GT(last_at_9, 1000.0f);
+  // Under the limit nothing changes; a uniform grid thins out evenly.
+  EXPECT_EQ(limit_drawn_nodes(big.boxes, big.boxes.size()).size(), big.boxes.size());
+  std::vector<NodeInstance> cells(10000);
+  for (size_t i = 0; i < cells.size(); ++i) cells[i].lo = glm::vec3(float(i), 0, 0);
+  const auto thinned = limit_drawn_nodes(cells, 100);
+  ASSERT_EQ(thinned.size(), 100u);
+  EXPECT_LT(thinned.front().lo.x, 100.0f);
+  EXPECT_GT(thinned.back().lo.x, 9800.0f);
+}
+
 TEST(DepthFilter, FilterOfEachMode) {
   DepthSettings s;
   s.filter = DepthFilter::Leaves;

@@ -423,6 +423,11 @@ def main():
          r"^accelviz: .*bad_tree_select\.txt:4: tree-select: node 99999999 does not exist \(the .+ has \d+ nodes, 0\.\.\d+\)\n$"),
         ("bad_tree_grid.txt", f"size {W} {H}\nscene {SCENE}\nstructure grid\ntree-select 0\n",
          r"^accelviz: .*bad_tree_grid\.txt:4: tree-select: the .+ has no tree"),
+        # The memory budget reaches the viewer's builds: over it, the builder's one line.
+        ("over_budget.txt", f"size {W} {H}\nscene {SCENE}\nmemory-limit 8M\nstructure grid res=256,256,256\n",
+         r"^accelviz: .*over_budget\.txt:4: .*'res'.*memory limit 8 MiB"),
+        ("bad_memory_limit.txt", "memory-limit 12Q\n",
+         r"^accelviz: .*bad_memory_limit\.txt:1: memory-limit '12Q': expected a size"),
         ("bad_bench.txt", f"size {W} {H}\nload-bench /no/such/bench.json\n",
          r"^accelviz: .*bad_bench\.txt:2: /no/such/bench\.json: cannot read the file\n$"),
     ]

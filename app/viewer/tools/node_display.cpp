@@ -92,6 +92,13 @@ bool NodeDisplay::section(const BuiltStructure* built) {
   }
   ImGui::TextDisabled("%s of %s nodes drawn", ui::with_separators(drawn_nodes_).c_str(),
                       ui::with_separators(geometry_.boxes.size() + geometry_.spheres.size()).c_str());
+  if (filtered_nodes_ > drawn_nodes_) {
+    ImGui::TextDisabled("(level-of-detail limit: the %s shallowest of the %s chosen)",
+                        ui::with_separators(drawn_nodes_).c_str(), ui::with_separators(filtered_nodes_).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("At most %s boxes are drawn: the coarse levels whole, then an even share of the next.\n"
+                        "Choose fewer depths to see deeper ones.", ui::with_separators(kMaxDrawnNodes).c_str());
+  }
   if (depth_.auto_limited && depth_.filter == DepthFilter::Range) {
     ImGui::TextDisabled("(a large structure: first shown to depth %d)", depth_.hi);
     ImGui::SameLine();
@@ -139,8 +146,11 @@ void NodeDisplay::upload() {
   // Only the nodes the filter shows go to the GPU: re-done when the filter changes, never
   // per frame. (The vertex shader filters too, but then every instance still costs.)
   const NodeFilter f = node_filter(depth_);
-  const auto boxes = filter_nodes(geometry_.boxes, f);
-  const auto spheres = filter_nodes(geometry_.spheres, f);
+  auto boxes = filter_nodes(geometry_.boxes, f);
+  auto spheres = filter_nodes(geometry_.spheres, f);
+  filtered_nodes_ = boxes.size() + spheres.size();
+  boxes = limit_drawn_nodes(std::move(boxes), kMaxDrawnNodes);
+  spheres = limit_drawn_nodes(std::move(spheres), kMaxDrawnNodes - boxes.size());
   NodeFilter planes_filter = f;
   planes_filter.leaves_only = false;  // split planes belong to inner nodes
   planes_filter.hide_empty = false;

@@ -69,6 +69,10 @@ class NodeDisplay {
   bool geometry_dirty_ = false;  // re-upload the instances
   NodeFilter uploaded_filter_;   // the filter of the instances on the GPU
   size_t drawn_nodes_ = 0;       // instances on the GPU (boxes + spheres)
+  size_t filtered_nodes_ = 0;    // what the filter accepts, before the level-of-detail limit
+  // The level-of-detail limit (limit_drawn_nodes): a quarter million instances of 24 line
+  // vertices each still draw at interactive rates on Mesa's software renderer.
+  static constexpr size_t kMaxDrawnNodes = size_t(1) << 18;
   std::optional<InstancedNodes> boxes_gl_;
   std::optional<InstancedNodes> spheres_gl_;
   std::optional<InstancedNodes> planes_gl_;

@@ -9,6 +9,7 @@
 #include <imgui_stdlib.h>
 
 #include "panels.h"
+#include "memory_budget.h"
 #include "registry.h"
 
 namespace viz {
@@ -32,6 +33,48 @@ accel::Status StructureSession::load_scene(const std::string& spec) {
     panel_.load_error = loaded.error().message;
     return loaded.error();
   }
+  install_scene(spec, std::move(loaded), std::chrono::duration<double, std::milli>(stop - start).count());
+  return {};
+}
+
+void StructureSession::load_scene_in_background(const std::string& spec) {
+  if (synchronous_) {
+    (void)load_scene(spec);  // the error is shown in the panel
+    return;
+  }
+  if (load_job_.busy()) {  // the running load cannot be interrupted: drop its result instead
+    load_dropped_ = true;
+    next_load_ = spec;
+    return;
+  }
+  loading_spec_ = spec;
+  load_dropped_ = false;
+  panel_.load_error.clear();
+  load_job_.start([spec](const std::atomic<bool>&) { return accel::load_scene(spec); });
+}
+
+void StructureSession::cancel_load() {
+  load_dropped_ = load_job_.busy();
+  next_load_.reset();
+}
+
+void StructureSession::poll_load() {
+  if (!load_job_.ready()) return;
+  const double ms = 1000.0 * load_job_.seconds();
+  accel::Result<accel::Scene> loaded = load_job_.take();
+  if (!load_dropped_) {
+    if (loaded) install_scene(loading_spec_, std::move(loaded), ms);
+    else panel_.load_error = loaded.error().message;
+  }
+  load_dropped_ = false;
+  if (next_load_) {
+    const std::string next = *next_load_;
+    next_load_.reset();
+    load_scene_in_background(next);
+  }
+}
+
+void StructureSession::install_scene(const std::string& spec, accel::Result<accel::Scene> loaded, double load_ms) {
   scene_ = std::make_shared<const accel::Scene>(std::move(loaded.value()));
   scene_info_.spec = spec;
   scene_info_.name = scene_->name();
@@ -39,14 +82,13 @@ accel::Status StructureSession::load_scene(const std::string& spec) {
   scene_info_.vertices = scene_->vertex_count();
   scene_info_.degenerate = scene_->degenerate_count();
   scene_info_.bounds = scene_->bounds();
-  scene_info_.load_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+  scene_info_.load_ms = load_ms;
   scene_uploaded_ = false;
   panel_.load_error.clear();
   // The combo shows what is loaded: its preset, or no preset at all (then the file's name).
   preset_index_ = preset_for_scene(presets_, spec);
   events_.scene_loaded = true;
   rebuild();
-  return {};
 }
 
 accel::Status StructureSession::load_preset_scene(const Preset& preset) {
@@ -67,7 +109,8 @@ void StructureSession::poll() {
   // failure of an earlier one would then go unreported, so run them in order.
   std::vector<std::string> loads;
   loads.swap(pending_loads_);
-  for (const std::string& spec : loads) (void)load_scene(spec);  // errors are shown in the panel
+  for (const std::string& spec : loads) load_scene_in_background(spec);  // errors are shown in the panel
+  poll_load();
   poll_build();
 }
 
@@ -160,7 +203,13 @@ SceneActions StructureSession::scene_section(bool has_saved_view) {
   ImGui::SameLine();
   const bool clicked = ImGui::Button("Load mesh");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("OBJ, PLY, STL, glTF 2.0 or GLB (or drop the file onto the window)");
-  if ((entered || clicked) && !panel_.obj_path.empty()) (void)load_scene(panel_.obj_path);  // error shown below
+  if ((entered || clicked) && !panel_.obj_path.empty()) load_scene_in_background(panel_.obj_path);  // error shown below
+  if (load_job_.busy() && !load_dropped_) {
+    // A 10M-triangle mesh takes seconds to parse: the time so far says it is alive.
+    ImGui::Text("loading %s ... %.1f s", scene_label(loading_spec_).c_str(), load_job_.seconds());
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel##load")) cancel_load();
+  }
   if (!panel_.load_error.empty()) ui::error_text(panel_.load_error, 19.0f * em);
 
   if (ImGui::BeginTable("scene", 2, ImGuiTableFlags_SizingFixedFit)) {
@@ -198,9 +247,18 @@ void StructureSession::structure_section() {
     char overlay[96];
     std::snprintf(overlay, sizeof overlay, "building %s ... %.0f%%, %.1f s", requested_.name.c_str(),
                   100.0 * fraction, builds_.seconds());
-    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), overlay);
+    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(14.0f * em, 0.0f), overlay);
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel##build")) {
+      builds_.cancel();
+      build_error_ = requested_.name + ": build cancelled (change a parameter or press Rebuild to build again)";
+    }
   }
-  if (!build_error_.empty()) ui::error_text(build_error_, 19.0f * em);
+  if (!build_error_.empty()) {
+    ui::error_text(build_error_, 19.0f * em);
+    if (ImGui::Button("Rebuild")) rebuild();
+  }
+  memory_limit_widget();
   if (!built_) return;
   const accel::BuildStats& s = built_->stats;
   if (ImGui::BeginTable("build", 2, ImGuiTableFlags_SizingFixedFit)) {
@@ -217,6 +275,33 @@ void StructureSession::structure_section() {
     for (const auto& [key, value] : s.extra) ui::text_row(key.c_str(), value);
     ImGui::EndTable();
   }
+}
+
+void StructureSession::set_memory_limit(size_t bytes) {
+  builds_.set_memory_limit(bytes);
+  memory_limit_text_ = bytes ? accel::format_bytes(double(bytes)) : "";
+  memory_limit_error_.clear();
+  rebuild();
+}
+
+void StructureSession::memory_limit_widget() {
+  const float em = ImGui::GetFontSize();
+  ImGui::SetNextItemWidth(7.0f * em);
+  const std::string hint = accel::format_bytes(double(accel::default_memory_limit()));
+  if (ImGui::InputTextWithHint("memory limit", hint.c_str(), &memory_limit_text_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    if (memory_limit_text_.empty()) {
+      set_memory_limit(0);
+    } else if (auto bytes = accel::parse_memory_size(memory_limit_text_, "memory limit")) {
+      set_memory_limit(bytes.value());
+    } else {
+      memory_limit_error_ = bytes.error().message;
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("what a build may allocate, e.g. 512M, 4G or 25%%; empty: half of this machine's memory (%s).\n"
+                      "A build over it stops with an error naming the parameter to lower.",
+                      hint.c_str());
+  if (!memory_limit_error_.empty()) ui::error_text(memory_limit_error_, 19.0f * em);
 }
 
 void StructureSession::init_gl() {

@@ -40,8 +40,20 @@ class StructureSession {
   /// Loads `spec` (OBJ path or procedural:NAME); on success it becomes the scene and its
   /// structure is rebuilt. On failure the old scene stays and the error is also shown.
   accel::Status load_scene(const std::string& spec);
+  /// Loads `spec` on a background thread (the panel's Load button, dropped files): the old
+  /// scene stays drawn and usable meanwhile, the panel shows the time taken and a Cancel
+  /// button; poll() installs the result. Synchronous in script mode. A load asked for while
+  /// one runs replaces it (the running one's result is dropped).
+  void load_scene_in_background(const std::string& spec);
   /// Queues a load for the next poll() (drop callback: outside any ImGui frame).
   void request_load(std::string spec) { pending_loads_.push_back(std::move(spec)); }
+  /// True while a background load runs.
+  bool loading() const { return load_job_.busy(); }
+  /// Drops the running background load (the old scene stays).
+  void cancel_load();
+  /// The memory budget of the structure builds (0: the default, half of physical memory);
+  /// the current structure is rebuilt under it.
+  void set_memory_limit(size_t bytes);
   /// Loads a preset's scene, its structure in the editor first when it names one.
   accel::Status load_preset_scene(const Preset& preset);
   /// Builds and scripts wait for each other (script mode) instead of running behind.
@@ -115,11 +127,22 @@ class StructureSession {
   void request(const StructureRequest& request);
   void poll_build();
   void install(BuiltPtr built);
+  void install_scene(const std::string& spec, accel::Result<accel::Scene> loaded, double load_ms);
+  void poll_load();
+  void memory_limit_widget();
 
   std::shared_ptr<const accel::Scene> scene_;
   SceneInfo scene_info_;
   ScenePanelState panel_;
   std::vector<std::string> pending_loads_;
+  // The background load: its spec, whether it was replaced or cancelled (its result is then
+  // dropped), and the load asked for meanwhile.
+  Job<accel::Result<accel::Scene>> load_job_;
+  std::string loading_spec_;
+  bool load_dropped_ = false;
+  std::optional<std::string> next_load_;
+  std::string memory_limit_text_;  // the Structure section's field ("" = the default)
+  std::string memory_limit_error_;
   std::vector<Preset> presets_;
   int preset_index_ = 0;  // the combo's entry; -1: the loaded scene is no preset
   ParamEditor editor_;
