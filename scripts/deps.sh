@@ -18,6 +18,7 @@ packages=(
   libembree-dev                              # industry baseline in the benchmark
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
   xdotool                                    # the playlist's keyboard test presses keys in Xvfb
+  time                                       # /usr/bin/time -v: peak memory in scripts/bench_huge.sh
 )
 
 missing=()
