@@ -1,11 +1,13 @@
 // Procedural scenes: they need no file, so the viewer's default scene and the tests work
 // on a fresh clone. Each is deterministic for a given seed (random.h).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <utility>
 
+#include "check.h"
 #include "random.h"
 #include "scene.h"
 #include "traps.h"
@@ -155,17 +157,133 @@ Scene make_terrain() {
   return Scene(std::move(m.positions), std::move(m.triangles), "procedural:terrain");
 }
 
+// [huge] A heightfield with scattered closed objects (make_scattered_scene).
+
+constexpr float kScatterWidth = 200.0f, kScatterDepth = 125.0f;  // the terrain's extent in x and z
+constexpr uint32_t kScatterClusters = 24;
+constexpr float kClusteredShare = 0.65f;  // objects placed in a cluster, the rest spread evenly
+constexpr float kFloatingShare = 0.2f;    // spheres floating above the ground
+
+/// Rolling hills with a ridge and some roughness, about +-9 over the 200 x 125 area.
+float scatter_height(float x, float z) {
+  return 6.0f * std::sin(0.05f * x) * std::cos(0.07f * z) + 2.5f * std::sin(0.17f * x + 0.11f * z) +
+         0.6f * std::sin(0.9f * x) * std::sin(0.8f * z);
+}
+
+/// A point on the terrain's (x, z) area for one object: in one of the clusters (denser at
+/// its centre) or anywhere.
+struct ScatterPlacer {
+  Rng& rng;
+  std::array<Vec3, kScatterClusters> clusters;  // centre x, radius, centre z
+
+  explicit ScatterPlacer(Rng& r) : rng(r) {
+    for (Vec3& c : clusters) {
+      c.x = rng.uniform(-0.4f, 0.4f) * kScatterWidth;
+      c.y = rng.uniform(3.0f, 12.0f);
+      c.z = rng.uniform(-0.4f, 0.4f) * kScatterDepth;
+    }
+  }
+  std::pair<float, float> place() {
+    if (rng.uniform() < kClusteredShare) {
+      const Vec3& c = clusters[std::min<size_t>(size_t(rng.uniform() * kScatterClusters), kScatterClusters - 1)];
+      const float a = 2.0f * std::numbers::pi_v<float> * rng.uniform(), u = rng.uniform();
+      const float r = c.y * u * u;
+      return {std::clamp(c.x + r * std::cos(a), -0.5f * kScatterWidth, 0.5f * kScatterWidth),
+              std::clamp(c.z + r * std::sin(a), -0.5f * kScatterDepth, 0.5f * kScatterDepth)};
+    }
+    return {rng.uniform(-0.5f, 0.5f) * kScatterWidth, rng.uniform(-0.5f, 0.5f) * kScatterDepth};
+  }
+};
+
+constexpr uint32_t icosphere_vertices(int level) { return 10u * (1u << (2 * level)) + 2u; }
+constexpr uint32_t icosphere_triangles(int level) { return 20u * (1u << (2 * level)); }
+
+}  // namespace
+
+size_t ScatteredSceneSize::triangle_count() const {
+  size_t n = size_t(2) * terrain_x * terrain_z + size_t(12) * boxes;
+  for (int l = 0; l < 4; ++l) n += size_t(spheres[size_t(l)]) * icosphere_triangles(l + 1);
+  return n;
+}
+
+size_t ScatteredSceneSize::vertex_count() const {
+  size_t n = size_t(terrain_x + 1) * (terrain_z + 1) + size_t(8) * boxes;
+  for (int l = 0; l < 4; ++l) n += size_t(spheres[size_t(l)]) * icosphere_vertices(l + 1);
+  return n;
+}
+
+Scene make_scattered_scene(const ScatteredSceneSize& size, uint32_t seed, std::string name) {
+  MeshBuilder m;
+  m.positions.reserve(size.vertex_count());
+  m.triangles.reserve(size.triangle_count());
+  ACCEL_CHECK(size.terrain_x > 0 && size.terrain_z > 0);
+  const uint32_t nx = size.terrain_x, nz = size.terrain_z;
+  for (uint32_t z = 0; z <= nz; ++z)
+    for (uint32_t x = 0; x <= nx; ++x) {
+      const float px = (float(x) / float(nx) - 0.5f) * kScatterWidth, pz = (float(z) / float(nz) - 0.5f) * kScatterDepth;
+      m.vertex(Vec3(px, scatter_height(px, pz), pz));
+    }
+  for (uint32_t z = 0; z < nz; ++z)
+    for (uint32_t x = 0; x < nx; ++x) {
+      const uint32_t i = z * (nx + 1) + x;
+      m.triangle(i, i + nx + 1, i + 1);
+      m.triangle(i + 1, i + nx + 1, i + nx + 2);
+    }
+
+  Rng rng(seed);
+  ScatterPlacer placer(rng);
+  // Boxes stand on the ground (sunk a little into its slope), yawed, up to 6 tall.
+  constexpr std::array<UVec3, 12> kBoxFaces = {{{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                                {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}}};
+  for (uint32_t b = 0; b < size.boxes; ++b) {
+    const auto [x, z] = placer.place();
+    const float hw = rng.uniform(0.1f, 1.0f), hd = rng.uniform(0.1f, 1.0f), h = rng.uniform(0.3f, 6.0f);
+    const float yaw = 2.0f * std::numbers::pi_v<float> * rng.uniform(), c = std::cos(yaw), sn = std::sin(yaw);
+    const float y0 = scatter_height(x, z) - 0.3f;
+    const uint32_t base = uint32_t(m.positions.size());
+    for (int k = 0; k < 8; ++k) {  // box()'s corners: x high at 1,2,5,6, y at 2,3,6,7, z at 4..7
+      const float lx = (k == 1 || k == 2 || k == 5 || k == 6) ? hw : -hw;
+      const float ly = (k == 2 || k == 3 || k == 6 || k == 7) ? h : 0.0f;
+      const float lz = k >= 4 ? hd : -hd;
+      m.vertex(Vec3(x + c * lx - sn * lz, y0 + ly, z + sn * lx + c * lz));
+    }
+    for (const UVec3& f : kBoxFaces) m.triangle(base + f.x, base + f.y, base + f.z);
+  }
+  // Icospheres: one unit template per level, scaled (flattened or stretched in y), resting
+  // half sunk on the ground or floating up to 25 above it.
+  constexpr std::array<std::pair<float, float>, 4> kRadius = {{{0.08f, 0.25f}, {0.2f, 0.6f}, {0.5f, 1.5f}, {1.5f, 4.0f}}};
+  for (int level = 1; level <= 4; ++level) {
+    MeshBuilder unit;
+    unit.icosphere(Vec3(0.0f), 1.0f, level);
+    for (uint32_t i = 0; i < size.spheres[size_t(level - 1)]; ++i) {
+      const auto [x, z] = placer.place();
+      const float r = rng.uniform(kRadius[size_t(level - 1)].first, kRadius[size_t(level - 1)].second);
+      const float squash = rng.uniform(0.6f, 1.3f);
+      const float lift = rng.uniform() < kFloatingShare ? rng.uniform(2.0f, 25.0f) : 0.0f;
+      const Vec3 centre(x, scatter_height(x, z) + 0.5f * r * squash + lift, z);
+      const uint32_t base = uint32_t(m.positions.size());
+      for (const Vec3& p : unit.positions) m.vertex(centre + r * Vec3(p.x, squash * p.y, p.z));
+      for (const UVec3& t : unit.triangles) m.triangle(base + t.x, base + t.y, base + t.z);
+    }
+  }
+  return Scene(std::move(m.positions), std::move(m.triangles), std::move(name));
+}
+
+namespace {
+
 struct ProceduralEntry {
   const char* name;
   const char* description;
   bool large;  ///< too big for the brute-force-checked test suites
 };
-constexpr std::array<ProceduralEntry, 5> kProcedural = {{
+constexpr std::array<ProceduralEntry, 6> kProcedural = {{
     {"stadium", "teapot in a stadium: a dense 20k-triangle object in a huge sparse room", false},
     {"sphere", "icosphere, 5120 triangles, closed mesh with shared vertices", false},
     {"soup", "10k random triangles in the unit cube (seeded)", false},
     {"cornell", "Cornell-box-like room with two blocks and a ball, mostly axis-aligned", false},
     {"terrain", "heightfield of rolling hills, 1,048,352 triangles (for frame-rate and build-time tests)", true},
+    {"huge", "10,000,000 triangles: a 5M-triangle heightfield and 29,400 closed boxes and icospheres (5M) in "
+             "clusters and scattered (the huge-scene bench)", true},
 }};
 
 }  // namespace
@@ -200,6 +318,7 @@ Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed) {
   if (name == "cornell") return make_cornell();
   if (name == "stadium") return make_stadium();
   if (name == "terrain") return make_terrain();
+  if (name == "huge") return make_scattered_scene(ScatteredSceneSize{}, seed);
   if (!trap_of(name).empty() && trap_demo(trap_of(name))) return make_trap_scene(trap_of(name));
   std::string valid;
   for (const auto& e : kProcedural) valid += std::string(valid.empty() ? "" : ", ") + e.name;

@@ -1,6 +1,7 @@
 #pragma once
 // Scene: exactly what ray casting needs (positions, triangles, their bounds) and nothing
 // more: no materials, normals, textures or scene graph.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -82,12 +83,34 @@ bool is_mesh_format(const std::string& path);
 Result<Scene> load_mesh(const std::string& path);
 
 /// Names accepted by make_procedural_scene(), e.g. "sphere", "soup", "cornell", "stadium";
-/// the large ones ("terrain", ~1M triangles) only with include_large.
+/// the large ones ("terrain", ~1M triangles; "huge", 10M) only with include_large.
 std::vector<std::string> procedural_scene_names(bool include_large = false);
 /// One-line description of a procedural scene, for help texts and the viewer's presets.
 std::string procedural_scene_description(std::string_view name);
 /// Builds a procedural scene by name; `seed` varies the random ones. Unknown name -> Error.
 Result<Scene> make_procedural_scene(std::string_view name, uint32_t seed = 1);
+/// The parts of a scattered scene (make_scattered_scene): a heightfield of rolling hills over a
+/// fixed 200 x 125 area, and closed objects on and above it. The defaults are
+/// "procedural:huge", 10,000,000 triangles; the tests scale them down.
+struct ScatteredSceneSize {
+  uint32_t terrain_x = 2000, terrain_z = 1250;  ///< heightfield cells along x and z (>= 1), 2 triangles each
+  uint32_t boxes = 20000;                       ///< yawed boxes (12 triangles, 8 shared vertices)
+  /// Icospheres per subdivision level 1..4 (80, 320, 1280, 5120 triangles each).
+  std::array<uint32_t, 4> spheres = {2700, 5000, 1500, 200};
+
+  /// Triangles of the scene this size makes.
+  size_t triangle_count() const;
+  /// Vertices of the scene this size makes (every mesh shares its vertices).
+  size_t vertex_count() const;
+};
+
+/// A heightfield terrain (triangles first, row by row) followed by scattered closed objects
+/// (boxes, then icospheres from level 1 to 4), most of them in clusters of varying radius, the
+/// rest spread evenly, a fifth of the spheres floating: dense and sparse regions, objects of
+/// sizes from 0.1 to 8 over a 200-wide terrain. Deterministic for a given size and seed
+/// (random.h); no degenerate triangles.
+Scene make_scattered_scene(const ScatteredSceneSize& size, uint32_t seed = 1, std::string name = "procedural:huge");
+
 /// Loads "procedural:NAME" via make_procedural_scene, .ply/.stl/.gltf/.glb via load_mesh,
 /// anything else via load_obj.
 Result<Scene> load_scene(const std::string& spec);

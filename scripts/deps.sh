@@ -19,6 +19,7 @@ packages=(
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
   xdotool                                    # the playlist's keyboard test presses keys in Xvfb
   clang libclang-rt-dev                      # the sanitizer build and its libFuzzer targets (tests/fuzz)
+  time                                       # /usr/bin/time -v: peak memory in scripts/bench_huge.sh
 )
 
 missing=()

@@ -1,6 +1,9 @@
 // OBJ loading (numbering, fan triangulation, every kind of bad input) and procedural scenes.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -185,6 +188,65 @@ TEST(Procedural, StadiumIsATinyObjectInAHugeRoom) {
   ASSERT_TRUE(s);
   EXPECT_GT(s.value().bounds().extent().x, 100.0f * 1.0f);  // room ~200 wide, object ~1
   EXPECT_GT(s.value().triangle_count(), 20000u);
+}
+
+TEST(Procedural, HugeIsTenMillionTrianglesAndLarge) {
+  // Counted, not generated: the 10M-triangle scene takes seconds; the test below runs its
+  // generator at a small size.
+  EXPECT_EQ(ScatteredSceneSize{}.triangle_count(), 10'000'000u);
+  const auto all = procedural_scene_names(true), small = procedural_scene_names();
+  EXPECT_NE(std::find(all.begin(), all.end(), "huge"), all.end());
+  EXPECT_EQ(std::find(small.begin(), small.end(), "huge"), small.end());
+  EXPECT_FALSE(procedural_scene_description("huge").empty());
+}
+
+TEST(Procedural, ScatteredSceneIsATerrainWithClosedObjects) {
+  ScatteredSceneSize size;
+  size.terrain_x = 40;
+  size.terrain_z = 25;
+  size.boxes = 200;
+  size.spheres = {27, 50, 15, 2};
+  const Scene a = make_scattered_scene(size, 3), b = make_scattered_scene(size, 3), c = make_scattered_scene(size, 4);
+  ASSERT_EQ(a.triangle_count(), size.triangle_count());
+  EXPECT_EQ(a.vertex_count(), size.vertex_count());
+  EXPECT_EQ(a.degenerate_count(), 0u);
+  EXPECT_EQ(a.positions(), b.positions());
+  EXPECT_EQ(a.triangles(), b.triangles());
+  EXPECT_NE(a.positions(), c.positions());
+  EXPECT_EQ(a.name(), "procedural:huge");
+  // The terrain spans 200 x 125; objects stand on it and float at most ~30 above it.
+  const Aabb& box = a.bounds();
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(box.min[k]) && std::isfinite(box.max[k]));
+  EXPECT_GE(box.extent().x, 200.0f);
+  EXPECT_LT(box.extent().x, 210.0f);
+  EXPECT_GE(box.extent().z, 125.0f);
+  EXPECT_LT(box.extent().z, 135.0f);
+  EXPECT_LT(box.extent().y, 50.0f);
+  // Every object is closed and consistently oriented: each directed edge once, and its
+  // reverse once (the terrain, first, is an open sheet).
+  const size_t terrain = size_t(2) * size.terrain_x * size.terrain_z;
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;
+  for (size_t t = terrain; t < a.triangle_count(); ++t) {
+    const UVec3& tri = a.triangles()[t];
+    for (int k = 0; k < 3; ++k) ++edges[{tri[k], tri[(k + 1) % 3]}];
+  }
+  for (const auto& [edge, count] : edges) {
+    ASSERT_EQ(count, 1) << edge.first << "-" << edge.second;
+    ASSERT_TRUE(edges.contains({edge.second, edge.first})) << edge.first << "-" << edge.second;
+  }
+  // ... and faces outwards: each box (12 triangles) and all the spheres enclose a positive volume.
+  auto volume = [&](size_t first, size_t count) {
+    double v = 0.0;
+    for (size_t t = first; t < first + count; ++t) {
+      const DVec3 p0(a.vertex(uint32_t(t), 0)), p1(a.vertex(uint32_t(t), 1)), p2(a.vertex(uint32_t(t), 2));
+      v += glm::dot(p0, glm::cross(p1, p2)) / 6.0;
+    }
+    return v;
+  };
+  for (uint32_t box_index = 0; box_index < size.boxes; ++box_index)
+    ASSERT_GT(volume(terrain + 12 * size_t(box_index), 12), 0.0) << "box " << box_index;
+  const size_t spheres_first = terrain + 12 * size_t(size.boxes);
+  EXPECT_GT(volume(spheres_first, a.triangle_count() - spheres_first), 0.0);
 }
 
 }  // namespace

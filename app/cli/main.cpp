@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   stats_cmd->add_flag("--json", stats.json, "print JSON instead of text");
   stats_cmd->add_option("--rays", stats.rays,
                         "also trace these rays (file, primary:W:H or random:N:SEED) and report nodes visited and "
-                        "triangles tested per ray");
+                        "triangles tested per ray, and the time with the counters off (trace_fast_ms) and on");
   stats_cmd->add_option("--threads", stats.threads, "worker threads for --rays (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   stats_cmd->add_option("--build-trace", stats.build_trace,

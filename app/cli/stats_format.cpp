@@ -51,11 +51,12 @@ std::string json_quote(const std::string& s) {
 }
 
 std::string stats_text(const std::string& scene, const std::string& structure, const std::string& params,
-                       const accel::Scene& s, const accel::BuildStats& b, const QueryReport& q) {
+                       const accel::Scene& s, double load_ms, const accel::BuildStats& b, const QueryReport& q) {
   std::string t;
   auto line = [&](const std::string& k, const std::string& v) { t += k + ": " + v + "\n"; };
   line("scene", scene);
   line("triangles", std::to_string(s.triangle_count()) + " (" + std::to_string(s.degenerate_count()) + " degenerate)");
+  line("load_ms", num(load_ms));
   line("structure", structure);
   line("params", params.empty() ? "(defaults)" : params);
   line("build_ms", num(b.build_ms));
@@ -78,12 +79,13 @@ std::string stats_text(const std::string& scene, const std::string& structure, c
     line("nodes_culled_per_ray", num(q.culled_per_ray));
     line("tris_tested_per_ray", num(q.prims_per_ray));
     line("trace_ms", num(q.trace_ms) + " (" + std::to_string(q.threads) + " threads, counters on)");
+    line("trace_fast_ms", num(q.trace_fast_ms) + " (" + std::to_string(q.threads) + " threads, counters off)");
   }
   return t;
 }
 
 std::string stats_json(const std::string& scene, const std::string& structure, const std::string& params,
-                       const accel::Scene& s, const accel::BuildStats& b, const QueryReport& q) {
+                       const accel::Scene& s, double load_ms, const accel::BuildStats& b, const QueryReport& q) {
   std::string j = "{";
   auto field = [&](const std::string& k, const std::string& v) {
     j += (j.size() > 1 ? ", " : "") + json_quote(k) + ": " + v;
@@ -91,6 +93,7 @@ std::string stats_json(const std::string& scene, const std::string& structure, c
   field("scene", json_quote(scene));
   field("triangles", std::to_string(s.triangle_count()));
   field("degenerate_triangles", std::to_string(s.degenerate_count()));
+  field("load_ms", num(load_ms));
   field("structure", json_quote(structure));
   field("params", json_quote(params));
   field("build_ms", num(b.build_ms));
@@ -120,6 +123,7 @@ std::string stats_json(const std::string& scene, const std::string& structure, c
     field("nodes_culled_per_ray", num(q.culled_per_ray));
     field("tris_tested_per_ray", num(q.prims_per_ray));
     field("trace_ms", num(q.trace_ms));
+    field("trace_fast_ms", num(q.trace_fast_ms));
   }
   return j + "}\n";
 }
