@@ -17,6 +17,7 @@
 #include "random.h"
 #include "ray_gen.h"
 #include "registry.h"
+#include "structure_suite.h"
 #include "test_support.h"
 
 namespace accel::testing {
@@ -108,27 +109,21 @@ const std::vector<AdversarialScene>& adversarial_scenes() {
   return scenes;
 }
 
-/// Peak resident memory of this process since the last reset_peak_memory(), in bytes (0
-/// where /proc cannot tell).
-size_t peak_memory_bytes() {
+/// A line "KEY: N kB" of /proc/self/status in bytes (0 where /proc cannot tell): VmRSS is
+/// the resident memory now, VmHWM its peak since the last reset_peak_memory().
+size_t status_bytes(const std::string& wanted) {
   std::ifstream status("/proc/self/status");
   std::string key;
   size_t kb = 0;
   while (status >> key)
-    if (key == "VmHWM:" && status >> kb) return kb << 10;
+    if (key == wanted && status >> kb) return kb << 10;
   return 0;
 }
+size_t peak_memory_bytes() { return status_bytes("VmHWM:"); }
+size_t resident_memory_bytes() { return status_bytes("VmRSS:"); }
 bool reset_peak_memory() {
   std::ofstream clear("/proc/self/clear_refs");
   return bool(clear << "5");
-}
-size_t resident_memory_bytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  size_t kb = 0;
-  while (status >> key)
-    if (key == "VmRSS:" && status >> kb) return kb << 10;
-  return 0;
 }
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -143,18 +138,8 @@ constexpr bool kInstrumented = false;
 constexpr bool kInstrumented = false;
 #endif
 
-struct ExtremeCase {
-  std::string structure;
-  std::vector<std::string> params;
-};
-
-std::string case_name(const ::testing::TestParamInfo<ExtremeCase>& info) {
-  std::string name = info.param.structure;
-  for (const std::string& kv : info.param.params) name += "_" + kv;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
-}
+/// A structure and its parameters, named in the tests as the structure suite names them.
+using ExtremeCase = SuiteCase;
 
 /// Every parameter at the end of its range that makes a structure bigger or slower.
 std::vector<ExtremeCase> extreme_cases() {
@@ -206,10 +191,12 @@ TEST_P(ExtremeParameters, BuildWithinTheBudgetOrStopNamingTheParameter) {
     // triangles) takes about 3 s in Release.
     EXPECT_LT(seconds, kInstrumented ? 120.0 : 20.0);
     if (measured) {
-      // The structure plus the builder's scratch, within the budget (and 16 MiB for the
-      // allocator's slack and the thread pool's stacks).
+      // The budget is checked against the builders' estimates of what they hold (nodes,
+      // references, per-triangle data), not against every scratch buffer of every task:
+      // the peak stays within a quarter above it, plus 16 MiB for the allocator's slack and
+      // the thread pool's stacks.
       const size_t peak = peak_memory_bytes();
-      EXPECT_LE(peak > before ? peak - before : 0, limit + (size_t(16) << 20))
+      EXPECT_LE(peak > before ? peak - before : 0, limit + limit / 4 + (size_t(16) << 20))
           << "peak " << format_bytes(double(peak)) << " from " << format_bytes(double(before));
     }
     if (!built) {
@@ -228,14 +215,14 @@ TEST_P(ExtremeParameters, BuildWithinTheBudgetOrStopNamingTheParameter) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Adversarial, ExtremeParameters, ::testing::ValuesIn(extreme_cases()), case_name);
+INSTANTIATE_TEST_SUITE_P(Adversarial, ExtremeParameters, ::testing::ValuesIn(extreme_cases()), suite_case_name);
 
 // Each structure's failure names the parameter that made it big, on a scene that makes it
 // big, with a budget of 1 MiB.
 TEST(MemoryBudget, ErrorsNameTheParameterToLower) {
   const bool small = ray_scale() < 1.0;
   const Scene slivers = overlapping_slivers(small ? 400 : 2000);
-  const Scene scattered = huge_among_tiny(small ? 5000 : 20000);
+  const Scene scattered = huge_among_tiny(20000);  // fewer fit in 1 MiB; the build stops at once
   struct Expect {
     std::string structure;
     std::vector<std::string> params;

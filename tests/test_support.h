@@ -72,22 +72,14 @@ inline uint64_t fnv1a(const void* data, size_t n, uint64_t h = 14695981039346656
   return h;
 }
 
-/// Where reference answers are cached: the environment's ACCEL_TEST_CACHE_DIR, else the build's.
-/// scripts/test.sh points the uninstrumented tests at the sanitizer build's folder to fill
-/// it there, ten times faster than the instrumented code would (the answers are the same).
-inline std::filesystem::path reference_cache_dir() {
-  const char* env = std::getenv("ACCEL_TEST_CACHE_DIR");
-  return env && *env ? std::filesystem::path(env) : std::filesystem::path(ACCEL_TEST_CACHE_DIR);
-}
-
 /// Reference hits of `rays`, brute force in double. ctest runs every test in its own
-/// process, so results are cached on disk (reference_cache_dir()), keyed by a hash of the
+/// process, so results are cached on disk (ACCEL_TEST_CACHE_DIR), keyed by a hash of the
 /// scene and the rays, and written atomically so parallel tests may race harmlessly.
 inline std::vector<ReferenceHit> reference_hits(const Scene& scene, const std::vector<Ray>& rays) {
   uint64_t h = fnv1a(scene.positions().data(), scene.positions().size() * sizeof(Vec3));
   h = fnv1a(scene.triangles().data(), scene.triangles().size() * sizeof(UVec3), h);
   h = fnv1a(rays.data(), rays.size() * sizeof(Ray), h);
-  const std::filesystem::path dir = reference_cache_dir();
+  const std::filesystem::path dir(ACCEL_TEST_CACHE_DIR);
   const std::filesystem::path file = dir / (std::to_string(h) + ".ref");
   std::vector<ReferenceHit> ref(rays.size());
   {

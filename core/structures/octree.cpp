@@ -449,7 +449,9 @@ class OctreeBuilder {
       const size_t size = sizes[octant];
       const Aabb child_box = octree_child_box(box, octant);
       const bool stuck = size == n && (poor || bounds.contains(child_box));
-      const double child_share = share * double(size) / double(refs);
+      // No child took a triangle (exact insertion over triangles that touch no child's box
+      // interior, clang's UBSan caught the 0/0): the eight share the node's part evenly.
+      const double child_share = refs > 0 ? share * double(size) / double(refs) : share / 8.0;
       record_node(id, self, depth + 1, child_box, child, size);
       return stuck ? leaf(into, id, LeafReason::NoProgress, child, size, &into.reasons.inseparable, child_share, value)
                    : build_node(into, id, child_box, depth + 1, child, size, child_share, scr, value);

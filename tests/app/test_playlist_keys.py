@@ -26,9 +26,12 @@ def main():
             print("skipped: xvfb-run or xdotool not found (Debian packages xvfb, xdotool)")
             return 77
         # One X server for the whole run; this script again inside it.
-        # xvfb-run's temporary directory in one of our own (see test_viewer_scripts.py).
+        # An X authority file of our own: xvfb-run then has no temporary directory whose
+        # clean-up could fail (see test_viewer_scripts.py).
         tmp = tempfile.mkdtemp(prefix="accel_keys_xvfb_")
-        code = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", sys.executable, __file__,
+        auth = os.path.join(tmp, "Xauthority")
+        open(auth, "w").close()
+        code = subprocess.run(["xvfb-run", "-a", "-f", auth, "-s", "-screen 0 1280x1024x24", sys.executable, __file__,
                                "--viewer", args.viewer, "--playlist", args.playlist, "--inner"],
                               env=dict(os.environ, TMPDIR=tmp)).returncode
         shutil.rmtree(tmp, ignore_errors=True)

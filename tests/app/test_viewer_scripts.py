@@ -62,12 +62,15 @@ def run(cmd, timeout=300, env=None):
 
 
 def viewer(args, script_path):
-    xvfb = [args.xvfb, "-a", "-s", "-screen 0 1280x1024x24"]
-    # xvfb-run keeps its X authority file in a temporary directory it removes at the end; in
-    # one of our own (TMPDIR) nothing else running beside the test can disturb that clean-up
-    # (it once failed, and xvfb-run then exits 5 whatever the viewer returned).
+    # xvfb-run keeps its X authority file in a temporary directory it removes at the end, and
+    # exits 5 whatever the viewer returned when that clean-up fails (it did, on a busy
+    # machine, even in a TMPDIR of our own). With an authority file of our own (-f) it makes
+    # no directory and has none to remove.
     tmp = os.path.join(os.path.dirname(script_path), "xvfb-tmp")
     os.makedirs(tmp, exist_ok=True)
+    auth = os.path.join(tmp, os.path.basename(script_path) + ".Xauthority")
+    open(auth, "w").close()
+    xvfb = [args.xvfb, "-a", "-f", auth, "-s", "-screen 0 1280x1024x24"]
     return run(xvfb + [args.viewer, "--script", script_path], env=dict(os.environ, TMPDIR=tmp))
 
 
