@@ -5,6 +5,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -134,6 +135,8 @@ Result<ValidatedObj> validate_obj(const std::string& path, const std::string& te
 }  // namespace
 
 Result<Scene> load_obj(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return make_error(path + ": cannot open file for reading: Is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(path + ": cannot open file for reading");
   std::ostringstream buffer;
