@@ -64,11 +64,11 @@ Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& 
     float v[8] = {0, 0, 0, 0, 0, 0, 0, kInf};
     for (size_t k = 0; k < tok.size(); ++k) {
       if (!parse_ray_number(tok[k], &v[k]))
-        return fail("malformed number '" + std::string(tok[k]) + "' (field " + std::to_string(k + 1) + ")");
+        return fail("malformed number '" + printable(tok[k]) + "' (field " + std::to_string(k + 1) + ")");
       if (std::isnan(v[k])) return fail("NaN in field " + std::to_string(k + 1));
       if (k < 6 && std::isinf(v[k]))
         return fail("origin and direction must be finite (field " + std::to_string(k + 1) + " is '" +
-                    std::string(tok[k]) + "')");
+                    printable(tok[k]) + "')");
     }
     if (v[3] == 0.0f && v[4] == 0.0f && v[5] == 0.0f) return fail("direction is the zero vector");
     if (v[6] == kInf) return fail("tmin is +inf");

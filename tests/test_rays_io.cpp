@@ -154,6 +154,15 @@ TEST(AtomicWrite, ALinkStaysALinkToTheNewContent) {
   EXPECT_EQ(names_in(dir), (std::vector<std::string>{"link.csv", "target.csv"}));
 }
 
+TEST(RaysFile, MessagesQuoteTheInputPrintablyAndShort) {
+  auto escape = parse_rays("0 0 \x1b[2J\x7f 0 0 1\n", "r.txt");
+  ASSERT_FALSE(escape);
+  EXPECT_EQ(escape.error().message, "r.txt:1: malformed number '\\x1b[2J\\x7f' (field 3)");
+  auto long_token = parse_rays("0 0 0 0 0 " + std::string(100000, '1') + "\n", "r.txt");
+  ASSERT_FALSE(long_token);
+  EXPECT_EQ(long_token.error().message, "r.txt:1: malformed number '" + std::string(40, '1') + "...' (field 6)");
+}
+
 TEST(RaysFile, ADirectoryIsAnErrorNotZeroRays) {
   auto r = read_rays(::testing::TempDir());
   ASSERT_FALSE(r);
