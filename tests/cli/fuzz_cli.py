@@ -64,7 +64,8 @@ def mutate(data, rng, kind=None):
     lines = data.split(b"\n")
     kinds = ["flip", "bit", "truncate", "dup_line", "del_line", "swap_lines", "huge", "special", "index",
              "long_line", "empty", "garbage", "bom", "crlf", "nul", "many_corners", "keyword", "many_lines",
-             "splice", "whitespace", "cr_only", "trailing"]
+             "splice", "whitespace", "cr_only", "trailing", "extreme_value", "extreme_value", "far_triangle",
+             "same_triangles"]
     kind = kind or rng.choice(kinds)
     if kind == "flip" and data:
         i = rng.randrange(len(data))
@@ -122,6 +123,23 @@ def mutate(data, rng, kind=None):
         return data[:rng.randrange(len(data) + 1)] + other[rng.randrange(len(other) + 1):]
     if kind == "whitespace":
         return data.replace(b" ", rng.choice([b"\t", b"  ", b"\v", b"\f", b" \t "]))
+    if kind == "extreme_value":
+        # One number of a vertex or ray line: values that still parse (so the structures see them).
+        numeric = [i for i, l in enumerate(lines) if l.split()[:1] == [b"v"] or
+                   (l.split() and l.split()[0][:1] in b"-+0123456789.")]
+        if numeric:
+            i = rng.choice(numeric)
+            toks = lines[i].split()
+            j = rng.randrange(1 if toks[0] == b"v" else 0, len(toks))
+            toks[j] = rng.choice([b"1e38", b"-3.4e38", b"3.4028234e38", b"1e-38", b"1e-45", b"-1e-45", b"1e30",
+                                  b"-1e30", b"1e15", b"16777216.5", b"0", b"-0", b"0x1p-126", b"1e-30"])
+            lines[i] = b" ".join(toks)
+        return b"\n".join(lines)
+    if kind == "far_triangle":
+        far = rng.choice([b"1e30", b"-1e37", b"3e38", b"1e20", b"1e-30"])
+        return data + b"\nv " + far + b" " + far + b" 0\nv 0 0 0\nv 1 0 0\nf -1 -2 -3\n"
+    if kind == "same_triangles":
+        return data + b"\nv 0.5 0.5 0.5\nv 0.6 0.5 0.5\nv 0.5 0.6 0.5\n" + b"f -1 -2 -3\n" * rng.choice([50, 700])
     if kind == "trailing":
         return data.rstrip(b"\n") + rng.choice([b"", b" ", b"\\", b"\n\n", b" \\\n"])
     return data
