@@ -4,7 +4,8 @@ through every structure. Each run must end in exactly one of
   exit 0: a complete hits CSV (header, one well-formed row per ray line of the rays file,
           docs/hits.md), nothing on stderr;
   exit 2: exactly one line on stderr, no output file (and no temporary file).
-A hang (the per-run timeout), another exit code, a signal, a sanitizer report, more lines or a
+Each case also picks the kernel (mostly watertight) and 1 or 2 threads; the regressions
+run with every kernel. A hang (the per-run timeout), another exit code, a signal, a sanitizer report, more lines or a
 partial file fail. The regressions (tests/cli/regressions/) are replayed first, every run.
 
 Reproducible: case K of seed S is always the same input, whatever ran before it.
@@ -242,7 +243,7 @@ class Fuzzer:
             sys.exit(f"cannot list the structures: accelviz-cli params exit {p.returncode}: {p.stderr}")
         return names
 
-    def run_pair(self, label, obj_bytes, rays_bytes, replay, threads="1"):
+    def run_pair(self, label, obj_bytes, rays_bytes, replay, threads="1", kernel="watertight"):
         """Runs trace for every structure on one scene/rays pair; True when all passed."""
         scene = os.path.join(self.case_dir, "scene.obj")
         rays = os.path.join(self.case_dir, "rays.txt")
@@ -258,7 +259,7 @@ class Fuzzer:
                 os.remove(out)
             before = set(os.listdir(self.case_dir))
             cmd = [self.cli, "trace", "--scene", scene, "--structure", structure, "--rays", rays, "--out", out,
-                   "--threads", threads]
+                   "--threads", threads, "--kernel", kernel]
             try:
                 p = subprocess.run(cmd, capture_output=True, timeout=RUN_TIMEOUT)
                 code, stderr = p.returncode, p.stderr.decode("utf-8", "replace")
@@ -305,7 +306,8 @@ class Fuzzer:
             if target in ("rays", "both"):
                 rays = mutate(rays, rng)
         threads = rng.choice(["1", "1", "1", "2"])
-        return f"{obj_name}+{rays_name}/{target}", obj, rays, threads
+        kernel = rng.choice(["watertight", "watertight", "watertight", "moller", "double"])
+        return f"{obj_name}+{rays_name}/{target}", obj, rays, threads, kernel
 
     def replay_regressions(self, regressions_dir, default_obj, default_rays):
         """Every file of regressions_dir: NAME.obj (with NAME.rays, else the default rays),
@@ -321,8 +323,9 @@ class Fuzzer:
                     return default
                 with open(path, "rb") as f:
                     return f.read()
-            self.run_pair(f"regression_{stem}", read(".obj", default_obj), read(".rays", default_rays),
-                          f"the regression {regressions_dir}/{stem}.*", threads="2")
+            for kernel in ("watertight", "moller", "double"):
+                self.run_pair(f"regression_{stem}_{kernel}", read(".obj", default_obj), read(".rays", default_rays),
+                              f"the regression {regressions_dir}/{stem}.*", threads="2", kernel=kernel)
         return len(stems)
 
 
@@ -349,8 +352,8 @@ def main():
     start = time.monotonic()
 
     if a.case is not None:
-        label, obj, rays, threads = fz.make_case(a.case)
-        fz.run_pair(f"case{a.case}", obj, rays, f"--seed {a.seed} --case {a.case}", threads)
+        label, obj, rays, threads, kernel = fz.make_case(a.case)
+        fz.run_pair(f"case{a.case}", obj, rays, f"--seed {a.seed} --case {a.case}", threads, kernel)
         print(f"{'FAILED' if fz.failures else 'OK'}: case {a.case} ({label})")
         return 1 if fz.failures else 0
 
@@ -366,8 +369,8 @@ def main():
         fz.failures += 1
     k = 0
     while time.monotonic() - start < seconds and fz.failures < 20:
-        label, obj, rays, threads = fz.make_case(k)
-        fz.run_pair(f"case{k}", obj, rays, f"--seed {a.seed} --case {k}", threads)
+        label, obj, rays, threads, kernel = fz.make_case(k)
+        fz.run_pair(f"case{k}", obj, rays, f"--seed {a.seed} --case {k}", threads, kernel)
         k += 1
     took = time.monotonic() - start
     print(f"fuzz_cli: {regressions} regressions, {k} cases, {fz.runs} runs ({fz.outcomes[0]} exit 0, "
