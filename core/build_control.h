@@ -34,10 +34,15 @@ class BuildControl {
 
   /// Asks the build to stop at its next check (any thread, any number of times).
   void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
-  /// True once cancel() was called or the time limit passed. Cheap (a relaxed load, and a
-  /// clock read only with a time limit): builders may poll it per node.
+  /// Also stops the build once `*flag` is true: a flag the caller owns and outlives the
+  /// build (the CLI's SIGINT flag). nullptr: none.
+  void set_cancel_flag(const std::atomic<bool>* flag) { cancel_flag_ = flag; }
+
+  /// True once cancel() was called, the cancel flag was set or the time limit passed. Cheap
+  /// (relaxed loads, and a clock read only with a time limit): builders may poll it per node.
   bool cancelled() const {
     if (cancelled_.load(std::memory_order_relaxed)) return true;
+    if (cancel_flag_ && cancel_flag_->load(std::memory_order_relaxed)) return true;
     if (deadline_ == Clock::time_point::max() || Clock::now() < deadline_) return false;
     timed_out_.store(true, std::memory_order_relaxed);
     return true;
@@ -73,6 +78,7 @@ class BuildControl {
  private:
   using Clock = std::chrono::steady_clock;
   std::atomic<bool> cancelled_{false};
+  const std::atomic<bool>* cancel_flag_ = nullptr;
   mutable std::atomic<bool> timed_out_{false};
   std::atomic<double> fraction_{0.0};
   size_t memory_limit_ = 0;

@@ -53,6 +53,8 @@ bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
   double t, u, v;
   if (!intersect_triangle_double(ray_, p0, p1, p2, tmax, &t, &u, &v)) return false;
   *out = {float(t), float(u), float(v)};
+  // A t beyond FLT_MAX (a subnormal direction: t in units of a tiny d) has no float answer.
+  if (std::isinf(out->t)) return false;
   // Rounding t to float may push it past an inclusive bound; keep the float answer inside.
   out->t = std::clamp(out->t, ray_.tmin, tmax);
   return true;

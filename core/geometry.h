@@ -178,10 +178,12 @@ bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
   const float s_a = std::abs(ax) + std::abs(ay), s_b = std::abs(bx) + std::abs(by), s_c = std::abs(cx) + std::abs(cy);
   const float bound =
       10.0f * gamma_bound(1) * (m_a * (s_b + s_c) + m_b * (s_a + s_c) + m_c * (s_a + s_b));
+  // Written so a NaN or an overflow (coordinates near FLT_MAX: the products and the bound
+  // are inf or NaN) is "uncertain" and goes to the double test, never through as a hit.
   const bool some_negative = u_ < -bound || v_ < -bound || w_ < -bound;
   const bool some_positive = u_ > bound || v_ > bound || w_ > bound;
   if (some_negative && some_positive) return false;  // certainly outside
-  if (std::abs(u_) <= bound || std::abs(v_) <= bound || std::abs(w_) <= bound)
+  if (!(std::abs(u_) > bound && std::abs(v_) > bound && std::abs(w_) > bound))
     return reference(p0, p1, p2, tmax, out);
   const float det = u_ + v_ + w_;
   if (det == 0.0f) return false;  // ray lies in the triangle's plane (or is parallel to it)
@@ -196,7 +198,8 @@ bool TriangleTester::watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
   const float t_err = 64.0f * gamma_bound(1) * (std::abs(u_ * az) + std::abs(v_ * bz) + std::abs(w_ * cz)) *
                       std::abs(inv_det);
   if (t + t_err < ray_.tmin || t - t_err > tmax) return false;
-  if (t - t_err <= ray_.tmin || t + t_err >= tmax) return reference(p0, p1, p2, tmax, out);
+  // NaN (an inf scale 1/dir[kz] for a subnormal direction, inf - inf) also falls back.
+  if (!(t - t_err > ray_.tmin && t + t_err < tmax)) return reference(p0, p1, p2, tmax, out);
   *out = {t, v_ * inv_det, w_ * inv_det};
   return true;
 }
@@ -261,8 +264,9 @@ int TriangleTester::watertight4(const TriangleBlock& block, int lanes, float tma
       _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u_, neg_bound), _mm_cmplt_ps(v_, neg_bound)), _mm_cmplt_ps(w_, neg_bound));
   const __m128 some_positive =
       _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u_, bound), _mm_cmpgt_ps(v_, bound)), _mm_cmpgt_ps(w_, bound));
+  // Not-greater-than: true for NaN, as the scalar test's !(|u_| > bound && ...).
   const __m128 uncertain =
-      _mm_or_ps(_mm_or_ps(_mm_cmple_ps(abs(u_), bound), _mm_cmple_ps(abs(v_), bound)), _mm_cmple_ps(abs(w_), bound));
+      _mm_or_ps(_mm_or_ps(_mm_cmpngt_ps(abs(u_), bound), _mm_cmpngt_ps(abs(v_), bound)), _mm_cmpngt_ps(abs(w_), bound));
   const int inside = lanes & ~_mm_movemask_ps(_mm_and_ps(some_negative, some_positive));
   const int edge_fallback = inside & _mm_movemask_ps(uncertain);
   int candidates = inside & ~edge_fallback;
@@ -283,7 +287,9 @@ int TriangleTester::watertight4(const TriangleBlock& block, int lanes, float tma
     const __m128 lo = _mm_sub_ps(t, t_err), hi = _mm_add_ps(t, t_err);
     const int out_of_range = _mm_movemask_ps(_mm_or_ps(_mm_cmplt_ps(hi, tmin4), _mm_cmpgt_ps(lo, tmax4)));
     candidates &= ~out_of_range;
-    const int near_limit = candidates & _mm_movemask_ps(_mm_or_ps(_mm_cmple_ps(lo, tmin4), _mm_cmpge_ps(hi, tmax4)));
+    // !(lo > tmin && hi < tmax), true for NaN lanes as in the scalar test.
+    const int near_limit =
+        candidates & _mm_movemask_ps(_mm_or_ps(_mm_cmpngt_ps(lo, tmin4), _mm_cmpnlt_ps(hi, tmax4)));
     fallback |= near_limit;
     hits = candidates & ~near_limit;
     if (hits) {
@@ -337,6 +343,7 @@ int TriangleTester::moller4(const TriangleBlock& block, int lanes, float tmax, f
   ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmple_ps(u, one)));
   ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(v, zero), _mm_cmple_ps(_mm_add_ps(u, v), one)));
   ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(t, _mm_set1_ps(ray_.tmin)), _mm_cmple_ps(t, _mm_set1_ps(tmax))));
+  ok = _mm_and_ps(ok, _mm_cmpneq_ps(t, _mm_set1_ps(kInf)));
   const int hits = lanes & _mm_movemask_ps(ok);
   if (hits) {
     _mm_storeu_ps(t_out, t);
@@ -356,12 +363,12 @@ bool TriangleTester::moller(const Vec3& p0, const Vec3& p1, const Vec3& p2, floa
   const float inv_det = 1.0f / det;
   const Vec3 tv = ray_.org - p0;
   const float u = glm::dot(tv, pv) * inv_det;
-  if (u < 0.0f || u > 1.0f) return false;
+  if (!(u >= 0.0f && u <= 1.0f)) return false;  // NaN (coordinates near FLT_MAX) is a miss
   const Vec3 qv = glm::cross(tv, e1);
   const float v = glm::dot(ray_.dir, qv) * inv_det;
-  if (v < 0.0f || u + v > 1.0f) return false;
+  if (!(v >= 0.0f && u + v <= 1.0f)) return false;
   const float t = glm::dot(e2, qv) * inv_det;
-  if (!(t >= ray_.tmin && t <= tmax)) return false;
+  if (!(t >= ray_.tmin && t <= tmax) || t == kInf) return false;  // inf: t overflowed float
   *out = {t, u, v};
   return true;
 }

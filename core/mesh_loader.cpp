@@ -29,12 +29,12 @@ std::string lower(std::string s) {
 
 std::string extension_of(const std::string& path) { return lower(std::filesystem::path(path).extension().string()); }
 
-/// Assimp's message on one line.
+/// Assimp's message on one line (printable: it may quote the input).
 std::string one_line(std::string msg) {
   while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r' || msg.back() == ' ')) msg.pop_back();
   for (char& c : msg)
     if (c == '\n' || c == '\r') c = ' ';
-  return msg;
+  return printable(msg, 300);
 }
 
 /// The PLY header, checked before Assimp sees the file: the format line, elements with

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -90,11 +91,11 @@ Result<ValidatedObj> validate_obj(const std::string& path, const std::string& te
     for (size_t k = 1; k < tok.size(); ++k) {
       double value;
       if (!parse_number(tok[k], &value))
-        return fail(i + 1, "malformed number '" + std::string(tok[k]) + "' in vertex");
+        return fail(i + 1, "malformed number '" + printable(tok[k]) + "' in vertex");
       if (k <= 3 && !std::isfinite(value))
-        return fail(i + 1, "vertex coordinate '" + std::string(tok[k]) + "' is not finite");
+        return fail(i + 1, "vertex coordinate '" + printable(tok[k]) + "' is not finite");
       if (k <= 3 && std::isinf(float(value)))
-        return fail(i + 1, "vertex coordinate '" + std::string(tok[k]) + "' overflows float");
+        return fail(i + 1, "vertex coordinate '" + printable(tok[k]) + "' overflows float");
     }
     ++out.vertex_count;
   }
@@ -114,7 +115,7 @@ Result<ValidatedObj> validate_obj(const std::string& path, const std::string& te
     for (size_t k = 1; k < tok.size(); ++k) {
       const std::string_view v = tok[k].substr(0, tok[k].find('/'));
       long index = 0;
-      if (!parse_int(v, &index)) return fail(i + 1, "malformed face index '" + std::string(tok[k]) + "'");
+      if (!parse_int(v, &index)) return fail(i + 1, "malformed face index '" + printable(tok[k]) + "'");
       long resolved = index > 0 ? index - 1 : long(vertices_so_far) + index;
       if (index == 0) return fail(i + 1, "face index 0 is invalid (OBJ indices start at 1)");
       if (index > 0 && size_t(index) > out.vertex_count)
@@ -134,6 +135,8 @@ Result<ValidatedObj> validate_obj(const std::string& path, const std::string& te
 }  // namespace
 
 Result<Scene> load_obj(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return make_error(path + ": cannot open file for reading: Is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(path + ": cannot open file for reading");
   std::ostringstream buffer;
@@ -155,7 +158,7 @@ Result<Scene> load_obj(const std::string& path) {
     std::string msg = reader.Error();
     while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) msg.pop_back();
     for (char& c : msg) if (c == '\n') c = ' ';
-    return make_error(path + ": " + msg);
+    return make_error(path + ": " + printable(msg, 300));  // it may quote the input
   }
 
   const tinyobj::attrib_t& attrib = reader.GetAttrib();

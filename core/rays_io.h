@@ -1,5 +1,6 @@
 #pragma once
 // The CLI's file formats (docs/hits.md): rays in, hits out.
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,22 @@ Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& 
 /// Formats one hit row `ray,prim,t,u,v` (t with %.9g, "inf" on a miss).
 std::string format_hit_row(size_t ray_index, const Hit& hit);
 
-/// Writes the hits CSV atomically: to a temporary file beside `path`, renamed on success,
-/// so a failure never leaves a half-written file. Error names the path.
-Status write_hits_csv(const std::string& path, const std::vector<Hit>& hits);
+/// Writes the hits CSV atomically (write_file_atomic). Error names the path.
+Status write_hits_csv(const std::string& path, const std::vector<Hit>& hits,
+                      const std::atomic<bool>* cancel = nullptr);
 
-/// Writes `content` to `path` atomically (temporary file + rename).
-Status write_file_atomic(const std::string& path, const std::string& content);
+/// Writes `content` to `path` atomically: to a temporary file beside it, renamed over it on
+/// success, so a failure (a full disk, `*cancel` set while writing) never leaves a partial
+/// file or the temporary one. A symbolic link is followed and stays a link. An existing
+/// device, FIFO or socket, and any existing path under /dev/ or /proc/ (/dev/full,
+/// /dev/stdout), is written directly (appending): there is no file to replace there. Errors name `path` and the system's reason ("...: write failed: No space left on
+/// device"); a cancelled write says "not written (interrupted)".
+Status write_file_atomic(const std::string& path, const std::string& content,
+                         const std::atomic<bool>* cancel = nullptr);
+
+/// Whether write_file_atomic(path, ...) can create its file there: the same checks, and a
+/// temporary file created and removed beside the target, so a command can fail before its
+/// work instead of after it. A full disk only shows in the write itself.
+Status check_writable(const std::string& path);
 
 }  // namespace accel

@@ -3,6 +3,7 @@
 // here is why not". Bad input (files, rays, parameters) is reported through them; the core
 // never exits and never throws at its callers.
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -49,5 +50,25 @@ using Status = Result<void>;
 
 /// Builds an Error from a message.
 inline Error make_error(std::string message) { return Error{std::move(message)}; }
+
+/// A piece of the input as an error message quotes it: bytes outside printable ASCII as
+/// \xNN and at most `max_chars` of them ("..." after), so binary garbage, terminal escapes,
+/// a vertical tab or a 100 kB token keep the message one short line.
+inline std::string printable(std::string_view text, size_t max_chars = 40) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (i == max_chars) return out + "...";
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
 
 }  // namespace accel

@@ -1,8 +1,11 @@
 // Brute force with the float watertight kernel against the double-precision reference,
 // 100k random rays (plus primary rays) per procedural scene.
+#include <atomic>
+
 #include <gtest/gtest.h>
 
 #include "batch.h"
+#include "ray_gen.h"
 #include "structures/brute_force.h"
 #include "registry.h"
 #include "test_support.h"
@@ -27,6 +30,23 @@ TEST_P(BruteForceScenes, WatertightMatchesDoubleReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Procedural, BruteForceScenes, ::testing::ValuesIn(procedural_scene_names()));
+
+TEST(BruteForce, TraceAllStopsAtACancelFlag) {
+  auto scene = make_procedural_scene("cornell").value();
+  auto s = build_structure("brute", scene, {});
+  ASSERT_TRUE(s);
+  const std::vector<Ray> rays = random_rays(scene.bounds(), 5000, 3);
+  std::atomic<bool> cancel{false};
+  const auto with_flag = trace_all(*s.value(), rays, 2, nullptr, &cancel);
+  const auto without = trace_all(*s.value(), rays, 2);
+  ASSERT_EQ(with_flag.size(), without.size());
+  for (size_t i = 0; i < rays.size(); ++i)  // unset: the same answers
+    ASSERT_TRUE(with_flag[i].prim == without[i].prim && with_flag[i].t == without[i].t) << i;
+  cancel.store(true);
+  size_t answered = 0;
+  for (const Hit& h : trace_all(*s.value(), rays, 2, nullptr, &cancel)) answered += h.valid();
+  EXPECT_EQ(answered, 0u) << "set before the start: every ray is skipped";
+}
 
 TEST(BruteForce, DegenerateTrianglesAreNeverHit) {
   // A zero-area triangle in front of a real one: the ray passes "through" it.

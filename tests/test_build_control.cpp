@@ -3,6 +3,7 @@
 // the same structure with a control as without one.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -168,6 +169,31 @@ TEST(BuildControl, CancelledMidwayStopsAtTheNextCheck) {
     ASSERT_TRUE(structure->build(stadium(), params).ok()) << label(c);
     EXPECT_GT(structure->build_stats().prim_references, 0u) << label(c);
   }
+}
+
+TEST(BuildControl, AnExternalFlagStopsTheBuildAsCancelDoes) {
+  // The CLI's SIGINT flag: set from outside mid-build, seen at the next check.
+  for (const Config& c : configs()) {
+    if (c.name == "brute") continue;
+    std::atomic<bool> flag{false};
+    std::vector<double> seen;
+    BuildControl control([&](double f) {
+      seen.push_back(f);
+      if (f >= 0.3) flag.store(true);
+    });
+    control.set_cancel_flag(&flag);
+    EXPECT_FALSE(control.timed_out());
+    auto s = build(c, stadium(), &control);
+    ASSERT_FALSE(s.ok()) << label(c) << " finished despite the flag";
+    EXPECT_EQ(s.error().message, cancelled_error().message) << label(c);
+    EXPECT_TRUE(control.cancelled()) << label(c);
+    EXPECT_FALSE(control.timed_out()) << label(c);
+    EXPECT_LT(seen.back(), 1.0) << label(c);
+  }
+  BuildControl unset;
+  std::atomic<bool> clear{false};
+  unset.set_cancel_flag(&clear);
+  EXPECT_FALSE(unset.cancelled());
 }
 
 TEST(BuildControl, AControlChangesNothingInTheStructure) {

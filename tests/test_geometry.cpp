@@ -1,4 +1,8 @@
 // Ray/triangle and ray/box tests against the hit rule of docs/hits.md.
+#include <array>
+#include <cmath>
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "geometry.h"
@@ -173,6 +177,45 @@ TEST(Triangle, FourWideTestEqualsScalarTestLaneByLane) {
     }
   }
   EXPECT_GT(hits, 10000);  // the comparison saw many hits, not only misses
+}
+
+TEST(Triangle, ExtremeCoordinatesGiveNoNaNHit) {
+  // Found by cli.fuzz_e2e: an origin near -FLT_MAX overflows the float edge functions to
+  // inf - inf = NaN, which passed every ordered comparison and came out as a hit at t = NaN.
+  // Now such a test goes to the double kernel (which answers it), scalar and 4-wide alike;
+  // a subnormal direction (1/dir = inf) likewise.
+  Ray far;
+  far.org = Vec3(-3.4e38f, 0.3f, 3.0f);
+  far.dir = Vec3(1e-30f, 16777216.0f, -1.0f);
+  Ray tiny = down_at(0.25f, 0.25f);
+  tiny.dir = Vec3(0.0f, 0.0f, -1e-45f);
+  const Vec3 big(3e38f, 0, 0);
+  for (const Ray& r : {far, tiny}) {
+    for (Kernel k : {Kernel::Watertight, Kernel::Moller, Kernel::Double}) {
+      for (const auto& tri : {std::array<Vec3, 3>{kA, kB, kC}, std::array<Vec3, 3>{kA, big, kC}}) {
+        const TriangleTester tester(r, k);
+        TriangleHit h{};
+        const bool scalar = tester.intersect(tri[0], tri[1], tri[2], kInf, &h);
+        // The double answer, where float can hold its t (the tiny direction's t = 7e44 cannot:
+        // no hit). Moller may miss here; it must only not answer NaN or inf.
+        double t, u, v;
+        const bool exact = intersect_triangle_double(r, tri[0], tri[1], tri[2], kInf, &t, &u, &v) &&
+                           t <= double(std::numeric_limits<float>::max());
+        if (k != Kernel::Moller) {
+          EXPECT_EQ(scalar, exact) << kernel_name(k);
+        }
+        if (scalar) {
+          EXPECT_TRUE(std::isfinite(h.t) && std::isfinite(h.u) && std::isfinite(h.v)) << kernel_name(k);
+        }
+        TriangleBlock block{};
+        for (int lane = 0; lane < 4; ++lane) set_lane(&block, lane, tri[0], tri[1], tri[2]);
+        alignas(16) float t4[4], u4[4], v4[4];
+        const int mask = tester.intersect4(block, 0xf, kInf, t4, u4, v4);
+        EXPECT_EQ(mask, scalar ? 0xf : 0) << kernel_name(k);
+        for (int lane = 0; lane < 4 && mask; ++lane) EXPECT_TRUE(std::isfinite(t4[lane])) << kernel_name(k);
+      }
+    }
+  }
 }
 
 TEST(Box, SlabTestHandlesZeroDirectionComponents) {

@@ -1,7 +1,13 @@
 // Rays file parsing and the hits CSV (docs/hits.md).
+#include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -76,6 +82,91 @@ TEST(HitsCsv, AtomicWriteLeavesNoFileOnFailure) {
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_EQ(ss.str(), "ray,prim,t,u,v\n0,-1,inf,0,0\n1,1,2,0,0\n");
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// The names in `dir` (to see that no temporary file is left).
+std::vector<std::string> names_in(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(AtomicWrite, ErrorsNameThePathAndTheReason) {
+  const std::string dir = ::testing::TempDir() + "/atomic_write_errors";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/regular";
+  ASSERT_TRUE(write_file_atomic(file, "x"));
+  auto under_file = write_file_atomic(file + "/out.csv", "y");
+  ASSERT_FALSE(under_file);
+  EXPECT_EQ(under_file.error().message, file + "/out.csv: cannot open for writing: Not a directory");
+  auto to_dir = write_file_atomic(dir, "y");
+  ASSERT_FALSE(to_dir);
+  EXPECT_EQ(to_dir.error().message, dir + ": cannot open for writing: Is a directory");
+  EXPECT_FALSE(check_writable(dir + "/missing/out.csv"));
+  EXPECT_TRUE(check_writable(dir + "/new.csv"));
+  EXPECT_EQ(names_in(dir), std::vector<std::string>{"regular"});  // the probe is gone
+  EXPECT_EQ(read_all(file), "x");
+}
+
+TEST(AtomicWrite, FullDeviceIsAnErrorAndStaysADevice) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  auto r = write_file_atomic("/dev/full", std::string(1000, 'x'));
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().message, "/dev/full: write failed: No space left on device");
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
+  EXPECT_FALSE(std::filesystem::exists("/dev/full.tmp." + std::to_string(::getpid())));
+}
+
+TEST(AtomicWrite, CancelledWriteLeavesNothingAndKeepsTheOldFile) {
+  const std::string dir = ::testing::TempDir() + "/atomic_write_cancel";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/hits.csv";
+  std::atomic<bool> cancel{true};
+  auto r = write_hits_csv(file, std::vector<Hit>(10), &cancel);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().message, file + ": not written (interrupted)");
+  EXPECT_TRUE(names_in(dir).empty());
+  ASSERT_TRUE(write_file_atomic(file, "old"));
+  EXPECT_FALSE(write_file_atomic(file, std::string(3 << 20, 'n'), &cancel));
+  EXPECT_EQ(read_all(file), "old");
+  EXPECT_EQ(names_in(dir), std::vector<std::string>{"hits.csv"});
+}
+
+TEST(AtomicWrite, ALinkStaysALinkToTheNewContent) {
+  const std::string dir = ::testing::TempDir() + "/atomic_write_link";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  ASSERT_TRUE(write_file_atomic(dir + "/target.csv", "old"));
+  std::filesystem::create_symlink("target.csv", dir + "/link.csv");
+  ASSERT_TRUE(write_file_atomic(dir + "/link.csv", "new"));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir + "/link.csv"));
+  EXPECT_EQ(read_all(dir + "/target.csv"), "new");
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"link.csv", "target.csv"}));
+}
+
+TEST(RaysFile, MessagesQuoteTheInputPrintablyAndShort) {
+  auto escape = parse_rays("0 0 \x1b[2J\x7f 0 0 1\n", "r.txt");
+  ASSERT_FALSE(escape);
+  EXPECT_EQ(escape.error().message, "r.txt:1: malformed number '\\x1b[2J\\x7f' (field 3)");
+  auto long_token = parse_rays("0 0 0 0 0 " + std::string(100000, '1') + "\n", "r.txt");
+  ASSERT_FALSE(long_token);
+  EXPECT_EQ(long_token.error().message, "r.txt:1: malformed number '" + std::string(40, '1') + "...' (field 6)");
+}
+
+TEST(RaysFile, ADirectoryIsAnErrorNotZeroRays) {
+  auto r = read_rays(::testing::TempDir());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("Is a directory"), std::string::npos) << r.error().message;
 }
 
 }  // namespace

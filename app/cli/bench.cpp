@@ -29,6 +29,7 @@
 #include "batch.h"
 #include "commands.h"
 #include "embree_baseline.h"
+#include "interrupt.h"
 #include "ray_gen.h"
 #include "rays_io.h"
 #include "registry.h"
@@ -117,16 +118,17 @@ std::vector<std::string> split_list(const std::string& s) {
 
 /// Rays per second of `trace_pass` (one pass over n rays): passes are repeated until a
 /// sample lasts >= min_time seconds; the median of three samples is returned, in Mrays/s.
+/// Stops early after a signal (the caller then discards the number).
 template <class Pass>
 double measure_mrays(size_t n, double min_time, Pass&& trace_pass) {
   const auto t0 = Clock::now();
   trace_pass();
   const double first = std::chrono::duration<double>(Clock::now() - t0).count();
-  const int reps = std::max(1, int(std::ceil(min_time / std::max(first, 1e-9))));
+  const int reps = int(std::clamp(std::ceil(min_time / std::max(first, 1e-9)), 1.0, 1e9));
   std::vector<double> rates;
   for (int sample = 0; sample < 3; ++sample) {
     const auto s0 = Clock::now();
-    for (int r = 0; r < reps; ++r) trace_pass();
+    for (int r = 0; r < reps && !interrupted(); ++r) trace_pass();
     const double secs = std::chrono::duration<double>(Clock::now() - s0).count();
     rates.push_back(double(n) * reps / secs / 1e6);
   }
@@ -134,25 +136,44 @@ double measure_mrays(size_t n, double min_time, Pass&& trace_pass) {
   return rates[1];
 }
 
-/// Runs `query(i)` for every ray on `threads` threads and returns the hits.
+/// Runs `query(i)` for every ray on `threads` threads and returns the hits (misses for the
+/// rays skipped after a signal).
 template <class Query>
 std::vector<accel::Hit> run_parallel(size_t n, int threads, Query&& query) {
   std::vector<accel::Hit> hits(n);
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) hits[i] = query(i);
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        if ((i - r.begin()) % 1024 == 0 && interrupted()) break;
+        hits[i] = query(i);
+      }
     });
   });
   return hits;
 }
 
+/// One single-threaded pass of `query` over the rays, stopping after a signal (polled every
+/// 1024 rays: negligible next to the queries).
+template <class Query>
+void run_serial(const std::vector<accel::Ray>& rays, Query&& query) {
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (i % 1024 == 0 && interrupted()) return;
+    (void)query(rays[i]);
+  }
+}
+
 /// The reference answers: the double-precision kernel, found through a BVH (its box tests are
 /// conservative, and the test suite checks it against a brute-force double scan), with t
 /// recomputed exactly in double for the triangle it returns.
-std::vector<accel::ReferenceHit> reference_hits(const accel::Scene& scene, const std::vector<accel::Ray>& rays,
-                                                int threads) {
-  auto bvh = accel::build_structure("bvh", scene, {"builder=sah", "width=2"}, accel::Kernel::Double);
+accel::Result<std::vector<accel::ReferenceHit>> reference_hits(const accel::Scene& scene,
+                                                               const std::vector<accel::Ray>& rays, int threads,
+                                                               const accel::BuildControl& limits) {
+  accel::BuildControl control;
+  control.set_memory_limit(limits.memory_limit());
+  control.set_cancel_flag(interrupt_flag());
+  auto bvh = accel::build_structure("bvh", scene, {"builder=sah", "width=2"}, accel::Kernel::Double, &control);
+  if (!bvh) return accel::make_error("the reference BVH: " + bvh.error().message);
   std::vector<accel::ReferenceHit> ref(rays.size());
   const auto hits = run_parallel(rays.size(), threads, [&](size_t i) { return bvh.value()->intersect(rays[i]); });
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -188,6 +209,23 @@ void score(Row& row, const accel::Scene& scene, const std::vector<accel::Ray>& r
     }
   }
   row.mean_rel_t_err = both_hit ? sum_err / double(both_hit) : 0.0;
+}
+
+/// A scene and its rays.
+struct BenchInput {
+  accel::Scene scene;
+  std::vector<accel::Ray> rays;
+};
+
+/// Loads the scene and makes its rays; a signal meanwhile ends the process at once (nothing
+/// to clean up yet, and a rays file that is a FIFO may block).
+accel::Result<BenchInput> load_input(const std::string& scene_spec, const std::string& rays_spec) {
+  ExitOnInterrupt reading;
+  auto scene = accel::load_scene(scene_spec);
+  if (!scene) return scene.error();
+  auto rays = accel::make_rays(rays_spec, scene.value());
+  if (!rays) return rays.error();
+  return BenchInput{std::move(scene.value()), std::move(rays.value())};
 }
 
 /// Parameters for one structure: unprefixed keys it knows, and "structure:key=value".
@@ -328,6 +366,9 @@ int run_bench(const BenchOptions& o) {
       for (const std::string& q : params_for(*info, {p})) used |= !q.empty();
     if (!used) return fail("--param '" + p + "' matches no parameter of the benchmarked structures");
   }
+  for (const std::string* path : {&o.out_md, &o.out_csv, &o.out_json})  // before minutes of work, not after
+    if (!path->empty())
+      if (auto writable = accel::check_writable(*path); !writable) return fail(writable.error().message);
   accel::BuildControl limits;  // carries the budget only; each build gets its own control
   if (auto ok = apply_build_limits(o.memory_limit, o.time_limit, &limits); !ok) return fail(ok.error().message);
   const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -343,14 +384,15 @@ int run_bench(const BenchOptions& o) {
   const size_t total_steps = o.scenes.size() * steps_per_scene;
   size_t step = 0;
   for (const std::string& scene_spec : o.scenes) {
-    auto scene = accel::load_scene(scene_spec);
-    if (!scene) return fail(scene.error().message);
-    auto rays_or = accel::make_rays(o.rays, scene.value());
-    if (!rays_or) return fail(rays_or.error().message);
-    const std::vector<accel::Ray>& rays = rays_or.value();
-    const accel::Scene& s = scene.value();
+    auto input = load_input(scene_spec, o.rays);
+    if (!input) return fail(input.error().message);
+    const std::vector<accel::Ray>& rays = input.value().rays;
+    const accel::Scene& s = input.value().scene;
     progress(step, total_steps, scene_spec + ": reference (double kernel)");
-    const auto ref = reference_hits(s, rays, threads);
+    const auto ref_or = reference_hits(s, rays, threads, limits);
+    if (interrupted()) return interrupted_exit();
+    if (!ref_or) return fail(ref_or.error().message);
+    const std::vector<accel::ReferenceHit>& ref = ref_or.value();
     ++step;
 
     std::optional<double> embree_mt, embree_1t, embree_medium_build_ms;
@@ -365,6 +407,7 @@ int run_bench(const BenchOptions& o) {
           built.reset();  // one scene in memory at a time
           built = std::make_unique<EmbreeScene>(s, quality, threads);
           best_build_ms = std::min(best_build_ms, built->build_ms());
+          if (interrupted()) return interrupted_exit();
         }
         const EmbreeScene& embree = *built;
         if (std::string(quality) == "medium") embree_medium_build_ms = best_build_ms;
@@ -376,12 +419,13 @@ int run_bench(const BenchOptions& o) {
         row.memory_bytes = embree.memory_bytes();
         row.threads = threads;
         row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          for (const auto& r : rays) (void)embree.intersect(r);
+          run_serial(rays, [&](const accel::Ray& r) { return embree.intersect(r); });
         });
         std::vector<accel::Hit> hits;
         row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
           hits = run_parallel(rays.size(), threads, [&](size_t i) { return embree.intersect(rays[i]); });
         });
+        if (interrupted()) return interrupted_exit();
         score(row, s, rays, hits, ref);
         embree_mt = std::max(embree_mt.value_or(0.0), row.mrays_mt);
         embree_1t = std::max(embree_1t.value_or(0.0), row.mrays_1t);
@@ -409,6 +453,7 @@ int run_bench(const BenchOptions& o) {
           built.reset();
           built = std::make_unique<TinyBvhScene>(triangles.data(), s.triangle_count(), layout);
           best_build_ms = std::min(best_build_ms, built->build_ms());
+          if (interrupted()) return interrupted_exit();
         }
         const TinyBvhScene& bvh = *built;
         auto query = [&bvh](const accel::Ray& r) {
@@ -422,12 +467,13 @@ int run_bench(const BenchOptions& o) {
         row.memory_bytes = bvh.memory_bytes();
         row.threads = threads;
         row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          for (const auto& r : rays) (void)query(r);
+          run_serial(rays, query);
         });
         std::vector<accel::Hit> hits;
         row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
           hits = run_parallel(rays.size(), threads, [&](size_t i) { return query(rays[i]); });
         });
+        if (interrupted()) return interrupted_exit();
         score(row, s, rays, hits, ref);
         if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
         if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
@@ -453,8 +499,10 @@ int run_bench(const BenchOptions& o) {
         accel::BuildControl control;
         control.set_memory_limit(limits.memory_limit());
         control.set_time_limit(o.time_limit);
+        control.set_cancel_flag(interrupt_flag());
         auto built = build_arena.execute(
             [&] { return accel::build_structure(*structures[k], s, param_sets[k], accel::Kernel::Watertight, &control); });
+        if (interrupted()) return interrupted_exit();
         if (!built) return fail(build_error(built.error(), name, control).message);
         structure = std::move(built.value());
         best_build_ms = std::min(best_build_ms, structure->build_stats().build_ms);
@@ -472,10 +520,13 @@ int run_bench(const BenchOptions& o) {
         row.memory_bytes = stats.memory_bytes;
         row.threads = threads;
         row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          for (const auto& r : rays) (void)structure->intersect(r);
+          run_serial(rays, [&](const accel::Ray& r) { return structure->intersect(r); });
         });
         std::vector<accel::Hit> hits;
-        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] { hits = accel::trace_all(*structure, rays, threads); });
+        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
+          hits = accel::trace_all(*structure, rays, threads, nullptr, interrupt_flag());
+        });
+        if (interrupted()) return interrupted_exit();
         score(row, s, rays, hits, ref);
         if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
         if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
@@ -494,8 +545,8 @@ int run_bench(const BenchOptions& o) {
   for (const auto& [path, content] : {std::pair{o.out_md, md}, std::pair{o.out_csv, csv(rows)},
                                       std::pair{o.out_json, json(rows)}}) {
     if (path.empty()) continue;
-    auto written = accel::write_file_atomic(path, content);
-    if (!written) return fail(written.error().message);
+    auto written = accel::write_file_atomic(path, content, interrupt_flag());
+    if (!written) return interrupted() ? interrupted_exit() : fail(written.error().message);
   }
   return 0;
 }

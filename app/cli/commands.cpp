@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "batch.h"
+#include "interrupt.h"
 #include "ray_gen.h"
 #include "rays_io.h"
 #include "registry.h"
@@ -64,8 +65,12 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   if (!params) return params.error();
   accel::BuildControl control;
   if (auto limits = apply_build_limits(o.memory_limit, o.time_limit, &control); !limits) return limits.error();
+  control.set_cancel_flag(interrupt_flag());  // SIGINT stops the build at its next check
   const auto load_start = std::chrono::steady_clock::now();
-  auto scene = accel::load_scene(o.scene);
+  auto scene = [&] {
+    ExitOnInterrupt reading;  // nothing to clean up yet; a FIFO may block
+    return accel::load_scene(o.scene);
+  }();
   if (!scene) return scene.error();
   auto built = std::make_unique<Built>();
   built->load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
@@ -81,27 +86,41 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   return built;
 }
 
+/// make_rays, where a signal ends the process at once (a rays file may be a FIFO).
+accel::Result<std::vector<accel::Ray>> read_rays_input(const std::string& spec, const accel::Scene& scene) {
+  ExitOnInterrupt reading;
+  return accel::make_rays(spec, scene);
+}
+
 }  // namespace
 
 int run_trace(const TraceOptions& o) {
+  // An output that cannot be created fails now, not after the build and the queries.
+  if (auto writable = accel::check_writable(o.out); !writable) return fail(writable.error().message);
   auto built = load_and_build(o.build);
+  if (interrupted()) return interrupted_exit();
   if (!built) return fail(built.error().message);
-  auto rays = accel::make_rays(o.rays, built.value()->scene);
+  auto rays = read_rays_input(o.rays, built.value()->scene);
   if (!rays) return fail(rays.error().message);
-  const auto hits = accel::trace_all(*built.value()->structure, rays.value(), o.threads);
-  auto written = accel::write_hits_csv(o.out, hits);
-  if (!written) return fail(written.error().message);
+  const auto hits = accel::trace_all(*built.value()->structure, rays.value(), o.threads, nullptr, interrupt_flag());
+  if (interrupted()) return interrupted_exit();
+  // Once the file is renamed into place the run is complete: a signal after it changes nothing.
+  auto written = accel::write_hits_csv(o.out, hits, interrupt_flag());
+  if (!written) return interrupted() ? interrupted_exit() : fail(written.error().message);
   return 0;
 }
 
 int run_stats(const StatsOptions& o) {
+  if (!o.build_trace.empty())
+    if (auto writable = accel::check_writable(o.build_trace); !writable) return fail(writable.error().message);
   auto built = load_and_build(o.build);
+  if (interrupted()) return interrupted_exit();
   if (!built) return fail(built.error().message);
   const Built& b = *built.value();
   accel::BuildStats stats = b.structure->build_stats();
   QueryReport q;
   if (!o.rays.empty()) {
-    auto rays = accel::make_rays(o.rays, b.scene);
+    auto rays = read_rays_input(o.rays, b.scene);
     if (!rays) return fail(rays.error().message);
     // Timed twice: the fast path (no counters, as `trace` and `bench` run it), then with the
     // counters that give the per-ray figures.
@@ -110,7 +129,8 @@ int run_stats(const StatsOptions& o) {
     q.trace_fast_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - fast_start).count();
     accel::QueryStats total;
     const auto start = std::chrono::steady_clock::now();
-    const auto hits = accel::trace_all(*b.structure, rays.value(), o.threads, &total);
+    const auto hits = accel::trace_all(*b.structure, rays.value(), o.threads, &total, interrupt_flag());
+    if (interrupted()) return interrupted_exit();
     q.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     q.present = true;
     q.rays = o.rays;
@@ -128,13 +148,16 @@ int run_stats(const StatsOptions& o) {
   if (b.structure->refit(b.scene)) stats.refit_ms = b.structure->build_stats().refit_ms;
   if (!o.build_trace.empty()) {
     // A second, recorded build (single-threaded): the statistics above are the normal one's.
+    accel::BuildControl control;
+    control.set_cancel_flag(interrupt_flag());
     auto recorded = accel::build_structure_recorded(*b.info, b.scene, b.param_set, b.kernel,
-                                                    size_t(o.build_trace_budget_mb) << 20);
+                                                    size_t(o.build_trace_budget_mb) << 20, &control);
+    if (interrupted()) return interrupted_exit();
     if (!recorded) return fail(recorded.error().message);
     std::ostringstream out;
     accel::write_build_trace_jsonl(recorded.value().trace, out);
-    auto written = accel::write_file_atomic(o.build_trace, out.str());
-    if (!written) return fail(written.error().message);
+    auto written = accel::write_file_atomic(o.build_trace, out.str(), interrupt_flag());
+    if (!written) return interrupted() ? interrupted_exit() : fail(written.error().message);
     std::fprintf(stderr, "build trace: %zu steps (%s) written to %s\n", recorded.value().trace.events.size(),
                  recorded.value().trace.coverage().c_str(), o.build_trace.c_str());
   }

@@ -1,12 +1,15 @@
 // accelviz-cli: answers ray queries in batch and reports structure statistics.
 //   accelviz-cli trace --scene FILE.obj --structure S [--param k=v]... --rays RAYS --out HITS.csv
 //   accelviz-cli stats --scene FILE.obj --structure S [--param k=v]... [--json]
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "interrupt.h"
 #include "memory_budget.h"
 #include "registry.h"
 #include "scene.h"
@@ -51,9 +54,21 @@ int print_params() {
   return 0;
 }
 
+/// The command's exit code, or 2 when its standard output could not be written (a full disk,
+/// a closed pipe): a table that did not arrive is not a success.
+int check_stdout(int code) {
+  errno = 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
+  if (code != 0) return code;  // the command already said what went wrong
+  std::fprintf(stderr, "accelviz-cli: standard output: write failed%s%s\n", errno ? ": " : "",
+               errno ? std::strerror(errno) : "");
+  return cli::kExitBadInput;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli::install_interrupt_handlers();
   CLI::App app{"accelviz-cli: batch ray queries, statistics and benchmarks of acceleration structures"};
   app.require_subcommand(1);
 
@@ -119,9 +134,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "accelviz-cli: %s (see --help)\n", e.what());
     return cli::kExitBadInput;
   }
-  if (trace_cmd->parsed()) return cli::run_trace(trace);
-  if (stats_cmd->parsed()) return cli::run_stats(stats);
-  if (bench_cmd->parsed()) return cli::run_bench(bench);
-  if (params_cmd->parsed()) return print_params();
+  if (trace_cmd->parsed()) return check_stdout(cli::run_trace(trace));
+  if (stats_cmd->parsed()) return check_stdout(cli::run_stats(stats));
+  if (bench_cmd->parsed()) return check_stdout(cli::run_bench(bench));
+  if (params_cmd->parsed()) return check_stdout(print_params());
   return cli::kExitBadInput;
 }
