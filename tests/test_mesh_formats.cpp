@@ -333,6 +333,14 @@ TEST(MeshFormats, MalformedPlyHeadersAreRejectedBeforeAssimpReadsThem) {
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     EXPECT_NE(msg.find(c.needle), std::string::npos) << msg;
   }
+  // A PLY under another name reaches Assimp's PLY reader too: checked as well.
+  {
+    const std::string path = write("ply_inside.glb", head + "property float x\nproperty float\n" + tail);
+    auto got = load_scene(path);
+    ASSERT_FALSE(got.ok());
+    EXPECT_NE(got.error().message.find(":5: PLY header: expected 'property TYPE NAME'"), std::string::npos)
+        << got.error().message;
+  }
   // What the check lets through still loads: comments, obj_info, CRLF line ends, big-endian.
   auto ok = load_scene(write("commented.ply", "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\n" +
                                                    std::string("element vertex 3\r\n") + xyz + tail));
