@@ -17,11 +17,11 @@ const char* verdict_name(HitVerdict v) {
 
 ReferenceHit reference_closest(const Scene& scene, const Ray& ray) {
   ReferenceHit best;
+  const DoubleRayTester tester(ray);
   for (uint32_t prim : scene.valid_prims()) {
     double t, u, v;
     const double tmax = best.prim < 0 ? double(ray.tmax) : best.t;
-    if (intersect_triangle_double(ray, scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), tmax, &t,
-                                  &u, &v) &&
+    if (tester.intersect(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), tmax, &t, &u, &v) &&
         (best.prim < 0 || t < best.t)) {
       best = {int32_t(prim), t};
     }

@@ -60,31 +60,54 @@ bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
   return true;
 }
 
-bool intersect_triangle_double(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                               double tmax, double* t_out, double* u_out, double* v_out) {
-  const DVec3 dir(ray.dir), org(ray.org);
+DoubleRayTester::DoubleRayTester(const Ray& ray) : tmin_(ray.tmin) {
+  const DVec3 dir(ray.dir);
   const DVec3 ad = glm::abs(dir);
-  int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
-  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-  if (dir[kz] < 0.0) std::swap(kx, ky);
-  if (dir[kz] == 0.0) return false;  // zero direction: no well-defined hit
-  const double sx = dir[kx] / dir[kz], sy = dir[ky] / dir[kz], sz = 1.0 / dir[kz];
-  const DVec3 a = DVec3(p0) - org, b = DVec3(p1) - org, c = DVec3(p2) - org;
-  const double ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
-  const double bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
-  const double cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+  kz_ = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+  kx_ = (kz_ + 1) % 3;
+  ky_ = (kx_ + 1) % 3;
+  if (dir[kz_] < 0.0) std::swap(kx_, ky_);
+  zero_dir_ = dir[kz_] == 0.0;
+  if (zero_dir_) return;
+  sx_ = dir[kx_] / dir[kz_];
+  sy_ = dir[ky_] / dir[kz_];
+  sz_ = 1.0 / dir[kz_];
+  const DVec3 org(ray.org);
+  org_k_[0] = org[kx_];
+  org_k_[1] = org[ky_];
+  org_k_[2] = org[kz_];
+}
+
+bool DoubleRayTester::intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, double tmax, double* t_out,
+                                double* u_out, double* v_out) const {
+  if (zero_dir_) return false;
+  // Coordinates picked by index from arrays: glm's operator[] is a switch per access.
+  const float q0[3] = {p0.x, p0.y, p0.z}, q1[3] = {p1.x, p1.y, p1.z}, q2[3] = {p2.x, p2.y, p2.z};
+  const double a_x = double(q0[kx_]) - org_k_[0], a_y = double(q0[ky_]) - org_k_[1], a_z = double(q0[kz_]) - org_k_[2];
+  const double b_x = double(q1[kx_]) - org_k_[0], b_y = double(q1[ky_]) - org_k_[1], b_z = double(q1[kz_]) - org_k_[2];
+  const double c_x = double(q2[kx_]) - org_k_[0], c_y = double(q2[ky_]) - org_k_[1], c_z = double(q2[kz_]) - org_k_[2];
+  const double ax = a_x - sx_ * a_z, ay = a_y - sy_ * a_z;
+  const double bx = b_x - sx_ * b_z, by = b_y - sy_ * b_z;
+  const double cx = c_x - sx_ * c_z, cy = c_y - sy_ * c_z;
   const double u = cx * by - cy * bx;
   const double v = ax * cy - ay * cx;
   const double w = bx * ay - by * ax;
-  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
+  // Bitwise, not short-circuit: one well-predicted branch (almost every triangle misses).
+  const bool negative = (u < 0.0) | (v < 0.0) | (w < 0.0), positive = (u > 0.0) | (v > 0.0) | (w > 0.0);
+  if (negative & positive) return false;
   const double det = u + v + w;
   if (det == 0.0) return false;
-  const double t = (u * sz * a[kz] + v * sz * b[kz] + w * sz * c[kz]) / det;
-  if (!(t >= double(ray.tmin) && t <= tmax)) return false;
+  const double t = (u * sz_ * a_z + v * sz_ * b_z + w * sz_ * c_z) / det;
+  if (!(t >= tmin_ && t <= tmax)) return false;
   *t_out = t;
   *u_out = v / det;
   *v_out = w / det;
   return true;
+}
+
+bool intersect_triangle_double(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                               double tmax, double* t_out, double* u_out, double* v_out) {
+  return DoubleRayTester(ray).intersect(p0, p1, p2, tmax, t_out, u_out, v_out);
 }
 
 bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {

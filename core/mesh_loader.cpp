@@ -123,6 +123,52 @@ Status check_ply_header(const std::string& path, uintmax_t file_size) {
   return make_error(path + ": PLY header: no 'end_header' line within the first 1000 lines");
 }
 
+/// True when the file begins with the binary glTF magic "glTF".
+bool starts_like_glb(const std::string& path) {
+  char head[4] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(head, sizeof head);
+  return in.gcount() == 4 && std::string(head, 4) == "glTF";
+}
+
+/// The binary glTF container, checked before Assimp sees the file. Assimp 5.2 allocates
+/// what the header and chunk lengths claim before it reads them, so a 600-byte file whose
+/// JSON chunk claims 1.8 GB asked for 1.8 GB (fuzz_mesh found it): every length must fit in
+/// the file. Version 1 (KHR_binary_glTF) has one content length, version 2 a chunk list.
+Status check_glb_container(const std::string& path, uintmax_t file_size) {
+  std::ifstream in(path, std::ios::binary);
+  const auto word = [&](uint32_t& out) {
+    unsigned char b[4] = {};
+    in.read(reinterpret_cast<char*>(b), 4);
+    out = uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;  // little endian
+    return in.gcount() == 4;
+  };
+  const auto fail = [&](const std::string& what) { return make_error(path + ": GLB header: " + what); };
+  uint32_t magic = 0, version = 0, length = 0;
+  if (!word(magic) || !word(version) || !word(length)) return fail("shorter than its 12-byte header");
+  const std::string file_bytes = "the file has " + std::to_string(file_size) + " bytes";
+  if (length > file_size) return fail("declares " + std::to_string(length) + " bytes but " + file_bytes);
+  if (version == 1) {
+    uint32_t content_length = 0, content_format = 0;
+    if (!word(content_length) || !word(content_format)) return fail("shorter than its 20-byte version 1 header");
+    if (length < 20 || content_length > length - 20)
+      return fail("the content declares " + std::to_string(content_length) + " bytes but " + file_bytes);
+    return {};
+  }
+  if (version != 2) return fail("version " + std::to_string(version) + " (1 or 2 expected)");
+  uint64_t offset = 12;
+  for (int chunk = 0; offset + 8 <= length; ++chunk) {
+    uint32_t chunk_length = 0, chunk_type = 0;
+    if (!word(chunk_length) || !word(chunk_type)) break;
+    if (chunk_length > length - offset - 8)
+      return fail("chunk " + std::to_string(chunk) + " declares " + std::to_string(chunk_length) + " bytes but " +
+                  file_bytes);
+    offset += 8 + uint64_t(chunk_length);
+    in.seekg(static_cast<std::streamoff>(offset));
+  }
+  return {};
+}
+
 struct Collector {
   const aiScene* scene = nullptr;
   std::vector<Vec3> positions;
@@ -201,9 +247,11 @@ Result<Scene> load_mesh(const std::string& path) {
   if (size == 0) return make_error(path + ": the file is empty");
   // Assimp reads a file its extension's importer rejects with whichever importer recognises
   // the content, so a PLY named .glb reaches the PLY reader too (fuzz_mesh found one that
-  // hung): the header check goes by the content as well as by the name.
+  // hung): the header checks go by the content as well as by the name.
   if (extension_of(path) == ".ply" || starts_like_ply(path))
     if (Status st = check_ply_header(path, size); !st) return st.error();
+  if (starts_like_glb(path))
+    if (Status st = check_glb_container(path, size); !st) return st.error();
 
   Assimp::Importer importer;
   const aiScene* scene = nullptr;

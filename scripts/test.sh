@@ -26,8 +26,8 @@ if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
   # overlapping coplanar triangles take over a minute each under ASan, and the same code
   # (kd-tree, grid) runs here in the default configurations.
   # ACCEL_FUZZ_SECONDS: the CLI's end-to-end fuzz (cli.fuzz_e2e) runs as long as each
-  # libFuzzer target below, 30 s, instead of the Release pass's 60.
-  (cd "$root/build-asan" && ACCEL_TEST_RAY_SCALE=0.1 ACCEL_FUZZ_SECONDS="${ACCEL_FUZZ_SECONDS:-30}" \
+  # libFuzzer target below (30 s by default, as in the Release pass).
+  (cd "$root/build-asan" && ACCEL_TEST_RAY_SCALE=0.05 ACCEL_FUZZ_SECONDS="${ACCEL_FUZZ_SECONDS:-30}" \
      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
      ctest --output-on-failure -j"$jobs" \
        -E "HardCases.WatertightKernelPassesEveryCase/(kdtree_split_middle|grid_resolution_avgsize)")

@@ -348,5 +348,44 @@ TEST(MeshFormats, MalformedPlyHeadersAreRejectedBeforeAssimpReadsThem) {
   EXPECT_EQ(ok.value().triangle_count(), 1u);
 }
 
+// Assimp 5.2 allocates what a GLB's header and chunk lengths claim before reading them
+// (fuzz_mesh found a 600-byte file asking for 1.8 GB); each length is checked against the
+// file first, whatever the file's name, so a lie is one line at once and the truth loads.
+TEST(MeshFormats, GlbLengthsLargerThanTheFileAreRejectedBeforeAssimpAllocates) {
+  const std::string good = glb(cube());
+  const auto with_word = [&](size_t at, uint32_t value) {
+    std::string s = good;
+    for (int k = 0; k < 4; ++k) s[at + k] = static_cast<char>(value >> (8 * k) & 0xFF);
+    return s;
+  };
+  uint32_t json_length = 0;
+  for (int k = 0; k < 4; ++k) json_length |= uint32_t(static_cast<unsigned char>(good[12 + k])) << (8 * k);
+  const size_t bin_header = 20 + json_length;
+  struct Case {
+    std::string file, bytes, needle;
+  };
+  const std::vector<Case> cases = {
+      {"total.glb", with_word(8, 0x72726574u), "GLB header: declares 1920099700 bytes but the file has"},
+      {"json_chunk.glb", with_word(12, 0x6e656761u), "GLB header: chunk 0 declares 1852139361 bytes"},
+      {"bin_chunk.glb", with_word(bin_header, 4096), "GLB header: chunk 1 declares 4096 bytes"},
+      {"version.glb", with_word(4, 7), "GLB header: version 7 (1 or 2 expected)"},
+      {"short.glb", good.substr(0, 10), "GLB header: shorter than its 12-byte header"},
+      {"glb_inside.stl", with_word(12, 0x6e656761u), "GLB header: chunk 0 declares"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    const std::string path = write(c.file, c.bytes);
+    auto got = load_scene(path);
+    ASSERT_FALSE(got.ok());
+    const std::string& msg = got.error().message;
+    EXPECT_EQ(msg.rfind(path + ": GLB header: ", 0), 0u) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find(c.needle), std::string::npos) << msg;
+  }
+  auto ok = load_scene(write("checked.glb", good));
+  ASSERT_TRUE(ok.ok()) << ok.error().message;
+  EXPECT_EQ(ok.value().triangle_count(), 12u);
+}
+
 }  // namespace
 }  // namespace accel

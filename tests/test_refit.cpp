@@ -166,6 +166,16 @@ const Workload& moved_workload(const std::string& spec, float phase) {
                   20000, 64, 48);
 }
 
+/// The wave phases every refit configuration is checked at.
+constexpr float kPhases[] = {0.5f, 2.0f};
+
+// Run first by ctest with SuiteWarmup (fixture "reference_cache"): the moved scenes'
+// reference answers, computed once instead of by every configuration at the same time.
+TEST(RefitWarmup, ComputeReferences) {
+  for (const std::string& spec : refit_scenes())
+    for (float phase : kPhases) EXPECT_FALSE(moved_workload(spec, phase).reference.empty()) << spec;
+}
+
 /// The structure's hits are correct for `w` by docs/hits.md's rule.
 void expect_reference_hits(const Structure& s, const Workload& w) {
   std::string failures;
@@ -207,7 +217,7 @@ TEST_P(Refit, MovedVerticesGiveReferenceHitsWithTheSameTopology) {
     ASSERT_TRUE(s);
     const Snapshot built = snapshot(*s);
     const BuildStats before = s->build_stats();
-    for (float phase : {0.5f, 2.0f}) {
+    for (float phase : kPhases) {
       SCOPED_TRACE(phase);
       const Workload& w = moved_workload(spec, phase);
       ASSERT_TRUE(scene.move_vertices(w.scene.positions()));
