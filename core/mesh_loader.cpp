@@ -5,15 +5,21 @@
 // fan-triangulated in place as for OBJ. No Assimp post-processing step runs that would
 // reorder, merge or re-triangulate (Triangulate ear-clips, JoinIdenticalVertices reorders);
 // only ValidateDataStructure, which rejects out-of-range indices.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -53,7 +59,31 @@ bool starts_like_ply(const std::string& path) {
   return in.gcount() == 4 && head[0] == 'p' && head[1] == 'l' && head[2] == 'y' && (head[3] == '\n' || head[3] == '\r');
 }
 
-Status check_ply_header(const std::string& path, uintmax_t file_size) {
+/// What a PLY header declares: the format and, per element, its count and properties.
+struct PlyLayout {
+  enum class Format { Ascii, BinaryLittle, BinaryBig } format = Format::Ascii;
+  struct Property {
+    bool list = false;
+    int count_size = 0, value_size = 0;  // bytes in binary files; count_size only for lists
+  };
+  struct Element {
+    std::string name;
+    uintmax_t count = 0;
+    std::vector<Property> properties;
+  };
+  std::vector<Element> elements;
+  uintmax_t body_offset = 0;  // the first byte after end_header's line
+};
+
+/// Bytes of a PLY scalar type (the header check has accepted the name).
+int ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "double" || t == "float64") return 8;
+  return 4;
+}
+
+Status check_ply_header(const std::string& path, uintmax_t file_size, PlyLayout& layout) {
   static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
                                        "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   const auto is_type = [](const std::string& t, bool integral_only) {
@@ -81,15 +111,25 @@ Status check_ply_header(const std::string& path, uintmax_t file_size) {
       if (line != "format ascii 1.0" && line != "format binary_little_endian 1.0" &&
           line != "format binary_big_endian 1.0")
         return fail(n, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      layout.format = line == "format ascii 1.0"                    ? PlyLayout::Format::Ascii
+                      : line == "format binary_little_endian 1.0" ? PlyLayout::Format::BinaryLittle
+                                                                   : PlyLayout::Format::BinaryBig;
       continue;
     }
     if (keyword == "comment" || keyword == "obj_info") continue;
+    // Words split by blanks only, as Assimp splits them: a control or non-ASCII byte in an
+    // element line let Assimp read a count of 10^40 digits where this check read 8.
+    for (char ch : line)
+      if ((static_cast<unsigned char>(ch) < 0x20 && ch != '\t') || static_cast<unsigned char>(ch) >= 0x7f)
+        return fail(n, "a control or non-ASCII character outside a comment");
     if (keyword == "end_header") {
       const uintmax_t budget = file_size + 1;
       if (vertices > budget / 3 || faces > budget / 4)
         return make_error(path + ": the PLY header declares " + std::to_string(vertices) + " vertices and " +
                           std::to_string(faces) + " faces, more than a file of " + std::to_string(file_size) +
                           " bytes can hold");
+      const std::streamoff end = in.tellg();  // -1 when end_header is the file's last bytes
+      layout.body_offset = end < 0 ? file_size : static_cast<uintmax_t>(end);
       return {};
     }
     std::string a, b, c, extra;
@@ -101,6 +141,7 @@ Status check_ply_header(const std::string& path, uintmax_t file_size) {
       if (a == "vertex") vertices = count;
       else if (a == "face") faces = count;
       in_element = true;
+      layout.elements.push_back({a, count, {}});
       continue;
     }
     if (keyword == "property") {
@@ -109,9 +150,12 @@ Status check_ply_header(const std::string& path, uintmax_t file_size) {
       if (a == "list") {
         if (!(words >> a >> b >> c) || (words >> extra) || !is_type(a, true) || !is_type(b, true))
           return fail(n, "expected 'property list COUNT_TYPE INDEX_TYPE NAME' with integer types");
+        layout.elements.back().properties.push_back({true, ply_type_size(a), ply_type_size(b)});
       } else if (!(words >> b) || (words >> extra) || !is_type(a, false)) {
         return fail(n, "expected 'property TYPE NAME' with TYPE one of char, uchar, short, ushort, int, uint, "
                        "float, double (or int8 ... float64)");
+      } else {
+        layout.elements.back().properties.push_back({false, 0, ply_type_size(a)});
       }
       continue;
     }
@@ -121,6 +165,124 @@ Status check_ply_header(const std::string& path, uintmax_t file_size) {
     return fail(n, "unexpected line '" + shown + "'");
   }
   return make_error(path + ": PLY header: no 'end_header' line within the first 1000 lines");
+}
+
+/// The PLY body's list lengths, checked before Assimp sees them: Assimp 5.2 reserves what a
+/// face's count says, so an ASCII face "88888888883 0 3 2" in a 430-byte file asked for
+/// 7.6 GB (fuzz_mesh found it). The body is walked as the header lays it out; a list longer
+/// than its count type can say or than the rest of the file can hold is a one-line error.
+/// Where the body ends early or holds something that is no number, the walk stops and
+/// Assimp gives its own error.
+Status check_ply_lists(const std::string& path, const PlyLayout& layout) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(layout.body_offset));
+  std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  size_t pos = 0;
+  int line = 0;  // the body's lines read so far; the header's lines are added in messages
+  const auto header_lines = [&] {
+    std::ifstream h(path, std::ios::binary);
+    std::string head(layout.body_offset, '\0');
+    h.read(head.data(), static_cast<std::streamsize>(head.size()));
+    return static_cast<int>(std::count(head.begin(), head.end(), '\n'));
+  };
+  const auto list_error = [&](const PlyLayout::Element& e, uintmax_t index, const std::string& what) {
+    const std::string where = layout.format == PlyLayout::Format::Ascii
+                                  ? path + ":" + std::to_string(header_lines() + line)
+                                  : path;
+    return make_error(where + ": PLY " + e.name + " " + std::to_string(index) + ": " + what);
+  };
+  const auto entries = [](uintmax_t count) {
+    return "a list of " + (count == UINTMAX_MAX ? std::string("more than 10^19") : std::to_string(count)) + " entries";
+  };
+  const auto more_than_type = [](const PlyLayout::Property& p) {
+    return ", more than its " + std::to_string(p.count_size) + "-byte count type can say";
+  };
+  const auto max_count = [](int count_size) {
+    return count_size >= 4 ? uintmax_t(0xFFFFFFFFu) : (uintmax_t(1) << (8 * count_size)) - 1;
+  };
+  if (layout.format == PlyLayout::Format::Ascii) {
+    // Line by line, as Assimp reads it: one element instance per line, the list's count
+    // read as the digits its token starts with.
+    for (const PlyLayout::Element& e : layout.elements) {
+      // Tokens up to the last list; an element without one is only skipped, line by line.
+      size_t lists_end = 0;
+      for (size_t k = 0; k < e.properties.size(); ++k)
+        if (e.properties[k].list) lists_end = k + 1;
+      for (uintmax_t i = 0; i < e.count; ++i) {
+        if (pos >= body.size()) return {};
+        size_t end = body.find('\n', pos);
+        if (lists_end == 0) {
+          pos = end == std::string::npos ? body.size() : end + 1;
+          ++line;
+          continue;
+        }
+        if (end == std::string::npos) end = body.size();
+        const std::string_view text(body.data() + pos, end - pos);
+        pos = end + 1;
+        ++line;
+        size_t at = 0;
+        const auto token = [&](std::string_view& out) {
+          while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+          const size_t begin = at;
+          while (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+          out = text.substr(begin, at - begin);
+          return !out.empty();
+        };
+        for (size_t k = 0; k < lists_end; ++k) {
+          const PlyLayout::Property& p = e.properties[k];
+          std::string_view t;
+          if (!token(t)) break;
+          if (!p.list) continue;
+          if (t[0] == '-' && t.size() > 1 && std::isdigit(static_cast<unsigned char>(t[1])))
+            return list_error(e, i, "a list of negative length");
+          const size_t digits = std::min(t.find_first_not_of("0123456789"), t.size());
+          const uintmax_t count = digits > 19 ? UINTMAX_MAX : digits == 0 ? 0 : std::stoull(std::string(t.substr(0, digits)));
+          if (count > max_count(p.count_size)) return list_error(e, i, entries(count) + more_than_type(p));
+          // Each entry takes a character and a blank at least.
+          const size_t rest = (text.size() - at) + (pos < body.size() ? body.size() - pos : 0);
+          if (count > rest / 2 + 1) return list_error(e, i, entries(count) + ", more than the rest of the file holds");
+          if (k + 1 < lists_end)  // another list follows on this line: step over the entries
+            for (uintmax_t n = 0; n < count && token(t); ++n) {
+            }
+        }
+      }
+    }
+    return {};
+  }
+  const bool big = layout.format == PlyLayout::Format::BinaryBig;
+  for (const PlyLayout::Element& e : layout.elements) {
+    size_t row = 0;  // bytes of one instance when it holds no list
+    bool has_list = false;
+    for (const PlyLayout::Property& p : e.properties) {
+      has_list |= p.list;
+      row += size_t(p.value_size);
+    }
+    if (!has_list) {
+      if (row != 0 && e.count > (body.size() - pos) / row) return {};  // ends early: Assimp's to report
+      pos += size_t(e.count) * row;
+      continue;
+    }
+    for (uintmax_t i = 0; i < e.count; ++i) {
+      for (const PlyLayout::Property& p : e.properties) {
+        if (!p.list) {
+          if (body.size() - pos < size_t(p.value_size)) return {};
+          pos += size_t(p.value_size);
+          continue;
+        }
+        if (body.size() - pos < size_t(p.count_size)) return {};
+        uintmax_t count = 0;
+        for (int k = 0; k < p.count_size; ++k) {
+          const auto byte = static_cast<unsigned char>(body[pos + size_t(big ? k : p.count_size - 1 - k)]);
+          count = count << 8 | byte;
+        }
+        pos += size_t(p.count_size);
+        if (count > (body.size() - pos) / size_t(p.value_size))
+          return list_error(e, i, entries(count) + ", more than the rest of the file holds");
+        pos += size_t(count) * size_t(p.value_size);
+      }
+    }
+  }
+  return {};
 }
 
 /// True when the file begins with the binary glTF magic "glTF".
@@ -156,17 +318,43 @@ Status check_glb_container(const std::string& path, uintmax_t file_size) {
     return {};
   }
   if (version != 2) return fail("version " + std::to_string(version) + " (1 or 2 expected)");
+  if (length < 20) return fail("declares " + std::to_string(length) + " bytes, less than a header and one chunk");
+  // Every chunk up to the end of the file, whatever the header's length says: Assimp reads
+  // the JSON chunk by its own length (a header of length 0 hid a 2 GB chunk, fuzz_mesh).
   uint64_t offset = 12;
-  for (int chunk = 0; offset + 8 <= length; ++chunk) {
+  for (int chunk = 0; offset + 8 <= file_size; ++chunk) {
     uint32_t chunk_length = 0, chunk_type = 0;
     if (!word(chunk_length) || !word(chunk_type)) break;
-    if (chunk_length > length - offset - 8)
+    if (chunk_length > file_size - offset - 8)
       return fail("chunk " + std::to_string(chunk) + " declares " + std::to_string(chunk_length) + " bytes but " +
                   file_bytes);
     offset += 8 + uint64_t(chunk_length);
     in.seekg(static_cast<std::streamoff>(offset));
   }
   return {};
+}
+
+/// Leaves registered only the Assimp readers that list `ext` (".glb": both glTF readers).
+/// Assimp hands a file its own reader rejects to whichever reader claims the bytes, and
+/// those are fuzzed by nobody here: fuzz_mesh found a hang in the PLY reader behind a
+/// `.glb` name and a heap overflow in another behind "glTB". The removed readers are
+/// deleted here, since UnregisterLoader only forgets them.
+void keep_only_readers_of(Assimp::Importer& importer, const std::string& ext) {
+  const std::string wanted = ext.substr(1);
+  std::vector<Assimp::BaseImporter*> others;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    const aiImporterDesc* desc = importer.GetImporterInfo(i);
+    bool lists = false;
+    if (desc && desc->mFileExtensions) {
+      std::istringstream names(desc->mFileExtensions);
+      for (std::string name; names >> name;) lists |= lower(name) == wanted;
+    }
+    if (!lists) others.push_back(importer.GetImporter(i));
+  }
+  for (Assimp::BaseImporter* reader : others) {
+    importer.UnregisterLoader(reader);
+    delete reader;
+  }
 }
 
 struct Collector {
@@ -245,15 +433,19 @@ Result<Scene> load_mesh(const std::string& path) {
   const uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) return make_error(path + ": cannot read the file size");
   if (size == 0) return make_error(path + ": the file is empty");
-  // Assimp reads a file its extension's importer rejects with whichever importer recognises
-  // the content, so a PLY named .glb reaches the PLY reader too (fuzz_mesh found one that
-  // hung): the header checks go by the content as well as by the name.
-  if (extension_of(path) == ".ply" || starts_like_ply(path))
-    if (Status st = check_ply_header(path, size); !st) return st.error();
+  // The checks go by the content as well as by the name: a PLY named .glb once reached the
+  // PLY reader (fuzz_mesh found one that hung). keep_only_readers_of() below now stops that,
+  // and a PLY's own error line says more than the glTF reader's refusal.
+  if (extension_of(path) == ".ply" || starts_like_ply(path)) {
+    PlyLayout layout;
+    if (Status st = check_ply_header(path, size, layout); !st) return st.error();
+    if (Status st = check_ply_lists(path, layout); !st) return st.error();
+  }
   if (starts_like_glb(path))
     if (Status st = check_glb_container(path, size); !st) return st.error();
 
   Assimp::Importer importer;
+  keep_only_readers_of(importer, extension_of(path));
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
