@@ -73,6 +73,7 @@ struct PlyLayout {
   };
   std::vector<Element> elements;
   uintmax_t body_offset = 0;  // the first byte after end_header's line
+  int header_lines = 0;        // end_header's line number: the body's lines follow it
 };
 
 /// Bytes of a PLY scalar type (the header check has accepted the name).
@@ -130,6 +131,7 @@ Status check_ply_header(const std::string& path, uintmax_t file_size, PlyLayout&
                           " bytes can hold");
       const std::streamoff end = in.tellg();  // -1 when end_header is the file's last bytes
       layout.body_offset = end < 0 ? file_size : static_cast<uintmax_t>(end);
+      layout.header_lines = n;
       return {};
     }
     std::string a, b, c, extra;
@@ -179,23 +181,14 @@ Status check_ply_lists(const std::string& path, const PlyLayout& layout) {
   std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   size_t pos = 0;
   int line = 0;  // the body's lines read so far; the header's lines are added in messages
-  const auto header_lines = [&] {
-    std::ifstream h(path, std::ios::binary);
-    std::string head(layout.body_offset, '\0');
-    h.read(head.data(), static_cast<std::streamsize>(head.size()));
-    return static_cast<int>(std::count(head.begin(), head.end(), '\n'));
-  };
   const auto list_error = [&](const PlyLayout::Element& e, uintmax_t index, const std::string& what) {
     const std::string where = layout.format == PlyLayout::Format::Ascii
-                                  ? path + ":" + std::to_string(header_lines() + line)
+                                  ? path + ":" + std::to_string(layout.header_lines + line)
                                   : path;
     return make_error(where + ": PLY " + e.name + " " + std::to_string(index) + ": " + what);
   };
   const auto entries = [](uintmax_t count) {
     return "a list of " + (count == UINTMAX_MAX ? std::string("more than 10^19") : std::to_string(count)) + " entries";
-  };
-  const auto more_than_type = [](const PlyLayout::Property& p) {
-    return ", more than its " + std::to_string(p.count_size) + "-byte count type can say";
   };
   const auto max_count = [](int count_size) {
     return count_size >= 4 ? uintmax_t(0xFFFFFFFFu) : (uintmax_t(1) << (8 * count_size)) - 1;
@@ -237,7 +230,9 @@ Status check_ply_lists(const std::string& path, const PlyLayout& layout) {
             return list_error(e, i, "a list of negative length");
           const size_t digits = std::min(t.find_first_not_of("0123456789"), t.size());
           const uintmax_t count = digits > 19 ? UINTMAX_MAX : digits == 0 ? 0 : std::stoull(std::string(t.substr(0, digits)));
-          if (count > max_count(p.count_size)) return list_error(e, i, entries(count) + more_than_type(p));
+          if (count > max_count(p.count_size))
+            return list_error(e, i, entries(count) + ", more than its " + std::to_string(p.count_size) +
+                                        "-byte count type can say");
           // Each entry takes a character and a blank at least.
           const size_t rest = (text.size() - at) + (pos < body.size() ? body.size() - pos : 0);
           if (count > rest / 2 + 1) return list_error(e, i, entries(count) + ", more than the rest of the file holds");
