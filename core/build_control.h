@@ -16,6 +16,7 @@
 
 #include "memory_budget.h"
 #include "result.h"
+#include "yield_point.h"
 
 namespace accel {
 
@@ -41,6 +42,7 @@ class BuildControl {
   /// True once cancel() was called, the cancel flag was set or the time limit passed. Cheap
   /// (relaxed loads, and a clock read only with a time limit): builders may poll it per node.
   bool cancelled() const {
+    par::yield();  // without threads: the page's other work runs here between slices
     if (cancelled_.load(std::memory_order_relaxed)) return true;
     if (cancel_flag_ && cancel_flag_->load(std::memory_order_relaxed)) return true;
     if (deadline_ == Clock::time_point::max() || Clock::now() < deadline_) return false;

@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "parallel.h"
 
 namespace accel {
 
@@ -43,8 +42,9 @@ CostImage compute_cost_image(const Structure& structure, const PinholeCamera& ca
   std::atomic<bool> stopped{false};
   // One task per row: rows cost very different amounts (sky vs. the dense object), so let
   // TBB balance them instead of cutting the image into equal blocks.
-  tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
+  par::parallel_for(par::blocked_range<int>(0, h, 1), [&](const par::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
+      par::yield();
       if (cancel && cancel->load(std::memory_order_relaxed)) {
         stopped.store(true, std::memory_order_relaxed);
         return;

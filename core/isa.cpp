@@ -21,6 +21,10 @@ std::optional<Isa> parse_isa(std::string_view name) {
 }
 
 bool cpu_runs(Isa isa) {
+#if !defined(__x86_64__) && !defined(__i386__)
+  // WebAssembly: the SSE2 kernels run on its 128-bit SIMD (emscripten's SSE headers); no AVX.
+  return isa == Isa::Sse2;
+#else
   switch (isa) {
     case Isa::Sse2: return true;
     // __builtin_cpu_supports also checks that the OS enabled the registers' state (XCR0).
@@ -31,6 +35,7 @@ bool cpu_runs(Isa isa) {
              __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("popcnt");
   }
   return false;
+#endif
 }
 
 namespace {

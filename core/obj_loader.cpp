@@ -14,6 +14,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "from_chars_real.h"
 #include "scene.h"
 
 namespace accel {
@@ -40,7 +41,7 @@ bool parse_number(std::string_view token, double* out) {
   if (!token.empty() && token[0] == '+') token.remove_prefix(1);  // from_chars rejects a leading '+'
   if (token.empty() || token[0] == '+' ) return false;
   const char* end = token.data() + token.size();
-  auto [ptr, ec] = std::from_chars(token.data(), end, *out, std::chars_format::general);
+  auto [ptr, ec] = from_chars_real(token.data(), end, *out, std::chars_format::general);
   return ec == std::errc() && ptr == end;
 }
 

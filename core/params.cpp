@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "from_chars_real.h"
+
 namespace accel {
 namespace {
 
@@ -16,7 +18,7 @@ bool parse_long_strict(std::string_view s, long* out) {
 
 bool parse_double_strict(std::string_view s, double* out) {
   const char* end = s.data() + s.size();
-  auto [ptr, ec] = std::from_chars(s.data(), end, *out);
+  auto [ptr, ec] = from_chars_real(s.data(), end, *out);
   return !s.empty() && ec == std::errc() && ptr == end && std::isfinite(*out);
 }
 

@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "from_chars_real.h"
+
 namespace accel {
 
 bool parse_ray_number(std::string_view token, float* out) {
@@ -30,7 +32,7 @@ bool parse_ray_number(std::string_view token, float* out) {
   }
   float value;
   const char* end = token.data() + token.size();
-  auto [ptr, ec] = std::from_chars(token.data(), end, value, format);
+  auto [ptr, ec] = from_chars_real(token.data(), end, value, format);
   if (ec != std::errc() || ptr != end) return false;
   *out = negative ? -value : value;
   return true;

@@ -3,8 +3,7 @@
 #include <cmath>
 #include <utility>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "parallel.h"
 
 #include "geometry.h"
 
@@ -40,7 +39,7 @@ void Scene::compute_triangle_data() {
   // order-dependent parts, the ascending index list and the scene box, stay a sequential
   // pass in triangle order, so nothing depends on the thread count (not even the sign of a
   // zero bound: Aabb::extend keeps the first of two equal zeros).
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& range) {
+  par::parallel_for(par::blocked_range<size_t>(0, n, 4096), [&](const par::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) {
       const UVec3& t = triangles_[i];
       const Vec3 &a = positions_[t.x], &b = positions_[t.y], &c = positions_[t.z];

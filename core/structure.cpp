@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include <tbb/task_arena.h>
+#include "parallel.h"
 
 namespace accel {
 
@@ -24,7 +24,7 @@ Status Structure::build_recorded(const Scene& scene, const ParamSet& params, Bui
   // One thread: the steps come in the order of the serial build (depth first, left before
   // right), and the recorder needs no locks. Builders also take their serial paths when
   // recording, so the arena is only a guarantee.
-  tbb::task_arena one_thread(1);
+  par::task_arena one_thread(1);
   Status result;
   one_thread.execute([&] { result = timed_build(scene, params, control, &recorder); });
   return result;

@@ -20,6 +20,8 @@ packages=(
   xdotool                                    # the playlist's keyboard test presses keys in Xvfb
   clang libclang-rt-dev                      # the sanitizer build and its libFuzzer targets (tests/fuzz)
   time                                       # /usr/bin/time -v: peak memory in scripts/bench_huge.sh
+  emscripten dpkg-dev fonts-dejavu-core      # the web page (scripts/build_web.sh; dpkg-source unpacks ImGui's sources)
+  chromium                                   # the web page's browser test (tests/web)
 )
 
 missing=()

@@ -227,6 +227,24 @@ class InteractiveHost final : public ScriptHost {
 
 }  // namespace
 
+accel::Status App::set_structure(const std::string& name, const std::vector<std::string>& params) {
+  auto info = accel::find_structure(name);
+  if (!info) return info.error();
+  if (auto set = accel::ParamSet::parse(info.value()->params, params, name); !set) return set.error();
+  switch_structure({name, params});
+  sync_session();
+  return {};
+}
+
+accel::Status App::go_to_state_number(size_t number) {
+  const size_t count = playlist_.playlist().states.size();
+  if (count == 0) return accel::make_error("--state: no playlist loaded (use --playlist FILE)");
+  if (number < 1 || number > count)
+    return accel::make_error("--state: expected a state 1.." + std::to_string(count) + ", got " + std::to_string(number));
+  go_to_state(number - 1);
+  return {};
+}
+
 accel::Status App::load_playlist(const std::string& path) {
   if (auto st = playlist_.load(path); !st) return st;
   go_to_state(0);

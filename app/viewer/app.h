@@ -122,6 +122,13 @@ class App {
   /// window is up (execute() in a script runs it at once). Errors "FILE:LINE: ...". Needs no GL.
   accel::Status load_playlist(const std::string& path);
 
+  /// Switches to structure `name` with its key=value `params` (the command line's
+  /// --structure and --param; checked as a script's `structure` line is). Needs no GL.
+  accel::Status set_structure(const std::string& name, const std::vector<std::string>& params);
+  /// Moves the loaded playlist to its state `number`, counted from 1 (the command line's
+  /// --state). Error when no playlist is loaded or it has no such state.
+  accel::Status go_to_state_number(size_t number);
+
   /// Recording and screenshots read the frame back: main() calls this after the 3D view is
   /// drawn (with_ui = false) and again after the panels (true), before the buffer swap.
   void capture(bool with_ui) { recorder_.capture(with_ui, view_, framebuffer_); }

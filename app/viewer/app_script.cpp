@@ -2,10 +2,14 @@
 // tools' methods. Builds, heat maps, comparisons and sweeps run synchronously in script
 // mode, so every command sees the result of the previous one; screenshots go through the
 // ScriptHost (main.cpp).
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <functional>
 
 #include "app.h"
+#include "batch.h"
+#include "ray_gen.h"
 #include "registry.h"
 #include "tools/traversal_numbers.h"
 
@@ -339,6 +343,19 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       std::printf("stats %s %s nodes %zu leaves %zu depth %d memory %zu build_ms %.3f sah %.4g\n",
                   b.request.name.c_str(), b.params_text.c_str(), s.nodes, s.leaves, s.max_depth, s.memory_bytes,
                   s.build_ms, s.sah_cost);
+      std::fflush(stdout);
+      return {};
+    }
+    case CommandKind::TraceRays: {
+      if (auto st = session_.need_structure(); !st) return st;
+      auto rays = accel::make_rays(c.name, session_.scene());
+      if (!rays) return accel::make_error("trace-rays: " + rays.error().message);
+      // One thread: the same work natively and in the page, which has only one.
+      const auto start = std::chrono::steady_clock::now();
+      const std::vector<accel::Hit> hits = accel::trace_all(*session_.current()->structure, rays.value(), 1);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      const size_t hit_count = size_t(std::count_if(hits.begin(), hits.end(), [](const accel::Hit& h) { return h.valid(); }));
+      std::printf("trace-rays %s: %zu rays, %zu hits, %.1f ms (1 thread)\n", c.name.c_str(), hits.size(), hit_count, ms);
       std::fflush(stdout);
       return {};
     }

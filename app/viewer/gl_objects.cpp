@@ -117,7 +117,8 @@ accel::Result<Shader> Shader::from_files(const std::string& dir, const std::stri
     return accel::make_error("cannot read shader " + vertex_path);
   if (!read_text(fragment_path, fragment_source))
     return accel::make_error("cannot read shader " + fragment_path);
-  return from_source(vertex_source, fragment_source, vertex_file + "/" + fragment_file);
+  return from_source(gl::glsl_for_this_gl(vertex_source), gl::glsl_for_this_gl(fragment_source),
+                     vertex_file + "/" + fragment_file);
 }
 
 void Shader::use() const { glUseProgram(program_); }

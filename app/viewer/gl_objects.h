@@ -6,9 +6,9 @@
 #include <string>
 #include <unordered_map>
 
-#include <glad/gl.h>
 #include <glm/glm.hpp>
 
+#include "gl_api.h"
 #include "result.h"
 
 namespace viz {

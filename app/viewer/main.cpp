@@ -13,13 +13,14 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <glad/gl.h>
+#include "gl_api.h"
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
 #include "app.h"
+#include "browser.h"
 #include "memory_budget.h"
 #include "paths.h"
 #include "renderer.h"
@@ -36,6 +37,9 @@ struct Options {
   std::string script;           ///< command script; empty = none
   std::string bench_json;       ///< bench JSON for the "Speed vs error" chart; empty = none
   std::string playlist;         ///< lecture playlist; empty = none
+  size_t state = 0;             ///< the playlist's state to open, from 1; 0 = the first
+  std::string structure;        ///< structure to start with; empty = the default
+  std::vector<std::string> params;  ///< its key=value parameters
   int frames = 3;               ///< frames rendered before the screenshot
   int width = 1280, height = 720;
   bool no_ui = false;           ///< start with the panels hidden
@@ -44,6 +48,8 @@ struct Options {
 };
 
 constexpr int kMinSize = 64;
+// The page's background work per frame: most of a 60 Hz frame, leaving time to draw.
+constexpr double kBackgroundMsPerFrame = 10.0;
 constexpr int kMaxSize = 8192;
 
 // GLFW reports errors through a C callback with no user data. Before glfwInit() succeeds
@@ -52,6 +58,15 @@ bool report_glfw_errors = false;
 
 void glfw_error_callback(int error, const char* description) {
   if (report_glfw_errors) std::fprintf(stderr, "accelviz: GLFW error %d: %s\n", error, description);
+}
+
+// GLFW's last error message, or nullptr (GLFW 3.2, the web page's, cannot tell).
+const char* last_glfw_error() {
+  const char* description = nullptr;
+#if GLFW_VERSION_MAJOR > 3 || (GLFW_VERSION_MAJOR == 3 && GLFW_VERSION_MINOR >= 3)
+  glfwGetError(&description);
+#endif
+  return description;
 }
 
 // The default scene needs no file: the Cornell-like room shows boxes, walls and a ball,
@@ -109,6 +124,11 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   cli.add_option("--playlist", options.playlist,
                  "open a lecture playlist (state TITLE blocks of script commands; PgDn / PgUp move "
                  "between its states; see app/viewer/playlist.h)");
+  cli.add_option("--state", options.state, "open the --playlist at this state (1 = the first)");
+  cli.add_option("--structure", options.structure,
+                 "start with this structure (grid, octree, kdtree, bvh, spheretree, brute) instead of the BVH");
+  cli.add_option("--param", options.params,
+                 "a parameter of --structure, key=value as accelviz-cli --param takes it (repeatable)");
   cli.add_flag("--no-ui", options.no_ui, "hide the panels (H shows them): clean screenshots for slides");
   cli.add_option("--msaa", options.msaa, "anti-aliasing samples per pixel, 0 (off) .. 16; 0 is much faster on "
                                          "software renderers (Mesa llvmpipe)")
@@ -140,6 +160,14 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
       return 2;
     }
     options.memory_limit = bytes.value();
+  }
+  if (!options.params.empty() && options.structure.empty()) {
+    std::fprintf(stderr, "accelviz: --param: needs --structure NAME\n");
+    return 2;
+  }
+  if (options.state != 0 && options.playlist.empty()) {
+    std::fprintf(stderr, "accelviz: --state: needs --playlist FILE\n");
+    return 2;
   }
   if (options.scene.empty()) {
     std::fprintf(stderr, "accelviz: no scene given and the core has no procedural scenes\n");
@@ -218,6 +246,7 @@ class WindowScriptHost final : public viz::ScriptHost {
     const glm::ivec2 fb = render_frame(window_, app_, dt());
     accel::Status st = viz::save_framebuffer_png(path, fb.x, fb.y);
     glfwSwapBuffers(window_);
+    if (st) viz::browser::log_screenshot(path);  // the page: a test driving it keeps the PNG
     return st;
   }
 
@@ -265,10 +294,13 @@ int run_script(const std::string& script_name, const std::vector<viz::ScriptComm
   host.render(1);
   for (const viz::ScriptCommand& command : commands) {
     if (const accel::Status st = app.execute(command, host); !st) {
-      std::fprintf(stderr, "accelviz: %s\n", viz::script_error(script_name, command.line, st.error().message).c_str());
+      const std::string error = viz::script_error(script_name, command.line, st.error().message);
+      std::fprintf(stderr, "accelviz: %s\n", error.c_str());
+      viz::browser::log_line("script failed: " + error);
       return 2;
     }
   }
+  viz::browser::log_line("script done");
   return 0;
 }
 
@@ -308,6 +340,12 @@ int main(int argc, char** argv) {
   viz::App app;
   app.set_synchronous(script_mode);
   if (options.memory_limit) app.set_memory_limit(options.memory_limit);
+  if (!options.structure.empty()) {
+    if (const accel::Status st = app.set_structure(options.structure, options.params); !st) {
+      std::fprintf(stderr, "accelviz: --structure: %s\n", st.error().message.c_str());
+      return 2;
+    }
+  }
   if (const accel::Status st = app.load_scene(options.scene); !st) {
     std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
     return 2;
@@ -322,7 +360,9 @@ int main(int argc, char** argv) {
   // And a bad playlist: "accelviz: FILE:LINE: ..." before any window. Its first state runs
   // once the window is up.
   if (!options.playlist.empty()) {
-    if (const accel::Status st = app.load_playlist(options.playlist); !st) {
+    accel::Status st = app.load_playlist(options.playlist);
+    if (st && options.state != 0) st = app.go_to_state_number(options.state);
+    if (!st) {
       std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
       return 2;
     }
@@ -335,15 +375,14 @@ int main(int argc, char** argv) {
 
   // Without a display GLFW would fail with an X11 message; say what to do instead.
   const std::string hint = "run it under a virtual display: xvfb-run -a " + command_line(argc, argv);
-  if (!env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) {
+  if (!viz::browser::kInBrowser && !env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) {
     std::fprintf(stderr, "accelviz: no display found (DISPLAY is not set); %s\n", hint.c_str());
     return 1;
   }
 
   glfwSetErrorCallback(glfw_error_callback);
   if (!glfwInit()) {
-    const char* description = nullptr;
-    glfwGetError(&description);
+    const char* description = last_glfw_error();
     std::fprintf(stderr, "accelviz: no display found (GLFW: %s); %s\n",
                  description != nullptr ? description : "glfwInit failed", hint.c_str());
     return 1;
@@ -363,8 +402,7 @@ int main(int argc, char** argv) {
   GLFWwindow* window = glfwCreateWindow(options.width, options.height, "accelviz", nullptr, nullptr);
   report_glfw_errors = true;
   if (window == nullptr) {
-    const char* description = nullptr;
-    glfwGetError(&description);
+    const char* description = last_glfw_error();
     std::fprintf(stderr, "accelviz: cannot create an OpenGL 3.3 core window (GLFW: %s)\n",
                  description != nullptr ? description : "unknown error");
     glfwTerminate();
@@ -374,7 +412,7 @@ int main(int argc, char** argv) {
   glfwSwapInterval(headless ? 0 : 1);  // vsync when interactive; no waiting otherwise
 
   // glad serves our renderer only; ImGui's OpenGL3 backend loads its own functions.
-  if (gladLoadGL(glfwGetProcAddress) == 0) {
+  if (!viz::gl::load_functions(glfwGetProcAddress)) {
     std::fprintf(stderr, "accelviz: cannot load OpenGL 3.3 functions\n");
     glfwDestroyWindow(window);
     glfwTerminate();
@@ -395,7 +433,7 @@ int main(int argc, char** argv) {
   const viz::Fonts fonts = load_fonts(io);
 
   ImGui_ImplGlfw_InitForOpenGL(window, true);
-  ImGui_ImplOpenGL3_Init("#version 330 core");
+  ImGui_ImplOpenGL3_Init(viz::gl::kImGuiGlslVersion);
 
   app.set_ui_visible(!options.no_ui);
   int exit_code = 0;
@@ -405,9 +443,12 @@ int main(int argc, char** argv) {
     glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
 
+  if (exit_code == 0) viz::browser::log_line("ready");  // the page is up (a test waits for this)
   if (exit_code == 0 && script_mode) {
     exit_code = run_script(options.script, script, window, app);
-    glfwSetWindowShouldClose(window, GLFW_TRUE);
+    // The page stays open on the script's last state (the window has nowhere to go).
+    if (viz::browser::kInBrowser) app.set_synchronous(false);  // from here on, used by hand
+    else glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
   if (exit_code == 0 && screenshot_mode) {
     // ImGui needs a frame or two to size its windows, hence --frames. The back buffer holds
@@ -439,8 +480,11 @@ int main(int argc, char** argv) {
     const double now = glfwGetTime();
     const float dt = static_cast<float>(now - last_time);
     last_time = now;
+    // The page: background tasks (builds and the like) get part of each frame's time.
+    viz::browser::run_background_tasks(kBackgroundMsPerFrame);
     render_frame(window, app, dt);
     glfwSwapBuffers(window);
+    viz::browser::wait_for_next_frame();
   }
 
   app.shutdown();

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <utility>
+#include <vector>
 
 #include "color_scheme.h"
 
@@ -31,6 +32,8 @@ MeshBuffers::MeshBuffers() {
   vao_.attribute(kPositionAttribute, positions_, 3, sizeof(accel::Vec3), 0);
   // The index buffer binding is VAO state: bind it while this VAO is bound.
   indices_.bind();
+  edge_vao_.attribute(kPositionAttribute, positions_, 3, sizeof(accel::Vec3), 0);
+  edge_indices_.bind();
   glBindVertexArray(0);
 }
 
@@ -42,12 +45,28 @@ void MeshBuffers::upload(const accel::Scene& scene) {
   indices_.upload(scene.triangles().data(), scene.triangles().size() * sizeof(accel::UVec3));
   glBindVertexArray(0);
   index_count_ = scene.triangles().size() * 3;
+  if (!gl::kHasPolygonMode) {
+    std::vector<uint32_t> edges;
+    edges.reserve(scene.triangles().size() * 6);
+    for (const accel::UVec3& t : scene.triangles()) edges.insert(edges.end(), {t.x, t.y, t.y, t.z, t.z, t.x});
+    edge_vao_.bind();
+    edge_indices_.upload(edges.data(), edges.size() * sizeof(uint32_t));
+    glBindVertexArray(0);
+    edge_index_count_ = edges.size();
+  }
 }
 
 void MeshBuffers::draw() const {
   if (index_count_ == 0) return;
   vao_.bind();
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+}
+
+void MeshBuffers::draw_edges() const {
+  if (edge_index_count_ == 0) return;
+  edge_vao_.bind();
+  glDrawElements(GL_LINES, static_cast<GLsizei>(edge_index_count_), GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);
 }
 
@@ -206,7 +225,7 @@ void Renderer::begin_frame(const FrameView& view, const glm::vec4& background) {
   frame_ = view;
   glViewport(view.origin.x, view.origin.y, view.viewport.x, view.viewport.y);
   glClearColor(background.r, background.g, background.b, background.a);
-  glClearDepth(1.0);
+  gl::clear_depth(1.0f);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_TRUE);
@@ -250,10 +269,19 @@ void Renderer::draw_mesh(const MeshStyle& style) {
       glEnable(GL_BLEND);
       glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
       color.a = 0.5f;
-      mesh_shader_.set("u_tint", color);
-      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-      mesh_.draw();
-      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+      if (gl::kHasPolygonMode) {
+        mesh_shader_.set("u_tint", color);
+        gl::polygon_mode_lines(true);
+        mesh_.draw();
+        gl::polygon_mode_lines(false);
+      } else {
+        // Unlit lines: the mesh shader's face normal needs a triangle's derivatives.
+        line_shader_.use();
+        set_camera(line_shader_);
+        line_shader_.set("u_tint", color);
+        line_shader_.set("u_depth_bias", 0.0f);
+        mesh_.draw_edges();
+      }
       glDisable(GL_BLEND);
       break;
     case MeshStyle::Mode::Hidden: break;

@@ -96,12 +96,18 @@ class MeshBuffers {
   size_t index_count() const { return index_count_; }
   /// Issues the indexed draw call; the caller has set the program and state.
   void draw() const;
+  /// Draws every triangle's three edges as GL_LINES: the wireframe where GL has no polygon
+  /// mode (WebGL2). Empty natively (gl::kHasPolygonMode), where nothing is uploaded for it.
+  void draw_edges() const;
 
  private:
   VertexArray vao_;
   Buffer positions_{GL_ARRAY_BUFFER};
   Buffer indices_{GL_ELEMENT_ARRAY_BUFFER};
   size_t index_count_ = 0;
+  VertexArray edge_vao_;
+  Buffer edge_indices_{GL_ELEMENT_ARRAY_BUFFER};
+  size_t edge_index_count_ = 0;
 };
 
 /// A list of ColorVertex on the GPU, drawn as GL_LINES (pairs) or GL_TRIANGLES (triples).

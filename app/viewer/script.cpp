@@ -375,6 +375,12 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
       return count_error("print-frame-time N (1..10000 frames)");
     return "";
   }
+  if (verb == "trace-rays") {
+    c.kind = CommandKind::TraceRays;
+    if (n != 1) return count_error("trace-rays random:N:SEED | primary:W:H | FILE");
+    c.name = args[0];
+    return "";
+  }
   if (verb == "load-bench") {
     c.kind = CommandKind::LoadBench;
     if (n != 1) return count_error("load-bench FILE");

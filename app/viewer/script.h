@@ -65,6 +65,10 @@
 //   print-ray                         "ox oy oz dx dy dz" as C99 hex floats (a rays-file line)
 //   print-stats                       build statistics of the current structure, one line
 //   print-frame-time N                render N frames, print the mean frame time
+//   trace-rays SPEC                   trace a batch of rays through the current structure on
+//                                     one thread (SPEC as accelviz-cli --rays: random:N:SEED,
+//                                     primary:W:H or a rays file) and print
+//                                     "trace-rays SPEC: N rays, H hits, T ms (1 thread)"
 //   load-bench FILE                   load a bench JSON (accelviz-cli bench --out-json) and
 //                                     open the "Speed vs error" chart
 //   show-chart on|off [SETTING ...]   show or hide the chart; settings x=errors|t-error,
@@ -85,7 +89,7 @@ enum class CommandKind {
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
   Playlist, Next, Prev, PrintState, Record, RecordStop, Colors, HeatmapScale, PrintHeatmap, HeatmapDiff,
-  MemoryLimit,
+  MemoryLimit, TraceRays,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };

@@ -6,6 +6,11 @@
 #include <filesystem>
 #include <vector>
 
+// The web page has neither library (ACCEL_WITH_VIDEO=0): open() then says so in one line.
+#ifndef ACCEL_WITH_VIDEO
+#define ACCEL_WITH_VIDEO 1
+#endif
+#if ACCEL_WITH_VIDEO
 #include <gif_lib.h>
 
 extern "C" {
@@ -15,6 +20,7 @@ extern "C" {
 #include <libavutil/opt.h>
 #include <libswscale/swscale.h>
 }
+#endif
 
 namespace viz {
 namespace {
@@ -25,6 +31,7 @@ std::string extension_of(const std::string& path) {
   return ext;
 }
 
+#if ACCEL_WITH_VIDEO
 void remove_quietly(const std::string& path) {
   std::error_code ec;
   std::filesystem::remove(path, ec);
@@ -260,7 +267,27 @@ class Mp4Writer final : public VideoWriter {
   SwsContext* scaler_ = nullptr;
 };
 
+#endif  // ACCEL_WITH_VIDEO
+
 }  // namespace
+
+std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, int out_w, int out_h) {
+#if ACCEL_WITH_VIDEO
+  std::vector<uint8_t> out(static_cast<size_t>(out_w) * static_cast<size_t>(out_h) * 4);
+  SwsContext* ctx = sws_getContext(w, h, AV_PIX_FMT_RGBA, out_w, out_h, AV_PIX_FMT_RGBA, SWS_AREA, nullptr, nullptr, nullptr);
+  if (!ctx) return {};
+  const uint8_t* in_planes[1] = {src.data()};
+  const int in_stride[1] = {w * 4};
+  uint8_t* out_planes[1] = {out.data()};
+  const int out_stride[1] = {out_w * 4};
+  sws_scale(ctx, in_planes, in_stride, 0, h, out_planes, out_stride);
+  sws_freeContext(ctx);
+  return out;
+#else
+  (void)src, (void)w, (void)h, (void)out_w, (void)out_h;
+  return {};
+#endif
+}
 
 accel::Result<VideoFormat> video_format_of(const std::string& path) {
   const std::string ext = extension_of(path);
@@ -279,6 +306,9 @@ accel::Result<std::unique_ptr<VideoWriter>> VideoWriter::open(const std::string&
   if (fps < kMinFps || fps > kMaxFps)
     return accel::make_error(path + ": fps=" + std::to_string(fps) + " is out of range (" + std::to_string(kMinFps) +
                              ".." + std::to_string(kMaxFps) + ")");
+#if !ACCEL_WITH_VIDEO
+  return accel::make_error(path + ": GIF and MP4 recording needs giflib and FFmpeg, which this build does not have");
+#else
   if (format.value() == VideoFormat::Gif) {
     auto w = std::make_unique<GifWriter>(path, width, height, fps);
     if (auto st = w->start(); !st) return st.error();
@@ -287,6 +317,7 @@ accel::Result<std::unique_ptr<VideoWriter>> VideoWriter::open(const std::string&
   auto w = std::make_unique<Mp4Writer>(path, width, height, fps);
   if (auto st = w->start(); !st) return st.error();
   return std::unique_ptr<VideoWriter>(std::move(w));
+#endif
 }
 
 }  // namespace viz

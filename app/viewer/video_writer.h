@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "result.h"
 
@@ -18,6 +19,10 @@ enum class VideoFormat { Gif, Mp4 };
 /// The format of `path` by its extension (.gif, .mp4; case-insensitive), or an error naming
 /// the path and the valid extensions.
 accel::Result<VideoFormat> video_format_of(const std::string& path);
+
+/// `src` (w x h RGBA) resampled to `out_w` x `out_h` with libswscale (area filter: frames
+/// shrink well); empty when that fails or the build has no FFmpeg.
+std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, int out_w, int out_h);
 
 class VideoWriter {
  public:

@@ -3,7 +3,8 @@
 // the debug ray and its recorded trace, the "same ray, every structure" comparison and the
 // parameter sweep. App drives these and draws their results; the tests call them directly.
 //
-// Threads: a build, a heat map, a comparison or a sweep runs in a Job (std::async). Jobs
+// Threads: a build, a heat map, a comparison or a sweep runs in a Job (std::async; in the
+// web page, which has one thread, a browser::BackgroundTask run in slices between frames). Jobs
 // hold the Scene and the Structure through shared_ptr, so a scene loaded or a structure
 // swapped meanwhile stays alive until every job using it has finished. Structures are
 // const once built: queries from any thread are safe.
@@ -17,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "browser.h"
 #include "build_control.h"
 #include "pseudo_code.h"
 #include "registry.h"
@@ -41,7 +43,8 @@ class Job {
   Job& operator=(const Job&) = delete;
   ~Job() { wait(); }
 
-  /// Runs `fn` on a new thread; `synchronous` runs it here (script mode).
+  /// Runs `fn` on a new thread (in the page: as a background task); `synchronous` runs it
+  /// here (script mode).
   void start(Fn fn, bool synchronous = false) {
     wait();
     cancel_ = std::make_shared<std::atomic<bool>>(false);
@@ -51,6 +54,11 @@ class Job {
       std::promise<T> p;
       p.set_value(fn(*flag));
       future_ = p.get_future();
+    } else if constexpr (browser::kInBrowser) {
+      auto promise = std::make_shared<std::promise<T>>();
+      future_ = promise->get_future();
+      task_ = std::make_unique<browser::BackgroundTask>(
+          [fn = std::move(fn), flag, promise] { promise->set_value(fn(*flag)); });
     } else {
       future_ = std::async(std::launch::async, [fn = std::move(fn), flag] { return fn(*flag); });
     }
@@ -59,10 +67,14 @@ class Job {
   bool busy() const { return future_.valid(); }
   /// True when the result can be taken without blocking.
   bool ready() const {
+    if (task_) return task_->done();
     return future_.valid() && future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
   }
   /// The result (blocks until done). The job is idle afterwards.
-  T take() { return future_.get(); }
+  T take() {
+    if (task_) task_.reset();  // runs it to the end first
+    return future_.get();
+  }
   /// Asks the job to stop early (it decides what a cancelled result is).
   void cancel() {
     if (cancel_) cancel_->store(true);
@@ -70,6 +82,7 @@ class Job {
   /// Cancels and waits for the thread, dropping its result.
   void wait() {
     cancel();
+    task_.reset();  // the page: runs the cancelled task to its end (its next check)
     if (future_.valid()) future_.wait();
     future_ = {};
   }
@@ -80,6 +93,7 @@ class Job {
 
  private:
   std::future<T> future_;
+  std::unique_ptr<browser::BackgroundTask> task_;  // the page only: where fn runs
   std::shared_ptr<std::atomic<bool>> cancel_;
   std::chrono::steady_clock::time_point start_{};
 };

@@ -27,10 +27,7 @@
 #include <memory>
 #include <thread>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
+#include "parallel.h"
 
 #include "check.h"
 #include "structures/bvh_binned_detail.h"
@@ -74,7 +71,7 @@ std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, cons
     progress.placed_leaves(r.size());
     return u;
   }
-  tbb::parallel_invoke([&] { u->left = build_upper(o, refs, left, progress); },
+  par::parallel_invoke([&] { u->left = build_upper(o, refs, left, progress); },
                        [&] { u->right = build_upper(o, refs, right, progress); });
   u->size = 1 + u->left->size + u->right->size;
   return u;
@@ -107,9 +104,9 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   if (n == 0) return tree;
   std::vector<Ref> refs(n);
   // References and root bounds in one parallel pass; min/max reduce exactly in any order.
-  Range root = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, n, 4096), Range{},
-      [&](const tbb::blocked_range<size_t>& br, Range acc) {
+  Range root = par::parallel_reduce(
+      par::blocked_range<size_t>(0, n, 4096), Range{},
+      [&](const par::blocked_range<size_t>& br, Range acc) {
         for (size_t i = br.begin(); i != br.end(); ++i) {
           const uint32_t p = valid[i];
           const Aabb& b = scene.triangle_bounds(p);
@@ -149,7 +146,7 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   tree.nodes.resize(upper->size);
   std::vector<std::pair<const UpperNode*, uint32_t>> buffers;
   place_upper(*upper, 0, tree.nodes, buffers);
-  tbb::parallel_for(size_t(0), buffers.size(), [&](size_t k) {
+  par::parallel_for(size_t(0), buffers.size(), [&](size_t k) {
     const auto [u, offset] = buffers[k];
     BuildNode* dst = tree.nodes.data() + offset;
     for (const BuildNode& src : u->subtree) {
@@ -163,7 +160,7 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   });
   tree.root = 0;
   tree.prims.resize(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& br) {
+  par::parallel_for(par::blocked_range<size_t>(0, n, 16384), [&](const par::blocked_range<size_t>& br) {
     for (size_t i = br.begin(); i != br.end(); ++i) tree.prims[i] = refs[i].prim;
   });
   return tree;

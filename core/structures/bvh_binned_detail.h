@@ -8,12 +8,13 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include "bit_cast.h"
 #include <cmath>
 #include <memory>
 #include <thread>
 #include <vector>
 
-#include <tbb/parallel_for.h>
+#include "parallel.h"
 
 #include "build_control.h"
 #include "check.h"
@@ -325,7 +326,7 @@ class BinnedBuilder {
       // Fixed slices, merged in slice order: the bins do not depend on the scheduling.
       const size_t slices = (n + kBinSlice - 1) / kBinSlice;
       const std::unique_ptr<BinSet[]> partial(new BinSet[slices]);  // default-initialised: no 27 KB memset each
-      tbb::parallel_for(size_t(0), slices, [&](size_t s) {
+      par::parallel_for(size_t(0), slices, [&](size_t s) {
         partial[s].clear(nb);
         BinSet spare;  // uninitialised: bin_refs clears what it uses
         bin_refs(r.begin + s * kBinSlice, std::min(r.end, r.begin + (s + 1) * kBinSlice), map, nb, partial[s], spare);
@@ -475,7 +476,7 @@ class BinnedBuilder {
     _mm_store_si128(reinterpret_cast<__m128i*>(l), left);
     _mm_store_si128(reinterpret_cast<__m128i*>(rr), right);
     for (int a = 0; a < 3; ++a) {
-      if (std::bit_cast<uint32_t>(ok[a]) == 0) continue;
+      if (accel::bit_cast<uint32_t>(ok[a]) == 0) continue;
       planes_[a].push_back({float(b), c[a], l[a], rr[a]});
     }
   }

@@ -18,15 +18,14 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <bit>
+#include "bit_cast.h"
 #include <cmath>
 #include <memory>
 #include <numeric>
 #include <thread>
 #include <utility>
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
+#include "parallel.h"
 
 #include "check.h"
 #include "random.h"
@@ -296,7 +295,7 @@ class TopDownBuilder {
     chunk->nodes.push_back(d.node);
     chunk->size = 1;
     if (d.leaf) return chunk;
-    tbb::parallel_invoke([&] { chunk->left = build_chunk(begin, d.mid, depth + 1, d.child_order); },
+    par::parallel_invoke([&] { chunk->left = build_chunk(begin, d.mid, depth + 1, d.child_order); },
                          [&] { chunk->right = build_chunk(d.mid, end, depth + 1, d.child_order); });
     chunk->size += chunk->left->size + chunk->right->size;
     return chunk;
@@ -336,7 +335,7 @@ class TopDownBuilder {
       stack.push_back({c->left.get(), n.left});
       stack.push_back({c->right.get(), n.right});
     }
-    tbb::parallel_for(size_t(0), serial.size(), [&](size_t k) {
+    par::parallel_for(size_t(0), serial.size(), [&](size_t k) {
       const auto [c, offset] = serial[k];
       BuildNode* dst = out.data() + offset;
       for (const BuildNode& n : c->nodes) {
@@ -531,19 +530,19 @@ class TopDownBuilder {
     // which orders).
     ACCEL_CHECK(std::is_sorted(refs_.begin(), refs_.end(),
                                [](const PrimRef& a, const PrimRef& b) { return a.prim < b.prim; }));
-    tbb::parallel_for(0, 3, [&](int axis) {
+    par::parallel_for(0, 3, [&](int axis) {
       std::vector<uint64_t> keys(total_), scratch;
       for (size_t i = 0; i < total_; ++i) {
         float c = refs_[i].centroid[axis];
         if (c == 0.0f) c = 0.0f;
-        const uint32_t bits = std::bit_cast<uint32_t>(c);
+        const uint32_t bits = accel::bit_cast<uint32_t>(c);
         const uint32_t ordered = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
         keys[i] = (uint64_t(ordered) << 32) | uint64_t(i);
       }
       stable_sort_by_upper_half(keys, scratch);
       std::vector<SweepRef>& list = lists_[axis];
       list.resize(total_);
-      tbb::parallel_for(size_t(0), total_, [&](size_t i) {
+      par::parallel_for(size_t(0), total_, [&](size_t i) {
         const uint32_t ref = uint32_t(keys[i]);
         const Aabb& b = refs_[ref].box;
         list[i] = {{b.min.x, b.min.y, b.min.z}, refs_[ref].prim, {b.max.x, b.max.y, b.max.z}};
@@ -988,7 +987,7 @@ void nearest_neighbours(const std::vector<Aabb>& boxes, int radius, std::vector<
   const size_t n = boxes.size(), r = size_t(radius);
   constexpr size_t kBlock = 2048;
   nearest.resize(n);
-  tbb::parallel_for(size_t(0), (n + kBlock - 1) / kBlock, [&](size_t block) {
+  par::parallel_for(size_t(0), (n + kBlock - 1) / kBlock, [&](size_t block) {
     const size_t begin = block * kBlock, end = std::min(n, begin + kBlock);
     std::array<float, kBlock> best_area;
     std::array<uint32_t, kBlock> best;

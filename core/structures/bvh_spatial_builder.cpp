@@ -39,7 +39,7 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
+#include "bit_cast.h"
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -48,8 +48,7 @@
 #include <utility>
 #include <vector>
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
+#include "parallel.h"
 
 #include "check.h"
 #include "structures/bvh_binned_detail.h"
@@ -61,8 +60,8 @@ namespace {
 /// call, which was a twentieth of the build).
 inline float step_down(float f) {
   if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
-  const uint32_t bits = std::bit_cast<uint32_t>(f);
-  return std::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
+  const uint32_t bits = accel::bit_cast<uint32_t>(f);
+  return accel::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
 }
 inline float step_up(float f) { return -step_down(-f); }
 
@@ -577,7 +576,7 @@ std::unique_ptr<Chunk> build_chunk(const Scene& scene, const BvhBuildOptions& o,
     progress.placed_leaf(t.weight);
     return c;
   }
-  tbb::parallel_invoke([&] { c->left = build_chunk(scene, o, root_area, left, progress); },
+  par::parallel_invoke([&] { c->left = build_chunk(scene, o, root_area, left, progress); },
                        [&] { c->right = build_chunk(scene, o, root_area, right, progress); });
   c->size = 1 + c->left->size + c->right->size;
   c->prim_count = c->left->prim_count + c->right->prim_count;
@@ -616,7 +615,7 @@ BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& op
   if (n == 0) return tree;
   Task root;
   root.refs.resize(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t i) { root.refs[i] = ref_of(valid[i], scene.triangle_bounds(valid[i])); });
+  par::parallel_for(size_t(0), n, [&](size_t i) { root.refs[i] = ref_of(valid[i], scene.triangle_bounds(valid[i])); });
   root.range = range_of(root.refs, 0);
   const double extra = std::max(0.0, double(options.sbvh_budget) - 1.0) * double(n);
   root.budget = size_t(std::min(extra, double(uint32_t(-1)) - double(n)));  // uint32 prims indices
@@ -638,7 +637,7 @@ BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& op
   tree.prims.resize(top->prim_count);
   std::vector<Placed> serial;
   place_chunks(*top, 0, 0, tree.nodes, serial);
-  tbb::parallel_for(size_t(0), serial.size(), [&](size_t k) {
+  par::parallel_for(size_t(0), serial.size(), [&](size_t k) {
     const Placed& p = serial[k];
     BuildNode* dst = tree.nodes.data() + p.node;
     for (const BuildNode& src : p.chunk->nodes) {

@@ -3,10 +3,7 @@
 // instantiated below for the two hierarchies.
 #include <type_traits>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
+#include "parallel.h"
 
 #include "structures/bvh.h"
 #include "structures/sphere_tree.h"
@@ -37,9 +34,9 @@ Status check_refit_prims(const std::string& structure, const Scene& scene, size_
 template <class Derived, class Volume, class VolumeRay>
 Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
   // The first triangle that may not stay (the lowest position, whatever the thread count).
-  const size_t bad_at = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, prims_.size(), 16384), prims_.size(),
-      [&](const tbb::blocked_range<size_t>& r, size_t first) {
+  const size_t bad_at = par::parallel_reduce(
+      par::blocked_range<size_t>(0, prims_.size(), 16384), prims_.size(),
+      [&](const par::blocked_range<size_t>& r, size_t first) {
         for (size_t k = r.begin(); k < r.end() && k < first; ++k)
           if (!refit_keeps(scene, prims_[k])) return k;
         return first;
@@ -55,7 +52,7 @@ Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
     std::vector<PrimRange> ranges(kVolumeIsBox ? 0 : nodes_.size());
     refit_subtree(scene, 0, uint32_t(nodes_.size()), kVolumeIsBox ? nullptr : ranges.data());
     if constexpr (!kVolumeIsBox) {
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes_.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      par::parallel_for(par::blocked_range<size_t>(0, nodes_.size(), 64), [&](const par::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k)
           nodes_[k].volume =
               Derived::fit(scene, prims_.data() + ranges[k].first, ranges[k].end - ranges[k].first, boxes_[k]);
@@ -76,7 +73,7 @@ void Hierarchy<Derived, Volume, VolumeRay>::refit_subtree(const Scene& scene, ui
   }
   // More than one node: an inner node, its left subtree [node + 1, right), its right [right, end).
   const uint32_t right = nodes_[node].index;
-  tbb::parallel_invoke([&] { refit_subtree(scene, node + 1, right, ranges); },
+  par::parallel_invoke([&] { refit_subtree(scene, node + 1, right, ranges); },
                        [&] { refit_subtree(scene, right, end, ranges); });
   refit_node(scene, node, ranges);
 }
@@ -116,7 +113,7 @@ bool Hierarchy<Derived, Volume, VolumeRay>::fit_volumes(ProgressSpan* span) {
   constexpr size_t kFitBatch = 8192;
   for (size_t begin = 0; begin < nodes_.size(); begin += kFitBatch) {
     const size_t end = std::min(nodes_.size(), begin + kFitBatch);
-    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
+    par::parallel_for(par::blocked_range<size_t>(begin, end, 64), [&](const par::blocked_range<size_t>& r) {
       for (size_t k = r.begin(); k < r.end(); ++k)
         nodes_[k].volume =
             Derived::fit(*scene_, prims_.data() + ranges[k].first, ranges[k].end - ranges[k].first, boxes_[k]);

@@ -22,9 +22,7 @@
 #include <string>
 #include <thread>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
+#include "parallel.h"
 
 #include "check.h"
 
@@ -414,7 +412,7 @@ class KdBuilder {
   const bool parallel_, exact_errors_;
   KdTreeData out_;
   size_t node_cap_ = 0;  // nodes allowed: node_limit, and what KdNode's 30 bits hold
-  tbb::enumerable_thread_specific<Workspace> workspaces_;
+  par::enumerable_thread_specific<Workspace> workspaces_;
   // Totals over all tasks. A task reserves its node (and a leaf its references) before
   // making it, so a total above the budget is seen by some task whatever the interleaving:
   // the build fails exactly when the serial one does.
@@ -471,7 +469,11 @@ void KdBuilder::over_budget(const char* what, size_t limit) {
 /// the growing sum never go back.
 void KdBuilder::report_leaf(double share) {
   if (!control_) return;
-  const double done = done_.fetch_add(share, std::memory_order_relaxed) + share;
+  // atomic<double>::fetch_add as a loop: emscripten 3.1.6's libc++ (the web build) lacks it.
+  double done = done_.load(std::memory_order_relaxed);
+  while (!done_.compare_exchange_weak(done, done + share, std::memory_order_relaxed)) {
+  }
+  done += share;
   if (std::this_thread::get_id() == reporter_) progress_.advance(done);
 }
 
@@ -939,7 +941,7 @@ std::unique_ptr<Subtree> KdBuilder::build_task(NodeTask t) {
   NodeTask right = child_task(t, d, true);
   out->nodes.push_back(KdNode::make_inner(d.s.axis, d.s.pos, 0));  // stitch() points it at `above`
   // `ws` is not touched from here on: tasks this thread steals while it waits use it.
-  tbb::parallel_invoke([&] { out->below = build_task(std::move(left)); },
+  par::parallel_invoke([&] { out->below = build_task(std::move(left)); },
                        [&] { out->above = build_task(std::move(right)); });
   return out;
 }
@@ -997,7 +999,7 @@ void KdBuilder::stitch(Subtree& root) {
   }
   out_.nodes.resize(root.node_count);
   out_.prim_ids.resize(root.prim_count);
-  tbb::parallel_for(size_t(0), parts.size(), [&](size_t i) {
+  par::parallel_for(size_t(0), parts.size(), [&](size_t i) {
     const Subtree& part = *parts[i];
     const uint32_t node_shift = uint32_t(part.node_offset) << 2, prim_shift = uint32_t(part.prim_offset);
     KdNode* nodes = out_.nodes.data() + part.node_offset;
@@ -1054,7 +1056,7 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
   if (recorder) recorder->scene_box(out_.root_box);
   if (build_cancelled(control_)) return cancelled_error();
   auto sort_axis = [&root](int k) { std::sort(root.events.axis[k].begin(), root.events.axis[k].end(), EventLess{}); };
-  tbb::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
+  par::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
 
   root.n = prims.size();
   root.box = out_.root_box;

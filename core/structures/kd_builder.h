@@ -31,7 +31,7 @@
 //    build does (each node and reference is reserved on a shared counter; the event budget is
 //    the serial build's live count, computed per path); progress is reported by the thread
 //    that started the build only.
-#include <bit>
+#include "bit_cast.h"
 #include <cstdint>
 #include <vector>
 
@@ -60,13 +60,13 @@ struct KdNode {
 
   bool leaf() const { return (bits & 3u) == 3u; }
   int axis() const { return int(bits & 3u); }
-  float split() const { return std::bit_cast<float>(payload); }
+  float split() const { return accel::bit_cast<float>(payload); }
   NodeId above_child() const { return bits >> 2; }
   uint32_t prim_count() const { return bits >> 2; }
   uint32_t prim_offset() const { return payload; }
 
   static KdNode make_inner(int axis, float split, NodeId above) {
-    return KdNode{std::bit_cast<uint32_t>(split), (above << 2) | uint32_t(axis)};
+    return KdNode{accel::bit_cast<uint32_t>(split), (above << 2) | uint32_t(axis)};
   }
   static KdNode make_leaf(uint32_t offset, uint32_t count) { return KdNode{offset, (count << 2) | 3u}; }
 };

@@ -1,7 +1,6 @@
 #include "structures/octree.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "parallel.h"
 
 #include <array>
 #include <atomic>
@@ -183,8 +182,8 @@ class OctreeBuilder {
     Aabb bounds;
     for (uint32_t prim : scene_.valid_prims()) bounds.extend(scene_.triangle_bounds(prim));
     prims_.resize(scene_.triangle_count());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, scene_.valid_prims().size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& r) {
+    par::parallel_for(par::blocked_range<size_t>(0, scene_.valid_prims().size(), 4096),
+                      [&](const par::blocked_range<size_t>& r) {
                         for (size_t k = r.begin(); k < r.end(); ++k) {
                           const uint32_t prim = scene_.valid_prims()[k];
                           prims_[prim] = {scene_.triangle_bounds(prim),
@@ -390,7 +389,7 @@ class OctreeBuilder {
     std::vector<uint8_t>& masks = scratch.masks[depth];
     masks.resize(n);
     if (parallel_ && n >= kParallelMasks) {
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+      par::parallel_for(par::blocked_range<size_t>(0, n, 1024), [&](const par::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) masks[k] = uint8_t(child_mask(prims[k], box, mid));
       });
     } else {
@@ -467,7 +466,7 @@ class OctreeBuilder {
     std::array<OctreePart, 8> parts;
     std::array<OctreeNode, 8> values;
     std::atomic<bool> ok{true};
-    tbb::parallel_for(0u, 8u, [&](unsigned octant) {
+    par::parallel_for(0u, 8u, [&](unsigned octant) {
       OctreeScratch own;  // the lists of this depth belong to the waiting parent
       if (!build_child(octant, parts[octant], OctreePart::kPartRoot, own, &values[octant]))
         ok.store(false, std::memory_order_relaxed);

@@ -1,8 +1,6 @@
 #include "structures/uniform_grid.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+#include "parallel.h"
 
 #include <atomic>
 #include <cstdio>
@@ -223,9 +221,9 @@ bool for_each_prim_batch(size_t n, ProgressSpan& span, Fn&& fn) {
   const std::thread::id owner = std::this_thread::get_id();
   std::atomic<size_t> done{0};
   std::atomic<bool> stop{false};
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, n, kBatch),
-      [&](const tbb::blocked_range<size_t>& r) {
+  par::parallel_for(
+      par::blocked_range<size_t>(0, n, kBatch),
+      [&](const par::blocked_range<size_t>& r) {
         if (stop.load(std::memory_order_relaxed)) return;
         if (span.cancelled()) {
           stop.store(true, std::memory_order_relaxed);
@@ -237,7 +235,7 @@ bool for_each_prim_batch(size_t n, ProgressSpan& span, Fn&& fn) {
             !span.advance(double(now) / double(n)))
           stop.store(true, std::memory_order_relaxed);
       },
-      tbb::simple_partitioner());  // batches of at most kBatch, also on one thread
+      par::simple_partitioner());  // batches of at most kBatch, also on one thread
   return !stop.load(std::memory_order_relaxed) && !span.cancelled();
 }
 
@@ -393,9 +391,9 @@ Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, B
   for (;;) {
     for (int a = 0; a < 3; ++a) g.cell_size[a] = extent[a] / double(g.res[a]);
     ranges.resize(valid.size());
-    const uint64_t candidates = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, valid.size(), 16384), uint64_t(0),
-        [&](const tbb::blocked_range<size_t>& r, uint64_t sum) {
+    const uint64_t candidates = par::parallel_reduce(
+        par::blocked_range<size_t>(0, valid.size(), 16384), uint64_t(0),
+        [&](const par::blocked_range<size_t>& r, uint64_t sum) {
           for (size_t k = r.begin(); k < r.end(); ++k) {
             ranges[k] = cell_range(g, scene.triangle_bounds(valid[k]));
             sum += ranges[k].cells();
@@ -452,7 +450,7 @@ Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, B
       insert_bbox(g, ranges[k], fn);
   };
   const auto bump = [&](size_t c) {
-    return std::atomic_ref<uint32_t>(g.cell_start[c + 1]).fetch_add(1, std::memory_order_relaxed);
+    return par::fetch_add(g.cell_start[c + 1], uint32_t(1));
   };
   report_progress(control, 0.1);
   if (build_cancelled(control)) return cancelled_error();
@@ -493,7 +491,7 @@ Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, B
   if (!for_each_prim_batch(valid.size(), filling,
                            [&](size_t k) { for_each_cell(k, true, [&](size_t c) { g.prim_ids[bump(c)] = valid[k]; }); }))
     return cancelled_error();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells, 4096), [&](const tbb::blocked_range<size_t>& r) {
+  par::parallel_for(par::blocked_range<size_t>(0, cells, 4096), [&](const par::blocked_range<size_t>& r) {
     for (size_t c = r.begin(); c < r.end(); ++c) {
       const auto begin = g.prim_ids.begin() + g.cell_start[c], end = g.prim_ids.begin() + g.cell_start[c + 1];
       if (!std::is_sorted(begin, end)) std::sort(begin, end);

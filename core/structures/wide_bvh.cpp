@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include <tbb/parallel_for.h>
+#include "parallel.h"
 
 #include "check.h"
 #include "structures/wide_bvh_isa.h"
@@ -283,7 +283,7 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
   plan(plan, tree.root, 0);
 
   std::vector<Layout> parts(tasks.size());
-  tbb::parallel_for(size_t(0), tasks.size(), [&](size_t t) {
+  par::parallel_for(size_t(0), tasks.size(), [&](size_t t) {
     parts[t].entries.reserve(size[tasks[t].src]);
     parts[t].emit(scene, tree, tasks[t].src, tasks[t].depth);
   });
@@ -344,7 +344,7 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
   }
   // The tasks' subtrees, relocated: node ids by the entry offset, WideNode indices by the
   // node offset, triangle blocks by the block offset.
-  tbb::parallel_for(size_t(0), parts.size(), [&](size_t k) {
+  par::parallel_for(size_t(0), parts.size(), [&](size_t k) {
     const Layout& part = parts[k];
     const Offsets at = part_at[k];
     auto relocate = [&](ChildRef r) { return ref_is_leaf(r) ? leaf_ref(ref_first(r) + at.block, ref_count(r)) : r + at.node; };

@@ -1,8 +1,6 @@
 // WideBvhOf::refit: the wide trees' boxes recomputed bottom-up from moved vertices, the
 // leaves' triangle copies refreshed, the topology untouched (wide_bvh.h).
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+#include "parallel.h"
 
 #include "structures/wide_bvh.h"
 
@@ -18,9 +16,9 @@ constexpr NodeId kRefitGrain = 1024;
 template <int W>
 Status WideBvhOf<W>::refit_impl(const Scene& scene) {
   // The first held triangle that may not stay, by block (the lowest, whatever the thread count).
-  const size_t bad_at = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, blocks_.size(), 4096), blocks_.size(),
-      [&](const tbb::blocked_range<size_t>& r, size_t first) {
+  const size_t bad_at = par::parallel_reduce(
+      par::blocked_range<size_t>(0, blocks_.size(), 4096), blocks_.size(),
+      [&](const par::blocked_range<size_t>& r, size_t first) {
         for (size_t b = r.begin(); b < r.end() && b < first; ++b)
           for (uint32_t prim : blocks_[b].prim)
             if (prim != TriangleBlock::kNoPrim && !refit_keeps(scene, prim)) return b;
@@ -48,7 +46,7 @@ void WideBvhOf<W>::refit_subtree(const Scene& scene, NodeId node, NodeId end) {
   const std::array<NodeId, W>& kids = child_ids_[entries_[node].index];
   int n = 0;
   while (n < W && kids[n] != kNoNode) ++n;
-  tbb::parallel_for(0, n, [&](int s) { refit_subtree(scene, kids[s], s + 1 < n ? kids[s + 1] : end); });
+  par::parallel_for(0, n, [&](int s) { refit_subtree(scene, kids[s], s + 1 < n ? kids[s + 1] : end); });
   refit_node(scene, node);
 }
 

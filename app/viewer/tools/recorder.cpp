@@ -8,10 +8,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-extern "C" {
-#include <libswscale/swscale.h>
-}
-
+#include "browser.h"
 #include "screenshot.h"
 
 namespace viz {
@@ -21,20 +18,6 @@ constexpr double kNoticeSeconds = 4.0;
 
 double clock_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// `src` (w x h RGBA) resampled to `out_w` x `out_h` with libswscale (area filter: frames shrink well).
-std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, int out_w, int out_h) {
-  std::vector<uint8_t> out(static_cast<size_t>(out_w) * static_cast<size_t>(out_h) * 4);
-  SwsContext* ctx = sws_getContext(w, h, AV_PIX_FMT_RGBA, out_w, out_h, AV_PIX_FMT_RGBA, SWS_AREA, nullptr, nullptr, nullptr);
-  if (!ctx) return {};
-  const uint8_t* in_planes[1] = {src.data()};
-  const int in_stride[1] = {w * 4};
-  uint8_t* out_planes[1] = {out.data()};
-  const int out_stride[1] = {out_w * 4};
-  sws_scale(ctx, in_planes, in_stride, 0, h, out_planes, out_stride);
-  sws_freeContext(ctx);
-  return out;
 }
 
 }  // namespace
@@ -94,7 +77,10 @@ void Recorder::capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer) {
     }
     const std::string path = std::filesystem::absolute(name).string();
     if (auto st = save_framebuffer_png(name, framebuffer.x, framebuffer.y); !st) set_notice(st.error().message);
-    else set_notice("screenshot: wrote " + path);
+    else {
+      set_notice("screenshot: wrote " + path);
+      browser::offer_download(path);  // the page: the browser saves it as a download
+    }
   }
   if (!recording() || !due_ || options_.ui != with_ui) return;
   due_ = false;

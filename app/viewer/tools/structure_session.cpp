@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "browser.h"
 #include "panels.h"
 #include "memory_budget.h"
 #include "registry.h"
@@ -31,6 +32,7 @@ accel::Status StructureSession::load_scene(const std::string& spec) {
   const auto stop = std::chrono::steady_clock::now();
   if (!loaded) {
     panel_.load_error = loaded.error().message;
+    browser::log_line(panel_.load_error);  // the page's console has it too
     return loaded.error();
   }
   install_scene(spec, std::move(loaded), std::chrono::duration<double, std::milli>(stop - start).count());
@@ -63,8 +65,12 @@ void StructureSession::poll_load() {
   const double ms = 1000.0 * load_job_.seconds();
   accel::Result<accel::Scene> loaded = load_job_.take();
   if (!load_dropped_) {
-    if (loaded) install_scene(loading_spec_, std::move(loaded), ms);
-    else panel_.load_error = loaded.error().message;
+    if (loaded) {
+      install_scene(loading_spec_, std::move(loaded), ms);
+    } else {
+      panel_.load_error = loaded.error().message;
+      browser::log_line(panel_.load_error);
+    }
   }
   load_dropped_ = false;
   if (next_load_) {
@@ -120,6 +126,7 @@ void StructureSession::poll_build() {
   if (!result) return;
   if (!*result) {
     build_error_ = result->error().message;
+    browser::log_line(build_error_);
   } else if (result->value()->scene == scene_) {
     install(std::move(result->value()));
   }
