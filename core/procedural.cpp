@@ -15,6 +15,13 @@
 namespace accel {
 namespace {
 
+// sin and cos of the scenes' shapes: in double, rounded to float. sinf and cosf differ in the
+// last bit between C libraries (glibc natively, musl in the web page: the stadium's stands
+// moved by an ulp), and a scene must be the same everywhere; the double results of both
+// libraries round to the same float.
+float sin_f(float x) { return float(std::sin(double(x))); }
+float cos_f(float x) { return float(std::cos(double(x))); }
+
 /// Accumulates positions and triangles, so each builder below reads as a list of shapes.
 struct MeshBuilder {
   std::vector<Vec3> positions;
@@ -68,7 +75,7 @@ struct MeshBuilder {
     const uint32_t base = uint32_t(positions.size());
     for (const Vec3& p : v) {
       // A deterministic bumpy surface (for the dense 'teapot' object) keeps the mesh closed.
-      const float r = radius * (1.0f + bump * std::sin(7.0f * p.x) * std::sin(5.0f * p.y) * std::sin(3.0f * p.z));
+      const float r = radius * (1.0f + bump * sin_f(7.0f * p.x) * sin_f(5.0f * p.y) * sin_f(3.0f * p.z));
       positions.push_back(center + r * p);
     }
     for (const UVec3& t : f) triangle(base + t.x, base + t.y, base + t.z);
@@ -87,10 +94,14 @@ Scene make_soup(uint32_t seed) {
   MeshBuilder m;
   Rng rng(seed);
   for (int i = 0; i < 10000; ++i) {
-    const Vec3 c(rng.uniform(), rng.uniform(), rng.uniform());
-    const uint32_t a = m.vertex(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)));
-    const uint32_t b = m.vertex(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)));
-    const uint32_t d = m.vertex(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f)));
+    auto point = [&rng](float lo, float hi) {
+      const auto [x, y, z] = rng.uniform_xyz(lo, hi);
+      return Vec3(x, y, z);
+    };
+    const Vec3 c = point(0.0f, 1.0f);
+    const uint32_t a = m.vertex(c + point(-0.05f, 0.05f));
+    const uint32_t b = m.vertex(c + point(-0.05f, 0.05f));
+    const uint32_t d = m.vertex(c + point(-0.05f, 0.05f));
     m.triangle(a, b, d);
   }
   return Scene(std::move(m.positions), std::move(m.triangles), "procedural:soup");
@@ -122,15 +133,18 @@ Scene make_stadium() {
   for (int i = 0; i < segments; ++i) {  // tiered stands: a ring of large sloped quads
     const float a0 = 2.0f * std::numbers::pi_v<float> * i / segments;
     const float a1 = 2.0f * std::numbers::pi_v<float> * (i + 1) / segments;
-    const Vec3 d0(std::cos(a0), 0.0f, std::sin(a0)), d1(std::cos(a1), 0.0f, std::sin(a1));
+    const Vec3 d0(cos_f(a0), 0.0f, sin_f(a0)), d1(cos_f(a1), 0.0f, sin_f(a1));
     m.quad(d0 * r_in, d0 * r_out + Vec3(0, 30, 0), d1 * r_out + Vec3(0, 30, 0), d1 * r_in);
   }
   const uint32_t centre = m.vertex(Vec3(0.0f));  // the pitch: a disc under the stands' inner edge
   for (int i = 0; i < segments; ++i) {
     const float a0 = 2.0f * std::numbers::pi_v<float> * i / segments;
     const float a1 = 2.0f * std::numbers::pi_v<float> * (i + 1) / segments;
-    m.triangle(centre, m.vertex(r_in * Vec3(std::cos(a1), 0.0f, std::sin(a1))),
-               m.vertex(r_in * Vec3(std::cos(a0), 0.0f, std::sin(a0))));
+    // Never m.triangle(centre, m.vertex(..), m.vertex(..)): the order of a call's arguments is
+    // open (GCC went right to left, clang left to right). This is GCC's, as scenes were.
+    const uint32_t at_a0 = m.vertex(r_in * Vec3(cos_f(a0), 0.0f, sin_f(a0)));
+    const uint32_t at_a1 = m.vertex(r_in * Vec3(cos_f(a1), 0.0f, sin_f(a1)));
+    m.triangle(centre, at_a1, at_a0);
   }
   return Scene(std::move(m.positions), std::move(m.triangles), "procedural:stadium");
 }
@@ -144,7 +158,7 @@ Scene make_terrain() {
   for (int z = 0; z <= n; ++z)
     for (int x = 0; x <= n; ++x) {
       const float u = float(x) / n, v = float(z) / n;
-      const float h = 0.08f * std::sin(9.0f * u) * std::cos(7.0f * v) + 0.03f * std::sin(31.0f * u + 17.0f * v);
+      const float h = 0.08f * sin_f(9.0f * u) * cos_f(7.0f * v) + 0.03f * sin_f(31.0f * u + 17.0f * v);
       m.vertex(Vec3(u - 0.5f, h, v - 0.5f));
     }
   m.triangles.reserve(size_t(2) * n * n);
@@ -166,8 +180,8 @@ constexpr float kFloatingShare = 0.2f;    // spheres floating above the ground
 
 /// Rolling hills with a ridge and some roughness, about +-9 over the 200 x 125 area.
 float scatter_height(float x, float z) {
-  return 6.0f * std::sin(0.05f * x) * std::cos(0.07f * z) + 2.5f * std::sin(0.17f * x + 0.11f * z) +
-         0.6f * std::sin(0.9f * x) * std::sin(0.8f * z);
+  return 6.0f * sin_f(0.05f * x) * cos_f(0.07f * z) + 2.5f * sin_f(0.17f * x + 0.11f * z) +
+         0.6f * sin_f(0.9f * x) * sin_f(0.8f * z);
 }
 
 /// A point on the terrain's (x, z) area for one object: in one of the clusters (denser at
@@ -188,8 +202,8 @@ struct ScatterPlacer {
       const Vec3& c = clusters[std::min<size_t>(size_t(rng.uniform() * kScatterClusters), kScatterClusters - 1)];
       const float a = 2.0f * std::numbers::pi_v<float> * rng.uniform(), u = rng.uniform();
       const float r = c.y * u * u;
-      return {std::clamp(c.x + r * std::cos(a), -0.5f * kScatterWidth, 0.5f * kScatterWidth),
-              std::clamp(c.z + r * std::sin(a), -0.5f * kScatterDepth, 0.5f * kScatterDepth)};
+      return {std::clamp(c.x + r * cos_f(a), -0.5f * kScatterWidth, 0.5f * kScatterWidth),
+              std::clamp(c.z + r * sin_f(a), -0.5f * kScatterDepth, 0.5f * kScatterDepth)};
     }
     return {rng.uniform(-0.5f, 0.5f) * kScatterWidth, rng.uniform(-0.5f, 0.5f) * kScatterDepth};
   }
@@ -238,7 +252,7 @@ Scene make_scattered_scene(const ScatteredSceneSize& size, uint32_t seed, std::s
   for (uint32_t b = 0; b < size.boxes; ++b) {
     const auto [x, z] = placer.place();
     const float hw = rng.uniform(0.1f, 1.0f), hd = rng.uniform(0.1f, 1.0f), h = rng.uniform(0.3f, 6.0f);
-    const float yaw = 2.0f * std::numbers::pi_v<float> * rng.uniform(), c = std::cos(yaw), sn = std::sin(yaw);
+    const float yaw = 2.0f * std::numbers::pi_v<float> * rng.uniform(), c = cos_f(yaw), sn = sin_f(yaw);
     const float y0 = scatter_height(x, z) - 0.3f;
     const uint32_t base = uint32_t(m.positions.size());
     for (int k = 0; k < 8; ++k) {  // box()'s corners: x high at 1,2,5,6, y at 2,3,6,7, z at 4..7

@@ -2,6 +2,7 @@
 // A tiny deterministic generator (SplitMix64, Steele et al. 2014). Used instead of <random>
 // distributions, whose output differs between standard libraries, so procedural scenes and
 // ray sets are the same on every machine.
+#include <array>
 #include <cstdint>
 
 namespace accel {
@@ -19,6 +20,17 @@ class Rng {
   float uniform() { return float(next_u64() >> 40) * 0x1.0p-24f; }
   /// Uniform in [lo, hi).
   float uniform(float lo, float hi) { return lo + (hi - lo) * uniform(); }
+  /// A point's x, y and z, each uniform in [lo, hi), drawn z first, then y, then x. Never
+  /// write Vec3(rng.uniform(), rng.uniform(), rng.uniform()): C++ leaves the order of a
+  /// call's arguments open, GCC drew those right to left and clang left to right, so the
+  /// native build and the web page (emscripten is clang) made different scenes and rays.
+  /// This order is GCC's, so the scenes and ray sets made before stay the same.
+  std::array<float, 3> uniform_xyz(float lo = 0.0f, float hi = 1.0f) {
+    const float z = uniform(lo, hi);
+    const float y = uniform(lo, hi);
+    const float x = uniform(lo, hi);
+    return {x, y, z};
+  }
 
  private:
   uint64_t state_;

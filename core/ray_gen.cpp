@@ -53,8 +53,10 @@ std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed) {
   const float far = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)}) * 0x1p-16f;
   const Vec3 e = bounds.empty() ? Vec3(1.0f) : glm::max(bounds.extent(), Vec3(std::max(1e-6f, far)));
   while (rays.size() < n) {
-    const Vec3 o = c + 1.5f * e * Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
-    const Vec3 p = c + e * Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
+    const auto [ox, oy, oz] = rng.uniform_xyz(-0.5f, 0.5f);
+    const Vec3 o = c + 1.5f * e * Vec3(ox, oy, oz);
+    const auto [px, py, pz] = rng.uniform_xyz(-0.5f, 0.5f);
+    const Vec3 p = c + e * Vec3(px, py, pz);
     const Vec3 d = p - o;
     if (d == Vec3(0.0f)) continue;
     Ray r;

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs missing packages, builds, and runs every test (the viewer's under xvfb-run).
-# Then repeats the core and CLI tests in a second build instrumented with AddressSanitizer
+# Then builds the web page (scripts/build_web.sh) and drives it in headless Chromium
+# (tests/web/test_page.py) when emscripten is installed. Then repeats the core and CLI tests in a second build instrumented with AddressSanitizer
 # and UBSan (build-asan/, clang), with smaller ray counts (ACCEL_TEST_RAY_SCALE) to keep CI
 # short, and runs each libFuzzer target of that build for ACCEL_FUZZ_SECONDS (default 20).
-#   ACCEL_SKIP_SANITIZERS=1 scripts/test.sh   # only the Release run
+#   ACCEL_SKIP_SANITIZERS=1 scripts/test.sh   # only the Release run (and the web page)
+#   ACCEL_SKIP_WEB=1 scripts/test.sh          # without the web page
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="$(nproc 2>/dev/null || echo 2)"
@@ -12,6 +14,16 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 echo "== Release build and tests"
 "$root/scripts/build.sh"
 (cd "$root/build" && ctest --output-on-failure -j"$jobs")
+
+if [ "${ACCEL_SKIP_WEB:-0}" != 1 ] && command -v emcc >/dev/null; then
+  echo "== Web page (emscripten) and its browser test (headless Chromium)"
+  "$root/scripts/build_web.sh"
+  # Exit 77: no Chromium, so nothing was checked (skipped, as ctest counts it).
+  status=0
+  python3 "$root/tests/web/test_page.py" --web-dir "$root/build-web" --cli "$root/build/bin/accelviz-cli" \
+    --shared "$root/../shared" || status=$?
+  [ "$status" -eq 0 ] || [ "$status" -eq 77 ] || exit "$status"
+fi
 
 if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== AddressSanitizer + UBSan build (clang, with the libFuzzer targets) and tests"

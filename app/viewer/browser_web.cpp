@@ -118,7 +118,8 @@ EM_ASYNC_JS(void, accelviz_wait_for_animation_frame, (), {
 
 void wait_for_next_frame() { accelviz_wait_for_animation_frame(); }
 
-// The page's side of offer_download(), log_screenshot() and log_line().
+// The page's side of offer_download(), log_screenshot() and log_line(). Lines go out as the
+// viewer's standard output does (Module.print: page.js adds "accelviz: ").
 EM_JS(void, accelviz_offer_download, (const char* path_ptr), {
   const path = UTF8ToString(path_ptr);
   const link = document.createElement('a');
@@ -135,10 +136,10 @@ EM_JS(void, accelviz_log_screenshot, (const char* path_ptr), {
   const data = FS.readFile(path);
   let text = "";
   for (let i = 0; i < data.length; i += 0x8000) text += String.fromCharCode.apply(null, data.subarray(i, i + 0x8000));
-  console.log('accelviz: screenshot ' + path + ' data:image/png;base64,' + btoa(text));
+  out('screenshot ' + path + ' data:image/png;base64,' + btoa(text));
 });
 
-EM_JS(void, accelviz_log_line, (const char* line_ptr), { console.log('accelviz: ' + UTF8ToString(line_ptr)); });
+EM_JS(void, accelviz_log_line, (const char* line_ptr), { out(UTF8ToString(line_ptr)); });
 
 void offer_download(const std::string& path) { accelviz_offer_download(path.c_str()); }
 void log_screenshot(const std::string& path) { accelviz_log_screenshot(path.c_str()); }

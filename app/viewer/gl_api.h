@@ -5,7 +5,8 @@
 //  * shaders are written once for GLSL 3.30 and get the ES version line and precision at
 //    load (glsl_for_this_gl);
 //  * ES has no polygon mode: the wireframe mesh is drawn as lines (kHasPolygonMode);
-//  * ES clears depth with the float variant.
+//  * ES clears depth with the float variant;
+//  * WebGL's finish() does not wait: wait_for_gpu() reads a pixel back instead.
 #include <string>
 
 #ifdef __EMSCRIPTEN__
@@ -25,12 +26,19 @@ inline constexpr bool kHasPolygonMode = false;
 inline constexpr const char* kImGuiGlslVersion = "#version 300 es";
 inline void clear_depth(float depth) { glClearDepthf(depth); }
 inline void polygon_mode_lines(bool) {}
+/// WebGL's finish() returns at once; reading a pixel back waits for the frame.
+inline void wait_for_gpu() {
+  unsigned char pixel[4];
+  glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixel);
+}
 /// WebGL's functions are there from the start.
 inline bool load_functions(ProcAddressFn) { return true; }
 #else
 inline constexpr bool kHasPolygonMode = true;
 inline constexpr const char* kImGuiGlslVersion = "#version 330 core";
 inline void clear_depth(float depth) { glClearDepth(depth); }
+/// Waits until the GPU has finished every command (frame-time measurements).
+inline void wait_for_gpu() { glFinish(); }
 /// Rasterises triangles as their edges (true) or filled (false); only where kHasPolygonMode.
 inline void polygon_mode_lines(bool lines) { glPolygonMode(GL_FRONT_AND_BACK, lines ? GL_LINE : GL_FILL); }
 /// Loads the GL 3.3 core functions (glad) for the current context; false when it cannot.

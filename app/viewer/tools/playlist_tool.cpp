@@ -26,7 +26,9 @@ bool PlaylistTool::go(size_t index) {
   bool from_scratch = false;
   const std::vector<size_t> states = cursor_.go_to(index, &from_scratch);
   if (states.empty()) return false;
-  pending_.clear();
+  // Forward, the commands of the states before that have not run yet still must (PgDn
+  // pressed again while a build of the last state runs, or --state N at start-up).
+  if (from_scratch) pending_.clear();
   for (size_t s : states)
     for (const ScriptCommand& c : playlist_.states[s].commands) pending_.push_back({s, &c});
   error_.clear();

@@ -14,6 +14,12 @@ set_target_properties(accelviz PROPERTIES
 set(bundle
   "${PROJECT_SOURCE_DIR}/shaders@/app/shaders"
   "${PROJECT_SOURCE_DIR}/scenes@/app/scenes")
+# The bench's results, for the speed-against-error chart (the lecture playlist opens one).
+file(GLOB bench_results CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/bench/*.json)
+foreach(result ${bench_results})
+  cmake_path(GET result FILENAME name)
+  list(APPEND bundle "${result}@/app/bench/${name}")
+endforeach()
 # The small meshes of ../shared, when it is there: the lecture's presets and the test's bunny.
 set(ACCEL_WEB_SHARED_SCENES "${PROJECT_SOURCE_DIR}/../shared/scenes" CACHE PATH
     "Folder of the shared meshes bundled into the page (skipped when absent)")
@@ -50,6 +56,7 @@ target_link_options(accelviz PRIVATE
   ${preload})
 # Relink when a bundled folder changes (the data file is made by the link).
 file(GLOB_RECURSE bundled_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/shaders/* ${PROJECT_SOURCE_DIR}/scenes/*)
+list(APPEND bundled_files ${bench_results})
 set_property(TARGET accelviz APPEND PROPERTY LINK_DEPENDS ${bundled_files})
 
 # Our page (emscripten 3.1.6 cannot minify an HTML output of its own) and its script.

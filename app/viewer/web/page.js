@@ -85,13 +85,17 @@
       if (line === 'ready') {
         ready = true;
         showStatus('');
+        // For scripts/bench_web.py: when the viewer was up, and its first frame shown.
+        window.accelvizReadyMs = performance.now();
+        requestAnimationFrame(() => { window.accelvizFirstFrameMs = performance.now(); });
       }
     },
     printErr: (line) => {
       console.error(prefixed(line));
       if (!ready) showStatus(line);  // the page would stay empty: say why
     },
-    setStatus: (text) => { if (!ready && text) showStatus(text); },
+    // emscripten's own status lines: only the download of the bundled files is worth showing.
+    setStatus: (text) => { if (!ready && text.startsWith('Downloading')) showStatus('Loading accelviz: ' + text); },
     onRuntimeInitialized: async () => {
       FS.mkdirTree('/app');
       FS.chdir('/app');
