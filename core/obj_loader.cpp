@@ -16,6 +16,7 @@
 
 #include "from_chars_real.h"
 #include "scene.h"
+#include "yield_point.h"
 
 namespace accel {
 namespace {
@@ -84,6 +85,7 @@ Result<ValidatedObj> validate_obj(const std::string& path, const std::string& te
   ValidatedObj out;
   // Pass 1: vertices (syntax, finiteness) and NUL bytes.
   for (size_t i = 0; i < lines.size(); ++i) {
+    if (i % 4096 == 0) par::yield();
     if (lines[i].find('\0') != std::string_view::npos)
       return fail(i + 1, "not a text file: contains NUL bytes (UTF-16 or binary?)");
     const auto tok = split_tokens(lines[i]);
@@ -104,6 +106,7 @@ Result<ValidatedObj> validate_obj(const std::string& path, const std::string& te
   // relative to the vertices read so far (OBJ spec).
   size_t vertices_so_far = 0;
   for (size_t i = 0; i < lines.size(); ++i) {
+    if (i % 4096 == 0) par::yield();  // a long file in the page: the frames go on meanwhile
     const auto tok = split_tokens(lines[i]);
     if (tok.empty()) continue;
     if (tok[0] == "v") { ++vertices_so_far; continue; }

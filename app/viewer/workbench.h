@@ -58,7 +58,13 @@ class Job {
       auto promise = std::make_shared<std::promise<T>>();
       future_ = promise->get_future();
       task_ = std::make_unique<browser::BackgroundTask>(
-          [fn = std::move(fn), flag, promise] { promise->set_value(fn(*flag)); });
+          [fn = std::move(fn), flag, promise] {
+            try {
+              promise->set_value(fn(*flag));
+            } catch (...) {  // as std::async would: take() rethrows it
+              promise->set_exception(std::current_exception());
+            }
+          });
     } else {
       future_ = std::async(std::launch::async, [fn = std::move(fn), flag] { return fn(*flag); });
     }

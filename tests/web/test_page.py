@@ -17,6 +17,7 @@ Checks (--only takes the short name or the full one; repeatable):
   playlist     'playlist'            next/print-state through scenes/lecture.playlist
   bad-obj      'bad OBJ dropped'     a dropped bad OBJ gives one 'file:3:' line, page lives on
   bad-script   'bad script'          an unknown command on line 2 gives 'script failed: ...:2:'
+  f12          'F12 downloads a screenshot'  F12 saves accelviz_0001.png, the canvas's size
 Standard library only.
 """
 
@@ -267,12 +268,17 @@ class Tester:
                        details or page.last_console())
 
     # -- the checks
+    def ready_page(self, browser, fail_on_error):
+        """The page without a query, once the viewer logged 'ready'."""
+        page = browser.new_page(*VIEWPORT)
+        page.navigate(self.url())
+        page.wait_for_console(lambda t: t == PREFIX + 'ready', timeout=60,
+                              fail_on_error=fail_on_error, what=repr(PREFIX + 'ready'))
+        return page
+
     def check_loads(self):
         with self.browser() as browser:
-            page = browser.new_page(*VIEWPORT)
-            page.navigate(self.url())
-            page.wait_for_console(lambda t: t == PREFIX + 'ready', timeout=60,
-                                  fail_on_error=True, what=repr(PREFIX + 'ready'))
+            page = self.ready_page(browser, fail_on_error=True)
             time.sleep(1.0)  # errors that follow the ready line
             if page.errors:
                 src, text = page.errors[0]
@@ -444,10 +450,7 @@ class Tester:
 
     def check_bad_obj(self):
         with self.browser() as browser:
-            page = browser.new_page(*VIEWPORT)
-            page.navigate(self.url())
-            page.wait_for_console(lambda t: t == PREFIX + 'ready', timeout=60,
-                                  fail_on_error=FATAL, what=repr(PREFIX + 'ready'))
+            page = self.ready_page(browser, fail_on_error=FATAL)
             mark = page.mark()
             errors_before = len(page.errors)
             dispatched = page.evaluate(r"""(() => {
@@ -502,6 +505,32 @@ class Tester:
         if '\n' in run.end:
             raise CheckFailed('the message spans lines: %r' % clip(run.end))
 
+    def check_f12(self):
+        """F12 in the page: the screenshot arrives as a downloaded PNG of the canvas."""
+        downloads = tempfile.mkdtemp(prefix='accelviz-downloads-')
+        try:
+            with self.browser() as browser:
+                browser.send('Browser.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads})
+                page = self.ready_page(browser, fail_on_error=FATAL)
+                page.press_key('F12')
+                deadline = time.monotonic() + 30
+                names = []
+                while time.monotonic() < deadline:
+                    names = [n for n in os.listdir(downloads) if n.endswith('.png')]
+                    if names:
+                        break
+                    time.sleep(0.2)
+                if names != ['accelviz_0001.png']:
+                    raise CheckFailed('expected accelviz_0001.png downloaded within 30 s, got %s\n%s' % (
+                        names, page.last_console()))
+                time.sleep(0.5)  # the download's last bytes
+                with open(os.path.join(downloads, names[0]), 'rb') as f:
+                    width, height, _ = decode_png(f.read())
+                if (width, height) != VIEWPORT:
+                    raise CheckFailed('the PNG is %dx%d, the page %dx%d' % (width, height, *VIEWPORT))
+        finally:
+            shutil.rmtree(downloads, ignore_errors=True)
+
     CHECKS = [
         ('loads', 'loads', check_loads),
         ('hits', 'hits match the CLI', check_hits),
@@ -509,6 +538,7 @@ class Tester:
         ('playlist', 'playlist', check_playlist),
         ('bad-obj', 'bad OBJ dropped', check_bad_obj),
         ('bad-script', 'bad script', check_bad_script),
+        ('f12', 'F12 downloads a screenshot', check_f12),
     ]
 
     def run_checks(self, only):
