@@ -1,6 +1,8 @@
 // accelviz: the interactive viewer. Parses the command line, loads the scene, then follows
 // the order of Dear ImGui's example_glfw_opengl3: error callback, GLFW and GL context, ImGui
-// context and backends, a main loop that sleeps while iconified, cleanup in reverse.
+// context and backends, a main loop that sleeps while iconified, cleanup in reverse. The web
+// page runs this same main(): page.js turns its URL into these arguments, and after each frame
+// the loop lends the background tasks time and waits for the browser's next frame (browser.h).
 //
 // Exit codes: 0 success, 1 no display / no OpenGL 3.3 / missing shaders / screenshot not
 // written, 2 bad command line (unknown option, invalid --size, scene or --bench-json file
@@ -14,7 +16,6 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include "gl_api.h"
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -22,6 +23,7 @@
 
 #include "app.h"
 #include "browser.h"
+#include "gl_api.h"
 #include "memory_budget.h"
 #include "paths.h"
 #include "renderer.h"
@@ -49,10 +51,10 @@ struct Options {
 };
 
 constexpr int kMinSize = 64;
+constexpr int kMaxSize = 8192;
 // The page's background work per frame: at least most of a 60 Hz frame, and as long as the
 // last frame took to draw (up to 100 ms), so a slow renderer does not starve a build.
 constexpr double kBackgroundMsMin = 10.0, kBackgroundMsMax = 100.0;
-constexpr int kMaxSize = 8192;
 
 // GLFW reports errors through a C callback with no user data. Before glfwInit() succeeds
 // its messages are folded into our single "no display" line instead of being printed.
