@@ -415,11 +415,6 @@ struct Collector {
 
 }  // namespace
 
-bool is_mesh_format(const std::string& path) {
-  const std::string ext = extension_of(path);
-  return ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
-}
-
 Result<Scene> load_mesh(const std::string& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);

@@ -41,8 +41,6 @@ using tbb::parallel_invoke;
 using tbb::parallel_reduce;
 using tbb::simple_partitioner;
 using tbb::task_arena;
-/// True when loops may run on several threads.
-inline constexpr bool kThreaded = true;
 
 /// x += v, atomic (relaxed) as loops on other threads may add too; returns the old value.
 template <class T>
@@ -51,8 +49,6 @@ T fetch_add(T& x, T v) {
 }
 
 #else
-
-inline constexpr bool kThreaded = false;
 
 /// x += v (one thread: nothing to synchronise); returns the old value.
 template <class T>
@@ -107,11 +103,7 @@ void parallel_invoke(Fns&&... fns) {
 template <class Value, class T, class Body, class Join>
 T parallel_reduce(const blocked_range<Value>& range, const T& identity, const Body& body, const Join&) {
   T value = identity;
-  for (Value lo = range.begin(); lo < range.end();) {
-    const Value hi = Value(lo + std::min<size_t>(range.grainsize(), size_t(range.end() - lo)));
-    value = body(blocked_range<Value>(lo, hi, range.grainsize()), value);
-    lo = hi;
-  }
+  parallel_for(range, [&](const blocked_range<Value>& piece) { value = body(piece, value); });
   return value;
 }
 

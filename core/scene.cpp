@@ -1,11 +1,12 @@
 #include "scene.h"
 
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <utility>
 
-#include "parallel.h"
-
 #include "geometry.h"
+#include "parallel.h"
 
 namespace accel {
 
@@ -65,6 +66,14 @@ float Scene::max_abs_coordinate() const {
   if (bounds_.empty()) return 0.0f;
   const Vec3 m = glm::max(glm::abs(bounds_.min), glm::abs(bounds_.max));
   return std::max(m.x, std::max(m.y, m.z));
+}
+
+// Here rather than in mesh_loader.cpp: builds without Assimp (the web page) know the formats
+// too, to say that they cannot read them.
+bool is_mesh_format(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
 }
 
 Result<Scene> load_scene(const std::string& spec) {

@@ -74,7 +74,7 @@ def parse_output(lines):
     return out
 
 
-def run_native(viewer, repo, shared):
+def run_native(viewer, repo):
     script = os.path.join(repo, 'build', 'bench_web_native.txt')
     with open(script, 'w') as f:
         f.write(SCRIPT.format(sponza='../shared/scenes/crytek_sponza.obj'))
@@ -83,7 +83,7 @@ def run_native(viewer, repo, shared):
     if p.returncode != 0:
         raise RuntimeError('native viewer failed: ' + p.stderr[-2000:])
     out = parse_output(p.stdout.splitlines())
-    # Start to first frame: a screenshot after one frame, on one core, minus nothing.
+    # Start to first frame: the wall time of a screenshot after one frame, on one core.
     start = time.perf_counter()
     subprocess.run(['taskset', '-c', '0', 'xvfb-run', '-a', viewer, '--frames', '1', '--screenshot',
                     os.path.join(repo, 'build', 'bench_web_first.png')], cwd=repo, check=True,
@@ -135,7 +135,7 @@ def main():
     runs = {'web': [], 'native': []}
     for i in range(args.runs):
         runs['web'].append(run_web(args.web_dir, args.shared))
-        runs['native'].append(run_native(os.path.abspath(args.viewer), repo, args.shared))
+        runs['native'].append(run_native(os.path.abspath(args.viewer), repo))
         print(f'run {i + 1}: web {runs["web"][-1]}, native {runs["native"][-1]}', file=sys.stderr)
 
     def median(side, key, index=None):

@@ -78,7 +78,7 @@ class Job {
   }
   /// The result (blocks until done). The job is idle afterwards.
   T take() {
-    if (task_) task_.reset();  // runs it to the end first
+    task_.reset();  // the page: runs it to the end first
     return future_.get();
   }
   /// Asks the job to stop early (it decides what a cancelled result is).

@@ -27,9 +27,8 @@
 #include <memory>
 #include <thread>
 
-#include "parallel.h"
-
 #include "check.h"
+#include "parallel.h"
 #include "structures/bvh_binned_detail.h"
 
 namespace accel {

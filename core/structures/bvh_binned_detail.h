@@ -8,17 +8,16 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include "bit_cast.h"
 #include <cmath>
 #include <memory>
 #include <thread>
 #include <vector>
 
-#include "parallel.h"
-
+#include "bit_cast.h"
 #include "build_control.h"
 #include "check.h"
 #include "geometry.h"
+#include "parallel.h"
 #include "structures/bvh_builders.h"
 
 namespace accel::binned {

@@ -18,16 +18,15 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include "bit_cast.h"
 #include <cmath>
 #include <memory>
 #include <numeric>
 #include <thread>
 #include <utility>
 
-#include "parallel.h"
-
+#include "bit_cast.h"
 #include "check.h"
+#include "parallel.h"
 #include "random.h"
 
 namespace accel {

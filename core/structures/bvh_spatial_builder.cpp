@@ -39,7 +39,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include "bit_cast.h"
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -48,9 +47,9 @@
 #include <utility>
 #include <vector>
 
-#include "parallel.h"
-
+#include "bit_cast.h"
 #include "check.h"
+#include "parallel.h"
 #include "structures/bvh_binned_detail.h"
 
 namespace accel {

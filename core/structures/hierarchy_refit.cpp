@@ -4,7 +4,6 @@
 #include <type_traits>
 
 #include "parallel.h"
-
 #include "structures/bvh.h"
 #include "structures/sphere_tree.h"
 

@@ -22,9 +22,8 @@
 #include <string>
 #include <thread>
 
-#include "parallel.h"
-
 #include "check.h"
+#include "parallel.h"
 
 namespace accel {
 

@@ -31,16 +31,16 @@
 //    build does (each node and reference is reserved on a shared counter; the event budget is
 //    the serial build's live count, computed per path); progress is reported by the thread
 //    that started the build only.
-#include "bit_cast.h"
 #include <cstdint>
 #include <vector>
 
+#include "bit_cast.h"
 #include "build_control.h"
 #include "build_trace.h"
-#include "vec_math.h"
 #include "result.h"
 #include "scene.h"
 #include "trace.h"
+#include "vec_math.h"
 
 namespace accel {
 

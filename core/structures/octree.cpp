@@ -1,7 +1,5 @@
 #include "structures/octree.h"
 
-#include "parallel.h"
-
 #include <array>
 #include <atomic>
 #include <bit>
@@ -9,6 +7,8 @@
 #include <string>
 #include <thread>
 #include <utility>
+
+#include "parallel.h"
 
 namespace accel {
 

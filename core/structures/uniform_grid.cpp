@@ -1,12 +1,12 @@
 #include "structures/uniform_grid.h"
 
-#include "parallel.h"
-
 #include <atomic>
 #include <cstdio>
 #include <functional>
 #include <string>
 #include <thread>
+
+#include "parallel.h"
 
 namespace accel {
 namespace {

@@ -2,9 +2,8 @@
 
 #include <cstring>
 
-#include "parallel.h"
-
 #include "check.h"
+#include "parallel.h"
 #include "structures/wide_bvh_isa.h"
 
 namespace accel {

@@ -1,8 +1,8 @@
 // WideBvhOf::refit: the wide trees' boxes recomputed bottom-up from moved vertices, the
 // leaves' triangle copies refreshed, the topology untouched (wide_bvh.h).
-#include "parallel.h"
-
 #include "structures/wide_bvh.h"
+
+#include "parallel.h"
 
 namespace accel {
 namespace {
