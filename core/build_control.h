@@ -11,7 +11,9 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <thread>
 #include <utility>
 
 #include "memory_budget.h"
@@ -138,6 +140,49 @@ class ProgressSpan {
   static constexpr double kStep = 1.0 / 1024.0;
   BuildControl* control_;
   double lo_, hi_, last_;
+};
+
+/// The progress of a build whose tasks run on many threads: each task adds the work it
+/// finished (triangles placed in leaves, a batch of cells, a leaf's share of the build) from
+/// any thread, lock-free; the thread that made the counter reports the running total through
+/// its ProgressSpan (which is single-threaded), the others only look for a cancel. Every
+/// parallel builder counts through one of these.
+class ProgressCounter {
+ public:
+  /// The total of a counter of shares (a leaf's share of the build, its parent's share
+  /// split among the children): add_share(s) adds s of the whole, in fixed point, rounded
+  /// down so the sum of the shares never passes 1.
+  static constexpr uint64_t kWhole = uint64_t(1) << 52;
+
+  /// A counter of `total` units reporting done / total to `span`. Without a span it counts
+  /// nothing and never stops.
+  ProgressCounter(ProgressSpan* span, uint64_t total) : span_(span), total_(double(total)) {}
+  ProgressCounter(const ProgressCounter&) = delete;
+  ProgressCounter& operator=(const ProgressCounter&) = delete;
+
+  /// Adds `units` of finished work (any thread). Returns false once the build is cancelled;
+  /// from then on it reports nothing more.
+  bool add(uint64_t units) {
+    if (!span_) return true;
+    if (stop_.load(std::memory_order_relaxed)) return false;
+    const uint64_t done = done_.fetch_add(units, std::memory_order_relaxed) + units;
+    const bool go_on = std::this_thread::get_id() == owner_ ? span_->advance(std::min(1.0, double(done) / total_))
+                                                           : !span_->cancelled();
+    if (!go_on) stop_.store(true, std::memory_order_relaxed);
+    return go_on;
+  }
+  /// add() of `share` (in [0, 1]) of a kWhole counter.
+  bool add_share(double share) { return add(uint64_t(share * double(kWhole))); }
+
+  /// True once the build was cancelled (any thread): tasks check it before they start.
+  bool stopped() const { return span_ && (stop_.load(std::memory_order_relaxed) || span_->cancelled()); }
+
+ private:
+  ProgressSpan* span_;
+  double total_;
+  std::thread::id owner_ = std::this_thread::get_id();
+  std::atomic<uint64_t> done_{0};
+  std::atomic<bool> stop_{false};
 };
 
 }  // namespace accel

@@ -203,6 +203,15 @@ class BuildRecorder {
   std::vector<int> depth_of_;  ///< recorded nodes' depths by id (-1: not recorded)
 };
 
+/// Runs `build(sink)` with `recorder` when there is one, else with a NullBuildSink: a
+/// builder's entry picks its two instantiations here.
+template <class Build>
+auto with_build_sink(BuildRecorder* recorder, Build&& build) {
+  if (recorder) return build(*recorder);
+  NullBuildSink no_steps;
+  return build(no_steps);
+}
+
 /// One attempt of record_within_budget().
 struct RecordAttempt {
   int depth_limit = 0;  ///< std::numeric_limits<int>::max(): every depth

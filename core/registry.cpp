@@ -13,20 +13,21 @@ namespace accel {
 
 const std::vector<StructureInfo>& structure_registry() {
   using TF = TraversalFamily;
+  using CF = ConstructionFamily;
   static const std::vector<StructureInfo> registry = {
-      {"brute", "brute force", "brute force: test every triangle (the reference)", "nodes", TF::Linear, false, true,
-       BruteForce::param_specs(), [](const ParamSet&) { return std::make_unique<BruteForce>(); }},
+      {"brute", "brute force", "brute force: test every triangle (the reference)", "nodes", TF::Linear, CF::Linear,
+       false, true, BruteForce::param_specs(), [](const ParamSet&) { return std::make_unique<BruteForce>(); }},
       {"grid", "uniform grid", "uniform grid: cells of equal size, 3D-DDA traversal (Amanatides & Woo 1987)",
-       "cells", TF::Dda, true, false, UniformGrid::param_specs(),
+       "cells", TF::Dda, CF::GridInsert, true, false, UniformGrid::param_specs(),
        [](const ParamSet&) { return std::make_unique<UniformGrid>(); }},
-      {"octree", "octree", "octree: cells split into 8 equal children", "nodes", TF::Octree, false, false,
-       Octree::param_specs(), [](const ParamSet&) { return std::make_unique<Octree>(); }},
-      {"kdtree", "kd-tree", "kd-tree: axis-aligned split planes, near/far traversal", "nodes", TF::KdTree, false,
-       false, KdTree::param_specs(), [](const ParamSet&) { return std::make_unique<KdTree>(); }},
-      {"bvh", "BVH", "bounding volume hierarchy with axis-aligned boxes (AABB tree)", "nodes", TF::Hierarchy, false,
-       false, bvh_param_specs(), make_bvh},
+      {"octree", "octree", "octree: cells split into 8 equal children", "nodes", TF::Octree, CF::Octree, false,
+       false, Octree::param_specs(), [](const ParamSet&) { return std::make_unique<Octree>(); }},
+      {"kdtree", "kd-tree", "kd-tree: axis-aligned split planes, near/far traversal", "nodes", TF::KdTree,
+       CF::KdTree, false, false, KdTree::param_specs(), [](const ParamSet&) { return std::make_unique<KdTree>(); }},
+      {"bvh", "BVH", "bounding volume hierarchy with axis-aligned boxes (AABB tree)", "nodes", TF::Hierarchy,
+       CF::Hierarchy, false, false, bvh_param_specs(), make_bvh},
       {"spheretree", "sphere tree", "bounding volume hierarchy with bounding spheres (sphere tree)", "nodes",
-       TF::Hierarchy, false, false, SphereTree::param_specs(),
+       TF::Hierarchy, CF::Hierarchy, false, false, SphereTree::param_specs(),
        [](const ParamSet&) { return std::make_unique<SphereTree>(); }},
   };
   return registry;

@@ -21,6 +21,16 @@ enum class TraversalFamily {
   Hierarchy,  ///< bounding volume hierarchy: stack (dfs, ordered) or priority queue
 };
 
+/// Which of the lecture's constructions a structure runs: the front ends pick the
+/// construction listing by it (a hierarchy's further depends on its `builder` parameter).
+enum class ConstructionFamily {
+  Linear,     ///< no subdivision: one list of every triangle (brute force)
+  GridInsert, ///< the resolution rule, then every triangle into the cells it overlaps
+  Octree,     ///< subdivide a cell into 8 equal children until the stopping criterion
+  KdTree,     ///< choose an axis and a plane, distribute the triangles, recurse
+  Hierarchy,  ///< one of the BVH builders (bvh_builders.h), by the `builder` parameter
+};
+
 /// One registered structure.
 struct StructureInfo {
   std::string name;                 ///< "brute", "grid", ...: what --structure takes
@@ -28,6 +38,7 @@ struct StructureInfo {
   std::string description;          ///< one line, in the lecture's terms
   std::string node_noun;            ///< what its nodes are called, plural: "cells", "nodes"
   TraversalFamily traversal = TraversalFamily::Linear;
+  ConstructionFamily construction = ConstructionFamily::Linear;
   bool cells = false;               ///< nodes are the cells of one regular grid (empty ones can be drawn)
   bool reference = false;           ///< the brute-force oracle (the bench compares the others to it)
   std::vector<ParamSpec> params;    ///< what --param accepts

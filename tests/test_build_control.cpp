@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "build_control.h"
@@ -103,6 +104,49 @@ TEST(BuildControl, ProgressSpanMapsThrottlesAndFinishes) {
   EXPECT_EQ(seen.back(), 1.0);
   control.cancel();
   EXPECT_FALSE(span.advance(1.0));
+}
+
+TEST(BuildControl, ProgressCounterSumsEveryThreadAndReportsFromItsOwn) {
+  std::vector<double> seen;
+  std::vector<std::thread::id> reporters;
+  BuildControl control([&](double f) {
+    seen.push_back(f);
+    reporters.push_back(std::this_thread::get_id());
+  });
+  ProgressSpan span(&control, 0.0, 1.0);
+  constexpr uint64_t kPerThread = 100000;
+  ProgressCounter counter(&span, 4 * kPerThread);
+  // Three other threads and this one add 1 at a time; only this (the counter's) thread reports.
+  std::vector<std::thread> others;
+  for (int t = 0; t < 3; ++t)
+    others.emplace_back([&] {
+      for (uint64_t i = 0; i < kPerThread; ++i) EXPECT_TRUE(counter.add(1));
+    });
+  for (uint64_t i = 0; i < kPerThread; ++i) EXPECT_TRUE(counter.add(1));
+  for (std::thread& t : others) t.join();
+  EXPECT_TRUE(counter.add(0));  // this thread sees the whole sum now
+  ASSERT_FALSE(seen.empty());
+  for (size_t i = 1; i < seen.size(); ++i) ASSERT_LE(seen[i - 1], seen[i]);
+  EXPECT_GE(seen.back(), 1.0 - 1.0 / 1024.0);  // within the span's reporting step of the whole
+  for (std::thread::id id : reporters) EXPECT_EQ(id, std::this_thread::get_id());
+  EXPECT_FALSE(counter.stopped());
+  // A cancel stops it, on any thread, for good.
+  control.cancel();
+  EXPECT_TRUE(counter.stopped());
+  std::thread([&] { EXPECT_FALSE(counter.add(1)); }).join();
+  EXPECT_FALSE(counter.add(1));
+}
+
+TEST(BuildControl, ProgressCounterOfSharesNeverPassesOne) {
+  BuildControl control;
+  ProgressSpan span(&control, 0.0, 1.0);
+  ProgressCounter shares(&span, ProgressCounter::kWhole);
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(shares.add_share(1.0 / 3.0));  // rounded down: a sum just under 1
+  EXPECT_LE(control.fraction(), 1.0);
+  EXPECT_GT(control.fraction(), 0.999);
+  ProgressCounter none(nullptr, 10);  // no span: counts nothing, never stops
+  EXPECT_TRUE(none.add(100));
+  EXPECT_FALSE(none.stopped());
 }
 
 TEST(BuildControl, ProgressIsMonotoneAndEndsAtOneForEveryStructure) {

@@ -540,13 +540,15 @@ const PseudoCode& build_bvh_insertion_code() {
 }  // namespace
 
 BuildCodeKind build_code_kind(const std::string& name, const std::vector<std::string>& params) {
-  if (name == "brute") return BuildCodeKind::Brute;
-  if (name == "grid") return BuildCodeKind::Grid;
-  if (name == "octree") return BuildCodeKind::Octree;
-  if (name == "kdtree") return BuildCodeKind::KdTree;
-  if (name != "bvh" && name != "spheretree") return BuildCodeKind::Unknown;
   auto info = accel::find_structure(name);
   if (!info) return BuildCodeKind::Unknown;
+  switch (info.value()->construction) {
+    case accel::ConstructionFamily::Linear: return BuildCodeKind::Brute;
+    case accel::ConstructionFamily::GridInsert: return BuildCodeKind::Grid;
+    case accel::ConstructionFamily::Octree: return BuildCodeKind::Octree;
+    case accel::ConstructionFamily::KdTree: return BuildCodeKind::KdTree;
+    case accel::ConstructionFamily::Hierarchy: break;
+  }
   auto set = accel::ParamSet::parse(info.value()->params, params, name);
   if (!set || !set.value().has("builder")) return BuildCodeKind::Unknown;
   const std::string b = set.value().get_choice("builder");

@@ -21,11 +21,9 @@
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU (as in geometry.h)
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <memory>
-#include <thread>
 
 #include "check.h"
 #include "parallel.h"
@@ -48,16 +46,16 @@ struct UpperNode {
 };
 
 
-std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r, BuildProgress& progress) {
+std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r, ProgressCounter& progress) {
   auto u = std::make_unique<UpperNode>();
-  if (progress.stop()) return u;  // cancelled: an empty subtree, discarded by the caller
+  if (progress.stopped()) return u;  // cancelled: an empty subtree, discarded by the caller
   NullBuildSink no_steps;
   BinnedBuilder<NullBuildSink> builder(o, refs, no_steps);
   if (r.size() < kTaskThreshold) {
     u->subtree.reserve(r.size());
     builder.build_serial(r, u->subtree);
     u->size = u->subtree.size();
-    progress.placed_leaves(r.size());
+    progress.add(r.size());
     return u;
   }
   u->node.box = r.box.aabb();
@@ -67,7 +65,7 @@ std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, cons
     u->node.count = uint32_t(r.size());
     u->subtree.push_back(u->node);
     u->size = 1;
-    progress.placed_leaves(r.size());
+    progress.add(r.size());
     return u;
   }
   par::parallel_invoke([&] { u->left = build_upper(o, refs, left, progress); },
@@ -137,11 +135,9 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
     return tree;
   }
 
-  BuildProgress shared_progress;
-  shared_progress.span = progress;
-  shared_progress.total = n;
+  ProgressCounter shared_progress(progress, n);  // triangles placed in leaves
   const std::unique_ptr<UpperNode> upper = build_upper(options, refs.data(), root, shared_progress);
-  if (shared_progress.stop()) return tree;  // cancelled: the caller discards the tree
+  if (shared_progress.stopped()) return tree;  // cancelled: the caller discards the tree
   tree.nodes.resize(upper->size);
   std::vector<std::pair<const UpperNode*, uint32_t>> buffers;
   place_upper(*upper, 0, tree.nodes, buffers);

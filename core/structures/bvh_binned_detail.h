@@ -6,11 +6,9 @@
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU (as in geometry.h)
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <memory>
-#include <thread>
 #include <vector>
 
 #include "bit_cast.h"
@@ -505,23 +503,4 @@ class BinnedBuilder {
   std::unique_ptr<RightSweep> right_ = std::make_unique<RightSweep>();
 };
 
-/// Progress and cancellation shared by the build's tasks. Tasks count the references they
-/// place; only the thread that started the build reports (ProgressSpan is single-threaded),
-/// every task checks for cancellation before it starts.
-struct BuildProgress {
-  ProgressSpan* span = nullptr;
-  size_t total = 0;
-  std::thread::id reporter = std::this_thread::get_id();
-  std::atomic<size_t> placed{0};
-  std::atomic<bool> stopped{false};
-
-  bool stop() const { return stopped.load(std::memory_order_relaxed); }
-  void placed_leaves(size_t refs) {
-    if (!span) return;
-    const size_t done = placed.fetch_add(refs, std::memory_order_relaxed) + refs;
-    const bool go_on = std::this_thread::get_id() == reporter ? span->advance(double(done) / double(total))
-                                                               : !span->cancelled();
-    if (!go_on) stopped.store(true, std::memory_order_relaxed);
-  }
-};
 }  // namespace accel::binned

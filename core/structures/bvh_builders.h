@@ -1,8 +1,8 @@
 #pragma once
 // BVH builders shared by the AABB tree (bvh) and the sphere tree (spheretree): each
 // produces the same binary topology over the scene's triangles; the structure then fits its
-// bounding volumes (boxes or spheres) to it and flattens it. Every builder is its own
-// function, chosen by BvhBuilderKind.
+// bounding volumes (boxes or spheres) to it and flattens it. Every builder is its own file
+// pair (bvh_<name>_builder.h/.cpp), chosen by BvhBuilderKind through build_bvh_tree().
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,12 +16,12 @@
 namespace accel {
 
 enum class BvhBuilderKind : uint8_t {
-  Median,     ///< sort centres, split at the median (lecture: top-down, "median")
-  Sah,        ///< full sweep over sorted centroids on all three axes (MacDonald & Booth 1990)
-  BinnedSah,  ///< binned SAH approximation (Wald 2007, "On fast construction of SAH-based BVHs"), parallel: bvh_binned_builder.h
-  PcaSah,     ///< sweep along the principal axis of the centroids (lecture: "PCA", then SAH plane sweep)
-  BottomUp,   ///< agglomerative clustering, locally ordered (Meister & Bittner 2018, "PLOC")
-  Insertion,  ///< incremental insertion by least surface-area cost (Goldsmith & Salmon 1987)
+  Median,     ///< sort centres, split at the median (lecture: top-down, "median"): bvh_median_builder.h
+  Sah,        ///< full sweep over sorted centroids on all three axes (MacDonald & Booth 1990): bvh_sweep_builder.h
+  BinnedSah,  ///< binned SAH approximation (Wald 2007, "On fast construction of SAH-based BVHs"): bvh_binned_builder.h
+  PcaSah,     ///< sweep along the principal axis of the centroids (lecture: "PCA", then SAH plane sweep): bvh_pca_builder.h
+  BottomUp,   ///< agglomerative clustering, locally ordered (Meister & Bittner 2018, "PLOC"): bvh_ploc_builder.h
+  Insertion,  ///< incremental insertion by least surface-area cost (Goldsmith & Salmon 1987): bvh_insertion_builder.h
   Sbvh,       ///< binned SAH plus spatial splits (Stich, Friedrich & Dietrich 2009, "SBVH"): bvh_spatial_builder.h
 };
 

@@ -38,12 +38,10 @@
 #include "structures/bvh_spatial_builder.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -200,26 +198,6 @@ struct Chunk {
   size_t prim_count = 0;  ///< leaf references in the subtree
 };
 
-/// Progress and cancellation shared by the tasks: leaves add their weight (fractions of the
-/// build, in fixed point); only the thread that started the build reports.
-struct SharedProgress {
-  static constexpr double kScale = double(uint64_t(1) << 40);
-  ProgressSpan* span = nullptr;
-  std::thread::id reporter = std::this_thread::get_id();
-  std::atomic<uint64_t> placed{0};
-  std::atomic<bool> stopped{false};
-
-  bool stop() const { return stopped.load(std::memory_order_relaxed); }
-  void placed_leaf(double weight) {
-    if (!span || stop()) return;  // cancelled: report nothing more
-    const uint64_t done = placed.fetch_add(uint64_t(weight * kScale), std::memory_order_relaxed) +
-                          uint64_t(weight * kScale);
-    const bool go_on = std::this_thread::get_id() == reporter ? span->advance(std::min(1.0, double(done) / kScale))
-                                                               : !span->cancelled();
-    if (!go_on) stopped.store(true, std::memory_order_relaxed);
-  }
-};
-
 template <class Sink>
 class SpatialBuilder {
  public:
@@ -228,16 +206,16 @@ class SpatialBuilder {
 
   /// Serial build of `t` (consumed), appended to `out` in pre-order; returns its index
   /// there (the node's id in the recorded steps: the index in the finished tree).
-  uint32_t build_serial(Task& t, Chunk& out, SharedProgress* progress, uint32_t parent = kNoBuildNode) {
+  uint32_t build_serial(Task& t, Chunk& out, ProgressCounter* progress, uint32_t parent = kNoBuildNode) {
     const uint32_t index = uint32_t(out.nodes.size());
     out.nodes.emplace_back();
     out.nodes[index].box = t.range.box.aabb();
     Task left, right;
-    if ((progress && progress->stop()) || !decide(t, index, parent, left, right)) {
+    if ((progress && progress->stopped()) || !decide(t, index, parent, left, right)) {
       out.nodes[index].first = uint32_t(out.prims.size());
       out.nodes[index].count = uint32_t(t.refs.size());
       for (const Ref& r : t.refs) out.prims.push_back(r.prim);
-      if (progress) progress->placed_leaf(t.weight);
+      if (progress) progress->add_share(t.weight);
       t.refs = {};
       return index;
     }
@@ -553,9 +531,9 @@ class SpatialBuilder {
 };
 
 std::unique_ptr<Chunk> build_chunk(const Scene& scene, const BvhBuildOptions& o, float root_area, Task& t,
-                                   SharedProgress& progress) {
+                                   ProgressCounter& progress) {
   auto c = std::make_unique<Chunk>();
-  if (progress.stop()) return c;  // cancelled: the caller discards the tree
+  if (progress.stopped()) return c;  // cancelled: the caller discards the tree
   NullBuildSink no_steps;
   SpatialBuilder<NullBuildSink> builder(scene, o, root_area, no_steps);
   if (t.refs.size() < kTaskThreshold) {
@@ -572,7 +550,7 @@ std::unique_ptr<Chunk> build_chunk(const Scene& scene, const BvhBuildOptions& o,
     for (const Ref& r : t.refs) c->prims.push_back(r.prim);
     c->size = 1;
     c->prim_count = c->prims.size();
-    progress.placed_leaf(t.weight);
+    progress.add_share(t.weight);
     return c;
   }
   par::parallel_invoke([&] { c->left = build_chunk(scene, o, root_area, left, progress); },
@@ -628,10 +606,9 @@ BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& op
     tree.prims = std::move(whole.prims);
     return tree;
   }
-  SharedProgress shared;
-  shared.span = progress;
+  ProgressCounter shared(progress, ProgressCounter::kWhole);  // leaves add their share (weight) of the build
   const std::unique_ptr<Chunk> top = build_chunk(scene, options, root_area, root, shared);
-  if (shared.stop()) return tree;  // cancelled: the caller discards the tree
+  if (shared.stopped()) return tree;  // cancelled: the caller discards the tree
   tree.nodes.resize(top->size);
   tree.prims.resize(top->prim_count);
   std::vector<Placed> serial;

@@ -1,14 +1,16 @@
-// kd-tree build: clipping triangles to boxes (perfect splits), the sorted event lists, the
-// middle, median and SAH split choices, distribution, and the recursion, parallel over
-// subtrees (see kd_builder.h).
+// kd-tree build (lecture, kd-tree, "the procedure (top down)": choose an axis-aligned plane
+// to split the cell, distribute the geometry among the two children -- some polygons go to
+// both -- and recurse until the stopping criterion is met). This file assembles the tree: the
+// middle and median planes, the recursion with its guards and budgets, the parallel tasks and
+// their stitching into one pre-order. The SAH plane search is kd_sah_sweep.cpp, the sorted
+// event lists and their distribution kd_events.cpp, the clipping (perfect splits)
+// kd_clipping.cpp -- after Wald & Havran 2006, "On building fast kd-trees for ray tracing,
+// and on doing that in O(N log N)".
 //
 // Index
 //   [SECTION] Depth limit and names
-//   [SECTION] Clipping triangles to boxes
-//   [SECTION] Events
 //   [SECTION] Builder: state and output
-//   [SECTION] Builder: split choice (middle, median, sah)
-//   [SECTION] Builder: distribution
+//   [SECTION] Builder: split choice (middle, median; sah: kd_sah_sweep.cpp)
 //   [SECTION] Builder: recursion and tasks
 //   [SECTION] Builder: stitching and the whole build
 #include "structures/kd_builder.h"
@@ -20,10 +22,11 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 
 #include "check.h"
 #include "parallel.h"
+#include "structures/kd_events.h"
+#include "structures/kd_sah_sweep.h"
 
 namespace accel {
 
@@ -47,280 +50,24 @@ const char* kd_split_name(KdSplit s) {
 
 namespace {
 
-//-----------------------------------------------------------------------------
-// [SECTION] Clipping triangles to boxes
-//-----------------------------------------------------------------------------
-
-/// Largest float <= x.
-float round_down(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -kInf);
-  return f;
-}
-/// Smallest float >= x.
-float round_up(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, kInf);
-  return f;
-}
-
-/// Bounds of the part of triangle `prim` inside the closed box `box`, for perfect splits
-/// (Havran 2000; Wald & Havran 2006 sec. 4.3): Sutherland-Hodgman clipping against the six
-/// slabs, in double. Conservative both ways rounding could hurt:
-///  * the box is enlarged by delta = 2^-30 of the largest coordinate involved (far above the
-///    double rounding of the clip, far below a float ulp), so a triangle touching the box is
-///    never clipped away;
-///  * the polygon's bounds are widened by delta and rounded outward to float, then cut to
-///    the triangle's own box and to `box` (both exact bounds of the true clipped part).
-/// Returns false only when the triangle certainly misses the box.
-bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aabb* out) {
-  const Aabb& tri = scene.triangle_bounds(prim);
-  Aabb cut;
-  cut.min = glm::max(tri.min, box.min);
-  cut.max = glm::min(tri.max, box.max);
-  if (cut.empty()) return false;
-  if (box.contains(tri)) {  // nothing to clip
-    *out = tri;
-    return true;
-  }
-  double m = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    m = std::max({m, std::abs(double(tri.min[k])), std::abs(double(tri.max[k])), std::abs(double(box.min[k])),
-                  std::abs(double(box.max[k]))});
-  }
-  const double delta = std::max(m, 1e-30) * 0x1p-30;  // exact, as ldexp(., -30)
-
-  // A triangle clipped by 6 planes has at most 3 + 6 vertices. A plane that every vertex lies
-  // inside would copy the polygon unchanged, so it is skipped (most planes of a straddler's
-  // clip: only the split plane and the region's faces it crosses cut it).
-  DVec3 buf[2][10];
-  DVec3* poly = buf[0];
-  DVec3* next = buf[1];
-  int n = 3;
-  for (int k = 0; k < 3; ++k) poly[k] = DVec3(scene.vertex(prim, k));
-  for (int axis = 0; axis < 3; ++axis) {
-    for (int side = 0; side < 2; ++side) {
-      const double plane = side == 0 ? double(box.min[axis]) - delta : double(box.max[axis]) + delta;
-      bool in[10];
-      int inside = 0;
-      for (int i = 0; i < n; ++i) {
-        in[i] = side == 0 ? poly[i][axis] >= plane : poly[i][axis] <= plane;
-        inside += in[i];
-      }
-      if (inside == n) continue;
-      if (inside == 0) return false;  // the enlarged box misses the triangle
-      int m_out = 0;
-      for (int i = 0; i < n; ++i) {
-        const int j = i + 1 == n ? 0 : i + 1;
-        const DVec3& a = poly[i];
-        const DVec3& b = poly[j];
-        if (in[i]) next[m_out++] = a;
-        if (in[i] != in[j]) {
-          const double s = (plane - a[axis]) / (b[axis] - a[axis]);
-          DVec3 q = a + s * (b - a);
-          q[axis] = plane;
-          next[m_out++] = q;
-        }
-      }
-      n = m_out;
-      std::swap(poly, next);
-    }
-  }
-  DVec3 lo = poly[0], hi = poly[0];
-  for (int i = 1; i < n; ++i) {
-    lo = glm::min(lo, poly[i]);
-    hi = glm::max(hi, poly[i]);
-  }
-  Aabb b;
-  for (int k = 0; k < 3; ++k) {
-    b.min[k] = std::max(round_down(lo[k] - delta), cut.min[k]);
-    b.max[k] = std::min(round_up(hi[k] + delta), cut.max[k]);
-  }
-  if (b.empty()) return false;  // the enlarged clip lies outside the exact bounds: a miss
-  *out = b;
-  return true;
-}
-
-//-----------------------------------------------------------------------------
-// [SECTION] Events
-//-----------------------------------------------------------------------------
-
-/// Event types in sweep order: at one position, ends come before planars before starts
-/// (Wald & Havran 2006 sec. 4.2), so a triangle ending at a plane counts left only and one
-/// starting there right only.
-enum EventType : uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
-
-/// One boundary of a triangle's (clipped) extent along one axis. 8 bytes: the triangle id
-/// and the type share one word (ids < 2^30).
-struct Event {
-  float pos;
-  uint32_t prim_type;  // prim << 2 | type
-
-  /// Leaves both fields unset: resizing a list that a filter then overwrites costs nothing
-  /// (a defaulted constructor would be zero-filled by vector::resize first).
-  Event() {}
-  Event(float p, uint32_t pt) : pos(p), prim_type(pt) {}
-  uint32_t prim() const { return prim_type >> 2; }
-  uint32_t type() const { return prim_type & 3u; }
-};
-static_assert(sizeof(Event) == 8);
-
-bool event_less(const Event& a, const Event& b) {
-  return a.pos < b.pos || (a.pos == b.pos && a.type() < b.type());
-}
-
-/// event_less as a type, so std::sort inlines it. The order std::sort leaves equivalent
-/// events in (ties of position and type) is part of the result -- the first event of a
-/// position gives the split its bits, -0 or +0 -- so every list is sorted by the same
-/// std::sort on the same input order as ever.
-struct EventLess {
-  bool operator()(const Event& a, const Event& b) const { return event_less(a, b); }
-};
-
-/// The events of one node: per axis, sorted by event_less.
-struct EventLists {
-  std::vector<Event> axis[3];
-  size_t size() const { return axis[0].size() + axis[1].size() + axis[2].size(); }
-};
-
-/// Appends the events of `prim` with extent `b` (one planar event on an axis where the extent
-/// is flat, else an end and a start).
-void add_events(EventLists& lists, uint32_t prim, const Aabb& b) {
-  for (int k = 0; k < 3; ++k) {
-    if (b.min[k] == b.max[k]) {
-      lists.axis[k].emplace_back(b.min[k], prim << 2 | kPlanar);
-    } else {
-      lists.axis[k].emplace_back(b.min[k], prim << 2 | kStart);
-      lists.axis[k].emplace_back(b.max[k], prim << 2 | kEnd);
-    }
-  }
-}
-
-/// Spare event lists of one thread, handed to the children of the next nodes: most nodes are
-/// small, and a malloc and free per list and node cost more than sweeping them. Lists longer
-/// than kMaxPooled events are freed instead, which bounds what a pool holds.
-class EventPool {
- public:
-  /// An empty list, with the capacity of a spare one when there is one.
-  std::vector<Event> take() {
-    if (spare_.empty()) return {};
-    std::vector<Event> list = std::move(spare_.back());
-    spare_.pop_back();
-    return list;
-  }
-  /// Takes `list` back (leaving it empty).
-  void give(std::vector<Event>& list) {
-    if (list.capacity() > 0 && list.capacity() <= kMaxPooled && spare_.size() < kMaxSpare) {
-      list.clear();
-      spare_.push_back(std::move(list));
-    }
-    list = std::vector<Event>();
-  }
-  void give(EventLists& lists) {
-    for (std::vector<Event>& list : lists.axis) give(list);
-  }
-
- private:
-  static constexpr size_t kMaxPooled = size_t(1) << 13;  // 64 KiB
-  static constexpr size_t kMaxSpare = 256;  // well above the ~3 * (depth + 3) lists alive at once
-  std::vector<std::vector<Event>> spare_;
-};
-
-/// Merges the sorted `fresh` events into `list`, whose first `kept` entries are sorted and
-/// whose size is at least kept + fresh.size(); leaves exactly the merged kept + fresh. The
-/// same sequence as std::merge(kept, fresh) -- on ties the kept event first -- written from
-/// the back, so it needs no second buffer and stops when `fresh` is used up.
-void merge_fresh(std::vector<Event>& list, size_t kept, const std::vector<Event>& fresh) {
-  size_t i = kept, j = fresh.size(), out = kept + fresh.size();
-  ACCEL_DCHECK(list.size() >= out);
-  Event* dst = list.data();
-  while (j > 0 && i > 0) {  // without a branch on the comparison (random)
-    const Event f = fresh[j - 1], k = dst[i - 1];
-    const bool take_kept = (f.pos < k.pos) | ((f.pos == k.pos) & (f.type() < k.type()));  // event_less(f, k)
-    dst[--out] = take_kept ? k : f;
-    i -= take_kept;
-    j -= !take_kept;
-  }
-  while (j > 0) dst[--out] = fresh[--j];
-  list.resize(kept + fresh.size());
-}
+using namespace kd;
 
 //-----------------------------------------------------------------------------
 // [SECTION] Builder: state and output
 //-----------------------------------------------------------------------------
-
-/// Where to split a node; axis < 0 = make a leaf.
-struct SplitChoice {
-  int axis = -1;
-  float pos = 0.0f;
-  bool planar_left = true;  ///< triangles lying in the plane go left (else right)
-};
-
-enum Side : uint8_t { kBoth = 0, kLeft = 1, kRight = 2 };
 
 /// Nodes of at least this many triangles have their two children built as tasks of their
 /// own; smaller ones build their whole subtree serially (a few hundred microseconds of work,
 /// far above the cost of a task).
 constexpr size_t kTaskMinPrims = 2048;
 
-/// Child lists longer than this many events are trimmed to their size (see distribute()).
-constexpr size_t kShrinkMin = size_t(1) << 16;
-
-/// The sweep's counts at one distinct event position (Wald & Havran's N_L, N_R, N_P): the
-/// triangles starting or lying before it, ending or lying after it, lying in it.
-struct PlaneCounts {
-  float pos;  // the first event's position (its bits, -0 or +0, become the split's)
-  uint32_t left, right, planar;
-};
-
-/// The counts at every distinct position of the sorted `events` of a node of `n` triangles,
-/// into `planes` (grown as needed); returns how many. Without a branch per event: positions
-/// shared by a few events (mesh vertices) make "same position as the next?" random, so every
-/// event writes the running counts and only the last one of a position advances the output.
-size_t count_planes(const std::vector<Event>& events, size_t n, std::vector<PlaneCounts>& planes) {
-  const size_t count = events.size();
-  if (planes.size() < count) planes.resize(count);
-  if (count == 0) return 0;
-  const Event* ev = events.data();
-  PlaneCounts* out = planes.data();
-  uint32_t before = 0, starts_planars = 0, ends_planars = 0, planars = 0;  // before = of earlier positions
-  float first = ev[0].pos;
-  size_t g = 0;
-  for (size_t i = 0; i < count; ++i) {
-    const uint32_t type = ev[i].type();
-    starts_planars += type != kEnd;
-    ends_planars += type != kStart;
-    planars += type == kPlanar;
-    out[g] = {first, before, uint32_t(n) - ends_planars, planars};
-    const float next = i + 1 < count ? ev[i + 1].pos : first;
-    const bool last = i + 1 == count || !(next == ev[i].pos);
-    g += last;
-    before = last ? starts_planars : before;
-    planars = last ? 0 : planars;
-    first = last ? next : first;
-  }
-  return g;
-}
-
 /// What one thread needs to split nodes. The per-triangle arrays are indexed by triangle id
 /// and written for a node's triangles before they are read. A task uses its thread's
 /// workspace only between points where it never waits for other tasks, so a task stolen
 /// while it waits never finds the workspace half used.
-struct Workspace {
-  std::vector<uint8_t> side;   // per triangle id: Side in the node being split
+struct Workspace : DistributeScratch, SahSweepScratch {
   std::vector<float> lo, hi;   // per triangle id: extent along the median axis
   std::vector<float> centres;  // split_median(): the clipped box centres
-  std::vector<uint32_t> straddlers;  // distribute(): triangles on both sides
-  std::vector<PlaneCounts> planes;   // split_sah(): the counts of one axis
-  EventLists fresh[2];         // distribute(): events of re-clipped straddlers, per side
-  EventPool pool;
-  // Recording only (build_trace.h; untouched by the NullBuildSink build): whether the node
-  // being split is recorded, and split_sah()'s planes of it with their costs, per axis swept.
-  bool record = false;
-  bool swept[3] = {false, false, false};
-  std::vector<SplitCandidate> candidates[3];
-  double best_cost = 0.0;  // split_sah(): the chosen plane's cost
-  size_t both = 0;         // distribute(): triangles stored in both children (after clipping)
 };
 
 /// A node to build: its events (consumed), what the guards, the budget and the progress
@@ -350,12 +97,11 @@ struct Subtree {
 };
 
 /// One node's outcome: the split and the children's events, or the reason it is a leaf.
-struct Decision {
+/// (ChildEvents: the children's events and triangle counts.)
+struct Decision : ChildEvents {
   SplitChoice s;
   size_t KdLeafReasons::*reason = nullptr;  // the leaf's counter when s.axis < 0
-  EventLists left, right;
-  size_t nl = 0, nr = 0;  // triangles of each child
-  int bad_refines = 0;    // of the children's paths
+  int bad_refines = 0;                      // of the children's paths
 };
 
 class KdBuilder {
@@ -369,6 +115,7 @@ class KdBuilder {
         o_(options),
         control_(control),
         progress_(control, progress_from, 1.0),
+        leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole),
         parallel_(parallel),
         exact_errors_(exact_errors) {}
   /// `recorder` (nullptr = none): every step is recorded into it (the builder must be serial).
@@ -394,12 +141,6 @@ class KdBuilder {
   int choose_axis(const Aabb& box, int depth) const;
   SplitChoice split_middle(const Aabb& box, int depth) const;
   SplitChoice split_median(Workspace& ws, const EventLists& events, const Aabb& box, int depth, size_t n) const;
-  template <class Sink>
-  SplitChoice split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const;
-  void classify(Workspace& ws, const EventLists& events, const SplitChoice& s) const;
-  template <class Sink>
-  void distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box, Decision& d) const;
-  void report_leaf(double share);
   void over_budget(const char* what, size_t limit);
   void fail(Error error);
   bool failed() const { return failed_.load(std::memory_order_relaxed); }
@@ -407,7 +148,8 @@ class KdBuilder {
   const Scene& scene_;
   KdBuildOptions o_;
   BuildControl* control_;
-  ProgressSpan progress_;  // touched by the reporting thread only
+  ProgressSpan progress_;  // touched by the reporting thread only (through leaves_done_)
+  ProgressCounter leaves_done_;  // the shares of the build in finished leaves
   const bool parallel_, exact_errors_;
   KdTreeData out_;
   size_t node_cap_ = 0;  // nodes allowed: node_limit, and what KdNode's 30 bits hold
@@ -416,8 +158,6 @@ class KdBuilder {
   // making it, so a total above the budget is seen by some task whatever the interleaving:
   // the build fails exactly when the serial one does.
   std::atomic<size_t> nodes_{0}, references_{0};
-  std::atomic<double> done_{0.0};  // share of the build in finished leaves
-  std::thread::id reporter_;       // the thread that runs the build: the one that reports progress
   std::atomic<bool> failed_{false};
   std::mutex error_mutex_;
   Status status_;  // the first error recorded (budget or cancel); the build stops at it
@@ -463,19 +203,6 @@ void KdBuilder::over_budget(const char* what, size_t limit) {
   fail(make_error(buf));
 }
 
-/// A finished leaf's share of the progress. Shares are summed by every task, reported only
-/// by the thread that started the build (ProgressSpan is not thread-safe); its own reads of
-/// the growing sum never go back.
-void KdBuilder::report_leaf(double share) {
-  if (!control_) return;
-  // atomic<double>::fetch_add as a loop: emscripten 3.1.6's libc++ (the web build) lacks it.
-  double done = done_.load(std::memory_order_relaxed);
-  while (!done_.compare_exchange_weak(done, done + share, std::memory_order_relaxed)) {
-  }
-  done += share;
-  if (std::this_thread::get_id() == reporter_) progress_.advance(done);
-}
-
 //-----------------------------------------------------------------------------
 // [SECTION] Builder: split choice (middle, median, sah)
 //-----------------------------------------------------------------------------
@@ -519,195 +246,6 @@ SplitChoice KdBuilder::split_median(Workspace& ws, const EventLists& events, con
   return split_middle(box, depth);
 }
 
-// Wald & Havran 2006, Algorithm 4 (per axis): sweep the sorted events; at each position p
-// the counts are N_L (triangles before), N_P (lying in p), N_R (after); the cost of a plane
-// is  lambda * (ct + ci * (A_L/A * N_L + A_R/A * N_R))  with the planar ones added to the
-// cheaper side, lambda = 1 - empty_bonus when a side is empty. Planes strictly inside the
-// region are candidates; a plane on its boundary only to cut off the triangles lying in it.
-// Returns "leaf" when no plane beats the leaf cost ci * N (Wald & Havran's automatic
-// termination).
-// Recording (Sink::kRecords and ws.record): every plane given a cost, in sweep order, per
-// axis into ws.candidates, and the chosen plane's cost into ws.best_cost.
-template <class Sink>
-SplitChoice KdBuilder::split_sah(Workspace& ws, const EventLists& events, const Aabb& box, size_t n) const {
-  SplitChoice best;
-  const DVec3 e = DVec3(box.max) - DVec3(box.min);
-  const double area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-  if (!(area > 0.0)) return best;
-  const double inv_area = 1.0 / area;
-  double best_cost = o_.ci * double(n);
-  auto cost = [&](double pl, double pr, size_t nl, size_t nr) {
-    const double c = o_.ct + o_.ci * (pl * double(nl) + pr * double(nr));
-    return (nl == 0 || nr == 0) ? c * (1.0 - o_.empty_bonus) : c;
-  };
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!(box.max[axis] > box.min[axis])) continue;
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    const double cross = e[a1] * e[a2], around = e[a1] + e[a2];
-    const size_t planes = count_planes(events.axis[axis], n, ws.planes);
-    if constexpr (Sink::kRecords) {
-      if (ws.record) {
-        ws.swept[axis] = true;
-        ws.candidates[axis].clear();
-      }
-    }
-    for (size_t g = 0; g < planes; ++g) {
-      const float p = ws.planes[g].pos;
-      const size_t nl = ws.planes[g].left, nr = ws.planes[g].right, planars = ws.planes[g].planar;
-      const double dl = double(p) - double(box.min[axis]), dr = double(box.max[axis]) - double(p);
-      const double pl = 2.0 * (cross + dl * around) * inv_area, pr = 2.0 * (cross + dr * around) * inv_area;
-      if (p > box.min[axis] && p < box.max[axis]) {
-        // Without planars both sides cost the same (and planar_left stays true).
-        const double c_left = cost(pl, pr, nl + planars, nr);
-        const double c_right = planars > 0 ? cost(pl, pr, nl, nr + planars) : c_left;
-        const double c = std::min(c_left, c_right);
-        if constexpr (Sink::kRecords) {
-          if (ws.record)
-            ws.candidates[axis].push_back(c_left <= c_right ? SplitCandidate{p, float(c), uint32_t(nl + planars), uint32_t(nr)}
-                                                            : SplitCandidate{p, float(c), uint32_t(nl), uint32_t(nr + planars)});
-        }
-        if (c < best_cost) {
-          best_cost = c;
-          best = {axis, p, c_left <= c_right};
-        }
-      } else if (planars > 0 && planars < n) {
-        // A plane on the region's boundary holding planar triangles: cut them off into a
-        // flat cell (Wald & Havran 2006 sec. 4.4), e.g. the walls of axis-aligned rooms.
-        // Both sides then hold fewer triangles than the node, so this always progresses.
-        const bool at_min = p == box.min[axis];
-        const double c = at_min ? cost(pl, pr, planars, n - planars) : cost(pl, pr, n - planars, planars);
-        if constexpr (Sink::kRecords) {
-          if (ws.record)
-            ws.candidates[axis].push_back(at_min ? SplitCandidate{p, float(c), uint32_t(planars), uint32_t(n - planars)}
-                                                 : SplitCandidate{p, float(c), uint32_t(n - planars), uint32_t(planars)});
-        }
-        if (c < best_cost) {
-          best_cost = c;
-          best = {axis, p, at_min};
-        }
-      }
-    }
-  }
-  if constexpr (Sink::kRecords) ws.best_cost = best_cost;
-  return best;
-}
-
-//-----------------------------------------------------------------------------
-// [SECTION] Builder: distribution
-//-----------------------------------------------------------------------------
-
-// Sides by the split axis' events, consistent with the sweep's counts: extent ending at or
-// before the plane -> left; starting at or after it -> right; lying in it -> the chosen
-// side; crossing it -> both. One pass: a triangle's start precedes its end in the sorted
-// list (a start and an end only for a non-flat extent), so the end can overrule the start.
-void KdBuilder::classify(Workspace& ws, const EventLists& events, const SplitChoice& s) const {
-  uint8_t* side = ws.side.data();
-  for (const Event& e : events.axis[s.axis]) {
-    const uint32_t prim = e.prim();
-    switch (e.type()) {
-      case kStart: side[prim] = e.pos >= s.pos ? kRight : kBoth; break;
-      case kEnd:
-        if (e.pos <= s.pos) side[prim] = kLeft;
-        break;
-      default:  // planar
-        side[prim] = e.pos < s.pos || (e.pos == s.pos && s.planar_left) ? kLeft : kRight;
-        break;
-    }
-  }
-}
-
-// Wald & Havran 2006 sec. 5.2: the events of one-sided triangles are filtered into the
-// child lists (staying sorted); the straddling triangles are clipped to each child's region
-// (perfect splits) or cut to it (clip=off), their new events sorted -- only these, O(s log s)
-// -- and merged in. This keeps every list sorted without a sort per node: O(N log N). The
-// filter writes each event to both children and advances the side it belongs to, without a
-// branch to mispredict; the merge works in place from the back (merge_fresh()).
-template <class Sink>
-void KdBuilder::distribute(Workspace& ws, const EventLists& events, const SplitChoice& s, const Aabb& box,
-                           Decision& d) const {
-  EventLists& new_left = ws.fresh[0];
-  EventLists& new_right = ws.fresh[1];
-  for (int k = 0; k < 3; ++k) {
-    new_left.axis[k].clear();
-    new_right.axis[k].clear();
-  }
-  const uint8_t* side = ws.side.data();
-  const Aabb box_l = kd_child_box(box, s.axis, s.pos, false), box_r = kd_child_box(box, s.axis, s.pos, true);
-  // The triangles by their one start or planar event on axis 0: counted per side, the
-  // straddlers listed (in the list's order, as their fresh events are sorted from it).
-  std::vector<uint32_t>& straddlers = ws.straddlers;
-  if (straddlers.size() < events.axis[0].size()) straddlers.resize(events.axis[0].size());
-  size_t nl = 0, nr = 0, straddling = 0;
-  if constexpr (Sink::kRecords) ws.both = 0;
-  for (const Event& e : events.axis[0]) {
-    const uint32_t prim = e.prim();
-    const bool first = e.type() != kEnd;
-    const uint8_t sd = side[prim];
-    nl += first & (sd == kLeft);
-    nr += first & (sd == kRight);
-    straddlers[straddling] = prim;
-    straddling += first & (sd == kBoth);
-  }
-  for (size_t i = 0; i < straddling; ++i) {
-    // The straddlers' triangles are scattered over the scene: fetch ahead what the clip reads.
-    if (i + 8 < straddling) {
-      __builtin_prefetch(&scene_.triangle_bounds(straddlers[i + 8]));
-      __builtin_prefetch(&scene_.triangles()[straddlers[i + 8]]);
-    }
-    if (i + 4 < straddling)
-      for (int k = 0; k < 3; ++k) __builtin_prefetch(&scene_.vertex(straddlers[i + 4], k));
-    const uint32_t prim = straddlers[i];
-    Aabb b;
-    if (o_.clip) {
-      const bool in_left = clip_triangle_bounds(scene_, prim, box_l, &b);
-      if (in_left) add_events(new_left, prim, b), ++nl;
-      const bool in_right = clip_triangle_bounds(scene_, prim, box_r, &b);
-      if (in_right) add_events(new_right, prim, b), ++nr;
-      if constexpr (Sink::kRecords) ws.both += in_left && in_right;
-    } else {
-      const Aabb& tri = scene_.triangle_bounds(prim);
-      for (const Aabb* child : {&box_l, &box_r}) {
-        b.min = glm::max(tri.min, child->min);
-        b.max = glm::min(tri.max, child->max);
-        add_events(child == &box_l ? new_left : new_right, prim, b);
-      }
-      ++nl, ++nr;
-      if constexpr (Sink::kRecords) ++ws.both;
-    }
-  }
-  d.nl = nl;
-  d.nr = nr;
-  for (int k = 0; k < 3; ++k) {
-    const std::vector<Event>& src = events.axis[k];
-    std::vector<Event>& fresh_l = new_left.axis[k];
-    std::vector<Event>& fresh_r = new_right.axis[k];
-    std::sort(fresh_l.begin(), fresh_l.end(), EventLess{});
-    std::sort(fresh_r.begin(), fresh_r.end(), EventLess{});
-    std::vector<Event>& left = d.left.axis[k];
-    std::vector<Event>& right = d.right.axis[k];
-    left = ws.pool.take();
-    right = ws.pool.take();
-    left.resize(src.size() + fresh_l.size());
-    right.resize(src.size() + fresh_r.size());
-    Event* l = left.data();
-    Event* r = right.data();
-    size_t kept_l = 0, kept_r = 0;
-    for (const Event& e : src) {
-      const uint8_t sd = side[e.prim()];
-      l[kept_l] = e;
-      r[kept_r] = e;
-      kept_l += sd == kLeft;
-      kept_r += sd == kRight;
-    }
-    merge_fresh(left, kept_l, fresh_l);
-    merge_fresh(right, kept_r, fresh_r);
-    // Long lists were sized for every event going to each side; give back what the other
-    // side took (a copy of the kept part), as the above list waits through the below subtree.
-    for (std::vector<Event>* list : {&left, &right})
-      if (list->capacity() > kShrinkMin && list->size() < list->capacity() / 4 * 3) list->shrink_to_fit();
-  }
-}
-
 //-----------------------------------------------------------------------------
 // [SECTION] Builder: recursion and tasks
 //-----------------------------------------------------------------------------
@@ -725,11 +263,11 @@ void KdBuilder::make_leaf(Workspace& ws, Subtree& out, NodeTask& t, size_t KdLea
   out.nodes.push_back(KdNode::make_leaf(uint32_t(offset), uint32_t(t.n)));
   out.depth = std::max(out.depth, t.depth);
   ws.pool.give(t.events);
-  report_leaf(t.share);
+  leaves_done_.add_share(t.share);  // the build stops at enter_node()'s cancel check
 }
 
 /// SAH cost of splitting `box` at `s` with nl / nr triangles on the sides (the formula of
-/// split_sah(), for judging middle and median splits).
+/// sah_split(), for judging middle and median splits).
 double KdBuilder::split_cost(const Aabb& box, const SplitChoice& s, size_t nl, size_t nr) const {
   const double area = box.area();
   if (!(area > 0.0)) return kInf;
@@ -777,14 +315,14 @@ void KdBuilder::decide(Workspace& ws, const NodeTask& t, Decision& d) const {
   switch (o_.split) {
     case KdSplit::Middle: d.s = split_middle(t.box, t.depth); break;
     case KdSplit::Median: d.s = split_median(ws, t.events, t.box, t.depth, n); break;
-    case KdSplit::Sah: d.s = split_sah<Sink>(ws, t.events, t.box, n); break;
+    case KdSplit::Sah: d.s = sah_split<Sink>(o_, ws, t.events, t.box, n); break;
   }
   if (d.s.axis < 0) {
     d.reason = o_.split == KdSplit::Sah ? &KdLeafReasons::no_gain : &KdLeafReasons::thin;
     return;
   }
   classify(ws, t.events, d.s);
-  distribute<Sink>(ws, t.events, d.s, t.box, d);
+  distribute<Sink>(scene_, o_.clip, ws, t.events, d.s, t.box, d);
   if (d.nl == n && d.nr == n) {
     d.s.axis = -1;
     d.reason = &KdLeafReasons::no_progress;
@@ -1034,7 +572,6 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
   }
   if (scene_.triangle_count() > kKdMaxIndex) return make_error("kdtree: scene has too many triangles (limit 2^30)");
   node_cap_ = std::min<size_t>(o_.node_limit, kKdMaxIndex);
-  reporter_ = std::this_thread::get_id();
   // Two events per triangle and axis at the root, checked before they are allocated.
   if (6 * prims.size() > o_.event_limit) {
     const double bytes = double(6 * prims.size()) * sizeof(Event);

@@ -5,7 +5,6 @@
 #include <bit>
 #include <cmath>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "parallel.h"
@@ -172,7 +171,8 @@ class OctreeBuilder {
   OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control, bool parallel,
                 Sink& sink)
       : scene_(scene), options_(options), control_(control), parallel_(parallel && !Sink::kRecords),
-        progress_(control, 0.0, 1.0), owner_(std::this_thread::get_id()), sink_(sink) {}
+        progress_(control, 0.0, 1.0), leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole),
+        sink_(sink) {}
 
   /// The failure a build stopped with (checked in this order of priority by build_octree()).
   enum class Failure : int { None, Cancelled, Nodes, References, Memory };
@@ -308,11 +308,7 @@ class OctreeBuilder {
     *out = OctreeNode{uint32_t(part.prim_ids.size()), uint32_t(count)};
     part.prim_ids.insert(part.prim_ids.end(), prims, prims + count);
     ++*reason;
-    // Progress in fixed point, so any thread may add its leaves and the sum never passes 1;
-    // only the thread that started the build reports (ProgressSpan is single-threaded).
-    const uint64_t done = done_.fetch_add(uint64_t(share * kShareUnit), std::memory_order_relaxed) +
-                          uint64_t(share * kShareUnit);
-    if (std::this_thread::get_id() == owner_) progress_.advance(double(done) / kShareUnit);
+    leaves_done_.add_share(share);  // the build stops at its next stopping() check
     return true;
   }
 
@@ -477,18 +473,14 @@ class OctreeBuilder {
     return true;
   }
 
-  // Progress unit: a share of 1 is 2^52 (shares are rounded down, so the sum stays <= 1).
-  static constexpr double kShareUnit = 0x1p52;
-
   const Scene& scene_;
   const OctreeBuildOptions& options_;
   BuildControl* control_;
   const bool parallel_;
-  ProgressSpan progress_;  // the owner thread's only
-  const std::thread::id owner_;
+  ProgressSpan progress_;        // reported through leaves_done_ only
+  ProgressCounter leaves_done_;  // the shares of the build in finished leaves (any thread)
   Sink& sink_;
   std::vector<OctreePrim> prims_;        // by triangle id (valid ones only filled)
-  std::atomic<uint64_t> done_{0};        // share of the build in finished leaves, in kShareUnit
   std::atomic<size_t> nodes_total_{0};   // nodes reserved by all tasks
   std::atomic<size_t> refs_total_{0};    // triangle references reserved by all tasks
   std::atomic<int> failure_{int(Failure::None)};

@@ -1,10 +1,8 @@
 #include "structures/uniform_grid.h"
 
-#include <atomic>
 #include <cstdio>
 #include <functional>
 #include <string>
-#include <thread>
 
 #include "parallel.h"
 
@@ -213,30 +211,20 @@ void insert_exact(const GridData& g, const Scene& scene, uint32_t prim, const Ce
 
 /// Runs fn(k) for k in [0, n) in parallel, in batches: a cancel is seen within one batch,
 /// and the check costs nothing next to a batch's insertions. Progress (done / n) goes to
-/// `span` from the calling thread only (ProgressSpan is single-threaded), counted by all.
-/// Returns false when cancelled.
+/// `span`, counted by all threads. Returns false when cancelled.
 template <class Fn>
 bool for_each_prim_batch(size_t n, ProgressSpan& span, Fn&& fn) {
   constexpr size_t kBatch = 4096;
-  const std::thread::id owner = std::this_thread::get_id();
-  std::atomic<size_t> done{0};
-  std::atomic<bool> stop{false};
+  ProgressCounter done(&span, n);
   par::parallel_for(
       par::blocked_range<size_t>(0, n, kBatch),
       [&](const par::blocked_range<size_t>& r) {
-        if (stop.load(std::memory_order_relaxed)) return;
-        if (span.cancelled()) {
-          stop.store(true, std::memory_order_relaxed);
-          return;
-        }
+        if (done.stopped()) return;
         for (size_t k = r.begin(); k < r.end(); ++k) fn(k);
-        const size_t now = done.fetch_add(r.size(), std::memory_order_relaxed) + r.size();
-        if (std::this_thread::get_id() == owner && !stop.load(std::memory_order_relaxed) &&
-            !span.advance(double(now) / double(n)))
-          stop.store(true, std::memory_order_relaxed);
+        done.add(r.size());
       },
       par::simple_partitioner());  // batches of at most kBatch, also on one thread
-  return !stop.load(std::memory_order_relaxed) && !span.cancelled();
+  return !done.stopped();
 }
 
 /// True when the projections of the triangle (vertices v relative to the box centre) and

@@ -301,6 +301,13 @@ TEST(BuildView, GridInsertDrawsTheBboxCellsAndTheCellsKept) {
 }
 
 TEST(BuildCode, ListingsAndLines) {
+  // The listing comes from the registry entry (its construction family), so every
+  // registered structure has one, and an unknown name has none.
+  for (const std::string& name : accel::structure_names())
+    EXPECT_NE(build_code_kind(name, {}), BuildCodeKind::Unknown) << name;
+  EXPECT_EQ(build_code_kind("no_such_structure", {}), BuildCodeKind::Unknown);
+  EXPECT_EQ(build_code_kind("brute", {}), BuildCodeKind::Brute);
+  EXPECT_EQ(build_code_kind("octree", {}), BuildCodeKind::Octree);
   EXPECT_EQ(build_code_kind("grid", {}), BuildCodeKind::Grid);
   EXPECT_EQ(build_code_kind("kdtree", {"split=middle"}), BuildCodeKind::KdTree);
   EXPECT_EQ(build_code_kind("bvh", {}), BuildCodeKind::BvhBinned);  // the default builder
