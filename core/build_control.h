@@ -145,8 +145,8 @@ class ProgressSpan {
 /// The progress of a build whose tasks run on many threads: each task adds the work it
 /// finished (triangles placed in leaves, a batch of cells, a leaf's share of the build) from
 /// any thread, lock-free; the thread that made the counter reports the running total through
-/// its ProgressSpan (which is single-threaded), the others only look for a cancel. Every
-/// parallel builder counts through one of these.
+/// its ProgressSpan (which is single-threaded); every task asks stopped() before it starts.
+/// Every parallel builder counts through one of these.
 class ProgressCounter {
  public:
   /// The total of a counter of shares (a leaf's share of the build, its parent's share
@@ -160,19 +160,17 @@ class ProgressCounter {
   ProgressCounter(const ProgressCounter&) = delete;
   ProgressCounter& operator=(const ProgressCounter&) = delete;
 
-  /// Adds `units` of finished work (any thread). Returns false once the build is cancelled;
-  /// from then on it reports nothing more.
-  bool add(uint64_t units) {
-    if (!span_) return true;
-    if (stop_.load(std::memory_order_relaxed)) return false;
+  /// Adds `units` of finished work (any thread); on the counter's thread, reports the total.
+  /// Cancellation is stopped()'s to see (builders check it per node or batch).
+  void add(uint64_t units) {
+    if (!span_) return;
+    // One access to the shared line per call: builders add per leaf, from every thread.
     const uint64_t done = done_.fetch_add(units, std::memory_order_relaxed) + units;
-    const bool go_on = std::this_thread::get_id() == owner_ ? span_->advance(std::min(1.0, double(done) / total_))
-                                                           : !span_->cancelled();
-    if (!go_on) stop_.store(true, std::memory_order_relaxed);
-    return go_on;
+    if (std::this_thread::get_id() != owner_ || stop_.load(std::memory_order_relaxed)) return;
+    if (!span_->advance(std::min(1.0, double(done) / total_))) stop_.store(true, std::memory_order_relaxed);
   }
   /// add() of `share` (in [0, 1]) of a kWhole counter.
-  bool add_share(double share) { return add(uint64_t(share * double(kWhole))); }
+  void add_share(double share) { add(uint64_t(share * double(kWhole))); }
 
   /// True once the build was cancelled (any thread): tasks check it before they start.
   bool stopped() const { return span_ && (stop_.load(std::memory_order_relaxed) || span_->cancelled()); }
@@ -181,8 +179,8 @@ class ProgressCounter {
   ProgressSpan* span_;
   double total_;
   std::thread::id owner_ = std::this_thread::get_id();
-  std::atomic<uint64_t> done_{0};
   std::atomic<bool> stop_{false};
+  std::atomic<uint64_t> done_{0};
 };
 
 }  // namespace accel

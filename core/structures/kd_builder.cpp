@@ -115,9 +115,9 @@ class KdBuilder {
         o_(options),
         control_(control),
         progress_(control, progress_from, 1.0),
-        leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole),
         parallel_(parallel),
-        exact_errors_(exact_errors) {}
+        exact_errors_(exact_errors),
+        leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole) {}
   /// `recorder` (nullptr = none): every step is recorded into it (the builder must be serial).
   Result<KdTreeData> run(BuildRecorder* recorder = nullptr);
   /// The last fraction reported.
@@ -149,7 +149,6 @@ class KdBuilder {
   KdBuildOptions o_;
   BuildControl* control_;
   ProgressSpan progress_;  // touched by the reporting thread only (through leaves_done_)
-  ProgressCounter leaves_done_;  // the shares of the build in finished leaves
   const bool parallel_, exact_errors_;
   KdTreeData out_;
   size_t node_cap_ = 0;  // nodes allowed: node_limit, and what KdNode's 30 bits hold
@@ -158,6 +157,7 @@ class KdBuilder {
   // making it, so a total above the budget is seen by some task whatever the interleaving:
   // the build fails exactly when the serial one does.
   std::atomic<size_t> nodes_{0}, references_{0};
+  ProgressCounter leaves_done_;  // the shares of the build in finished leaves
   std::atomic<bool> failed_{false};
   std::mutex error_mutex_;
   Status status_;  // the first error recorded (budget or cancel); the build stops at it

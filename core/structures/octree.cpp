@@ -171,8 +171,8 @@ class OctreeBuilder {
   OctreeBuilder(const Scene& scene, const OctreeBuildOptions& options, BuildControl* control, bool parallel,
                 Sink& sink)
       : scene_(scene), options_(options), control_(control), parallel_(parallel && !Sink::kRecords),
-        progress_(control, 0.0, 1.0), leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole),
-        sink_(sink) {}
+        sink_(sink), progress_(control, 0.0, 1.0),
+        leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole) {}
 
   /// The failure a build stopped with (checked in this order of priority by build_octree()).
   enum class Failure : int { None, Cancelled, Nodes, References, Memory };
@@ -477,10 +477,10 @@ class OctreeBuilder {
   const OctreeBuildOptions& options_;
   BuildControl* control_;
   const bool parallel_;
-  ProgressSpan progress_;        // reported through leaves_done_ only
-  ProgressCounter leaves_done_;  // the shares of the build in finished leaves (any thread)
   Sink& sink_;
   std::vector<OctreePrim> prims_;        // by triangle id (valid ones only filled)
+  ProgressSpan progress_;                // reported through leaves_done_ only
+  ProgressCounter leaves_done_;          // the shares of the build in finished leaves (any thread)
   std::atomic<size_t> nodes_total_{0};   // nodes reserved by all tasks
   std::atomic<size_t> refs_total_{0};    // triangle references reserved by all tasks
   std::atomic<int> failure_{int(Failure::None)};
