@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's build table: every structure's default build on each mesh of ../shared/scenes
+# The build table of bench/README.md: every structure's default build on each mesh of ../shared/scenes
 # and on procedural:terrain (1M triangles), against Embree medium's build timed in the same
 # run with the same threads (`accelviz-cli bench`: best of 3 builds each), and the SAH cost
 # of the bvh's default builder (binned SAH) next to the full sweep's (builder=sah), which it

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's speed-against-error table: `accelviz-cli bench` on every mesh of
+# The speed-against-error table of bench/README.md: `accelviz-cli bench` on every mesh of
 # ../shared/scenes with 1M random rays and 1000x1000 primary rays. Every structure runs with
 # the watertight kernel (the accuracy target: zero errors); the BVH, the fastest structure,
 # also runs with moller and double, so the cost of each kernel is measured on the same
@@ -8,7 +8,7 @@
 # random rays: its rays only need to check the build, not to time tracing at length. Writes
 # bench/shared_{random,primary,terrain}.{json,csv,md} (the raw rows), bench/shared.json
 # (all rows, for the viewer's chart: accelviz --bench-json bench/shared.json) and
-# bench/shared_report.md (the summary tables of the README, by scripts/bench_report.py).
+# bench/shared_report.md (the summary tables of bench/README.md, by scripts/bench_report.py).
 #   scripts/bench_shared.sh [--rays-random random:1000000:1] [--rays-primary primary:1000:1000]
 #                           [--rays-terrain random:100000:1] [--min-time 0.5]
 # Takes about 40 minutes on a 2-core machine (the terrain run about 3.5 of them, 300 MB of

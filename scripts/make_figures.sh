@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the viewer figures of the README (bench/figures/viewer_*.png) from the viewer
+# Regenerates the viewer figures of the README and docs/viewer.md (bench/figures/viewer_*.png) from the viewer
 # scripts in scripts/figures/viewer_*.txt (accelviz --script), under a virtual X display.
 #   scripts/make_figures.sh             all figures
 #   scripts/make_figures.sh bvh grid    only scripts/figures/viewer_bvh.txt, viewer_grid.txt

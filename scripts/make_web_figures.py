@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The web page's figures of the README: the page in headless Chromium, as a visitor sees it.
+"""The web page's figures of docs/viewer.md: the page in headless Chromium, as a visitor sees it.
 
     python3 scripts/make_web_figures.py [--web-dir build-web] [--out bench/figures]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Markdown tables for the README, from `accelviz-cli stats --json` (one build per row).
+"""Markdown tables for the docs, from `accelviz-cli stats --json` (one build per row).
 
     scripts/structure_tables.py bvh   [--scene ../shared/scenes/bunny.obj] [--rays random:100000:1]
     scripts/structure_tables.py space [--scene ...]

@@ -44,7 +44,7 @@ std::vector<SuiteScene> suite_scenes() {
     scenes.push_back({std::string("edge:") + edge, [edge] { return edge_scene(edge); }, 10000, 40, 30});
   // Small real meshes (<= 12k triangles) when ../shared is present, with 60k random rays
   // each (the reference is brute force, and at 100k these nine were half of its work);
-  // the large ones are checked by scripts/verify_shared_meshes.sh (README) to keep ctest short.
+  // the large ones are checked by scripts/verify_shared_meshes.py (docs/reliability.md) to keep ctest short.
   for (const char* file : {"teapot.obj", "cornell_box.obj", "spider.obj", "spot.obj", "holodeck.obj",
                            "bunny_lowres.obj", "WusonOBJ.obj", "scrub_pine.obj", "dragon_res4.obj"}) {
     const std::string path = shared_scene_path(file);
