@@ -48,6 +48,14 @@ Result<const StructureInfo*> find_structure(const std::string& name) {
   return make_error("unknown structure '" + name + "' (valid: " + valid + ")");
 }
 
+Result<StructureChoice> parse_structure(const std::string& name, const std::vector<std::string>& params) {
+  auto info = find_structure(name);
+  if (!info) return info.error();
+  auto set = ParamSet::parse(info.value()->params, params, name);
+  if (!set) return set.error();
+  return StructureChoice{info.value(), std::move(set.value())};
+}
+
 Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
                                                    const ParamSet& params, Kernel kernel, BuildControl* control,
                                                    BuildRecorder* recorder) {
@@ -77,11 +85,9 @@ Result<RecordedBuild> build_structure_recorded(const StructureInfo& info, const 
 Result<std::unique_ptr<Structure>> build_structure(const std::string& name, const Scene& scene,
                                                    const std::vector<std::string>& params, Kernel kernel,
                                                    BuildControl* control, BuildRecorder* recorder) {
-  auto info = find_structure(name);
-  if (!info) return info.error();
-  auto set = ParamSet::parse(info.value()->params, params, name);
-  if (!set) return set.error();
-  return build_structure(*info.value(), scene, set.value(), kernel, control, recorder);
+  auto choice = parse_structure(name, params);
+  if (!choice) return choice.error();
+  return build_structure(*choice.value().info, scene, choice.value().params, kernel, control, recorder);
 }
 
 }  // namespace accel

@@ -54,6 +54,16 @@ std::vector<std::string> structure_names();
 /// The entry for `name`, or an Error listing the valid names.
 Result<const StructureInfo*> find_structure(const std::string& name);
 
+/// A structure chosen by name with its parameters, validated together: what every front end
+/// makes of a name and `key=value` strings.
+struct StructureChoice {
+  const StructureInfo* info = nullptr;
+  ParamSet params;
+};
+/// The entry for `name` and its parameters parsed from `key=value` strings; errors name the
+/// structure (listing the valid ones) or the parameter and its valid range.
+Result<StructureChoice> parse_structure(const std::string& name, const std::vector<std::string>& params);
+
 /// The one way the CLI, the bench, the tests and the viewer build a structure: create
 /// the class the parameters ask for, set the kernel, build. Errors name the parameter
 /// or the internal limit. `control` (optional) reports progress and can cancel the build

@@ -136,6 +136,20 @@ TEST(Registry, UnknownStructureListsValidNames) {
   EXPECT_NE(s.error().message.find("valid: brute"), std::string::npos) << s.error().message;
 }
 
+TEST(Registry, ParseStructureValidatesNameAndParametersTogether) {
+  auto ok = parse_structure("kdtree", {"split=median"});
+  ASSERT_TRUE(ok) << ok.error().message;
+  EXPECT_EQ(ok.value().info->name, "kdtree");
+  EXPECT_EQ(ok.value().params.get_choice("split"), "median");
+  auto bad_name = parse_structure("quadtree", {});
+  ASSERT_FALSE(bad_name);
+  EXPECT_EQ(bad_name.error().message, find_structure("quadtree").error().message);
+  auto bad_param = parse_structure("kdtree", {"split=diagonal"});
+  ASSERT_FALSE(bad_param);
+  EXPECT_EQ(bad_param.error().message,
+            ParamSet::parse(KdTree::param_specs(), {"split=diagonal"}, "kdtree").error().message);
+}
+
 TEST(Registry, EveryDefaultIsValidAndReadsBack) {
   for (const auto& info : structure_registry()) {
     for (const auto& spec : info.params) {
@@ -174,18 +188,24 @@ TEST(Registry, DeclarationsSetTheirFields) {
 }
 
 TEST(Registry, EntriesCarryWhatFrontEndsNeed) {
+  int hierarchies = 0;
   int references = 0, cell_structures = 0;
   for (const auto& info : structure_registry()) {
     EXPECT_FALSE(info.label.empty()) << info.name;
     EXPECT_FALSE(info.node_noun.empty()) << info.name;
     references += info.reference;
     cell_structures += info.cells;
+    // A construction listing and a traversal listing of the same kind of structure.
+    hierarchies += info.construction == ConstructionFamily::Hierarchy;
+    EXPECT_EQ(info.construction == ConstructionFamily::Hierarchy, info.traversal == TraversalFamily::Hierarchy)
+        << info.name;
     auto params = ParamSet::parse(info.params, {}, info.name);
     ASSERT_TRUE(params);
     EXPECT_EQ(info.create(params.value())->name(), info.name);
   }
   EXPECT_EQ(references, 1);
   EXPECT_EQ(cell_structures, 1);
+  EXPECT_EQ(hierarchies, 2);
 }
 
 }  // namespace

@@ -59,10 +59,10 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   if (!accel::parse_kernel(o.kernel, &kernel))
     return accel::make_error("--kernel '" + o.kernel + "' is invalid (valid: " + accel::kernel_names_text() + ")");
   // Validate the structure name and parameters before the (possibly slow) scene load.
-  auto info = accel::find_structure(o.structure);
-  if (!info) return info.error();
-  auto params = accel::ParamSet::parse(info.value()->params, o.params, o.structure);
-  if (!params) return params.error();
+  auto choice = accel::parse_structure(o.structure, o.params);
+  if (!choice) return choice.error();
+  const accel::StructureInfo* info = choice.value().info;
+  const accel::ParamSet& params = choice.value().params;
   accel::BuildControl control;
   if (auto limits = apply_build_limits(o.memory_limit, o.time_limit, &control); !limits) return limits.error();
   control.set_cancel_flag(interrupt_flag());  // SIGINT stops the build at its next check
@@ -75,12 +75,12 @@ accel::Result<std::unique_ptr<Built>> load_and_build(const StructureOptions& o) 
   auto built = std::make_unique<Built>();
   built->load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
   built->scene = std::move(scene.value());
-  built->params = params.value().to_string();
-  built->param_set = params.value();
+  built->params = params.to_string();
+  built->param_set = params;
   built->kernel = kernel;
-  built->info = info.value();
+  built->info = info;
   control.set_time_limit(o.time_limit);  // from the build's start, not the load's
-  auto structure = accel::build_structure(*info.value(), built->scene, params.value(), kernel, &control);
+  auto structure = accel::build_structure(*info, built->scene, params, kernel, &control);
   if (!structure) return build_error(structure.error(), o.structure, control);
   built->structure = std::move(structure.value());
   return built;

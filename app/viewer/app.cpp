@@ -228,9 +228,7 @@ class InteractiveHost final : public ScriptHost {
 }  // namespace
 
 accel::Status App::set_structure(const std::string& name, const std::vector<std::string>& params) {
-  auto info = accel::find_structure(name);
-  if (!info) return info.error();
-  if (auto set = accel::ParamSet::parse(info.value()->params, params, name); !set) return set.error();
+  if (auto choice = accel::parse_structure(name, params); !choice) return choice.error();
   switch_structure({name, params});
   sync_session();
   return {};

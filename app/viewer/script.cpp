@@ -84,11 +84,8 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (n < 1) return count_error("structure NAME [key=value ...]");
     c.name = args[0];
     c.params.assign(args.begin() + 1, args.end());
-    auto info = accel::find_structure(c.name);
-    if (!info) return info.error().message;
-    auto set = accel::ParamSet::parse(info.value()->params, c.params, c.name);
-    if (!set) return set.error().message;
-    return "";
+    auto choice = accel::parse_structure(c.name, c.params);
+    return choice ? "" : choice.error().message;
   }
   if (verb == "kernel") {
     c.kind = CommandKind::Kernel;
@@ -345,11 +342,8 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (!c.on) return "";
     c.name = args[0];
     c.params.assign(args.begin() + 1, args.end());
-    auto info = accel::find_structure(c.name);
-    if (!info) return "heatmap-diff: " + info.error().message;
-    auto set = accel::ParamSet::parse(info.value()->params, c.params, c.name);
-    if (!set) return "heatmap-diff: " + set.error().message;
-    return "";
+    auto choice = accel::parse_structure(c.name, c.params);
+    return choice ? "" : "heatmap-diff: " + choice.error().message;
   }
   if (verb == "print-heatmap") {
     c.kind = CommandKind::PrintHeatmap;

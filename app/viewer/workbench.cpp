@@ -48,24 +48,24 @@ std::string param_value(const std::vector<std::string>& params, const std::strin
 
 accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
                                             accel::BuildControl* control) {
-  auto info = accel::find_structure(request.name);
-  if (!info) return info.error();
-  auto params = accel::ParamSet::parse(info.value()->params, request.params, request.name);
-  if (!params) return params.error();
+  auto choice = accel::parse_structure(request.name, request.params);
+  if (!choice) return choice.error();
+  const accel::StructureInfo* info = choice.value().info;
+  const accel::ParamSet& params = choice.value().params;
   auto built = std::make_shared<BuiltStructure>();
   built->scene = std::move(scene);
   built->request = request;
-  built->params_text = params.value().to_string_all();
-  auto structure = accel::build_structure(*info.value(), *built->scene, params.value(), request.kernel, control);
+  built->params_text = params.to_string_all();
+  auto structure = accel::build_structure(*info, *built->scene, params, request.kernel, control);
   if (!structure) return structure.error();
   // Listing a big structure's nodes takes a while too: no point once superseded.
   if (accel::build_cancelled(control)) return accel::cancelled_error();
   built->structure = std::move(structure.value());
   built->stats = built->structure->build_stats();
   built->geometry = structure_geometry(*built->structure, request.geometry);
-  if (params.value().has("traversal")) built->traversal = params.value().get_choice("traversal");
-  built->info = info.value();
-  built->kind = traversal_kind(info.value()->traversal, built->traversal);
+  if (params.has("traversal")) built->traversal = params.get_choice("traversal");
+  built->info = info;
+  built->kind = traversal_kind(info->traversal, built->traversal);
   return BuiltPtr(std::move(built));
 }
 

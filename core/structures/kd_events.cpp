@@ -1,4 +1,7 @@
-// Distributing a kd-tree node's sorted event lists to its children (kd_events.h).
+// Distributing a kd-tree node's sorted event lists to its children (lecture, kd-tree:
+// "distribute the geometry among the two children; some polygons need to be assigned to
+// both"): Wald & Havran 2006, "On building fast kd-trees for ray tracing, and on doing that
+// in O(N log N)", sec. 5.2 -- filter, clip the straddlers, merge, never sort a list again.
 #include "structures/kd_events.h"
 
 #include <algorithm>

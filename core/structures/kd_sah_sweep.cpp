@@ -1,4 +1,7 @@
-// The kd-tree's SAH sweep (kd_sah_sweep.h).
+// The kd-tree's SAH sweep (lecture, kd-tree: "try all 3 axes, search for the minimum along
+// each axis, choose the axis / split position with the smallest minimum"): Wald & Havran 2006,
+// "On building fast kd-trees for ray tracing, and on doing that in O(N log N)", Algorithm 4,
+// over the sorted events of kd_events.h.
 #include "structures/kd_sah_sweep.h"
 
 #include <algorithm>

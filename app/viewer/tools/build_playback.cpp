@@ -73,14 +73,13 @@ accel::Result<RecordedBuild> record_with_retry(const RecordFn& record, size_t tr
 
 accel::Result<RecordedBuild> record_structure(const accel::Scene& scene, const StructureRequest& request,
                                               accel::BuildControl* control, size_t budget_bytes) {
-  auto info = accel::find_structure(request.name);
-  if (!info) return info.error();
-  auto params = accel::ParamSet::parse(info.value()->params, request.params, request.name);
-  if (!params) return params.error();
+  auto choice = accel::parse_structure(request.name, request.params);
+  if (!choice) return choice.error();
   double ct = 1.0, ci = 1.0;
   auto recorded = record_with_retry(
       [&](accel::BuildRecorder& recorder) -> accel::Status {
-        auto s = accel::build_structure(*info.value(), scene, params.value(), request.kernel, control, &recorder);
+        auto s = accel::build_structure(*choice.value().info, scene, choice.value().params, request.kernel, control,
+                                        &recorder);
         if (!s) return s.error();
         const accel::BuildStats stats = s.value()->build_stats();
         if (stats.sah_ct > 0.0) ct = stats.sah_ct;
