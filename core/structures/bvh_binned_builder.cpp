@@ -31,6 +31,7 @@
 #include "check.h"
 #include "parallel.h"
 #include "structures/bvh_binned_detail.h"
+#include "structures/bvh_chunks.h"
 
 namespace accel {
 namespace {
@@ -39,25 +40,18 @@ constexpr size_t kTaskThreshold = 4096;        // smaller subtrees are one seria
 
 using namespace binned;
 
-/// A node of the upper tree (subtrees of at least kTaskThreshold references, built by
-/// parallel tasks), or, without children, a serially built subtree in its own buffer.
-struct UpperNode {
-  BuildNode node;
-  std::unique_ptr<UpperNode> left, right;
-  std::vector<BuildNode> subtree;  ///< pre-order, local indices (when left == nullptr)
-  size_t size = 0;                 ///< nodes in this subtree
-};
-
-
-std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r, ProgressCounter& progress) {
-  auto u = std::make_unique<UpperNode>();
+/// The chunk of range `r` (bvh_chunks.h): a serial subtree below kTaskThreshold references,
+/// else its root with the two children as tasks.
+std::unique_ptr<BuildChunk> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r,
+                                        ProgressCounter& progress) {
+  auto u = std::make_unique<BuildChunk>();
   if (progress.stopped()) return u;  // cancelled: an empty subtree, discarded by the caller
   NullBuildSink no_steps;
   BinnedBuilder<NullBuildSink> builder(o, refs, no_steps);
   if (r.size() < kTaskThreshold) {
-    u->subtree.reserve(r.size());
-    builder.build_serial(r, u->subtree);
-    u->size = u->subtree.size();
+    u->nodes.reserve(r.size());
+    builder.build_serial(r, u->nodes);
+    u->size = u->nodes.size();
     progress.add(r.size());
     return u;
   }
@@ -66,7 +60,7 @@ std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, cons
   if (!builder.split_node(r, left, right)) {  // only at the depth limit
     u->node.first = uint32_t(r.begin);
     u->node.count = uint32_t(r.size());
-    u->subtree.push_back(u->node);
+    u->nodes.push_back(u->node);
     u->size = 1;
     progress.add(r.size());
     return u;
@@ -75,22 +69,6 @@ std::unique_ptr<UpperNode> build_upper(const BvhBuildOptions& o, Ref* refs, cons
                        [&] { u->right = build_upper(o, refs, right, progress); });
   u->size = 1 + u->left->size + u->right->size;
   return u;
-}
-
-/// Numbers the upper nodes in pre-order (left subtree first) from the subtree sizes and
-/// collects the serial subtrees with their global offsets.
-void place_upper(const UpperNode& u, uint32_t offset, std::vector<BuildNode>& nodes,
-                 std::vector<std::pair<const UpperNode*, uint32_t>>& buffers) {
-  if (!u.left) {
-    buffers.push_back({&u, offset});
-    return;
-  }
-  BuildNode& n = nodes[offset];
-  n = u.node;
-  n.left = offset + 1;
-  n.right = offset + 1 + uint32_t(u.left->size);
-  place_upper(*u.left, n.left, nodes, buffers);
-  place_upper(*u.right, n.right, nodes, buffers);
 }
 
 }  // namespace
@@ -139,23 +117,9 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   }
 
   ProgressCounter shared_progress(progress, n);  // triangles placed in leaves
-  const std::unique_ptr<UpperNode> upper = build_upper(options, refs.data(), root, shared_progress);
+  const std::unique_ptr<BuildChunk> upper = build_upper(options, refs.data(), root, shared_progress);
   if (shared_progress.stopped()) return tree;  // cancelled: the caller discards the tree
-  tree.nodes.resize(upper->size);
-  std::vector<std::pair<const UpperNode*, uint32_t>> buffers;
-  place_upper(*upper, 0, tree.nodes, buffers);
-  par::parallel_for(size_t(0), buffers.size(), [&](size_t k) {
-    const auto [u, offset] = buffers[k];
-    BuildNode* dst = tree.nodes.data() + offset;
-    for (const BuildNode& src : u->subtree) {
-      *dst = src;
-      if (!src.count) {
-        dst->left += offset;
-        dst->right += offset;
-      }
-      ++dst;
-    }
-  });
+  stitch_chunks(*upper, tree.nodes);
   tree.root = 0;
   tree.prims.resize(n);
   par::parallel_for(par::blocked_range<size_t>(0, n, 16384), [&](const par::blocked_range<size_t>& br) {

@@ -33,8 +33,8 @@
 //
 // Parallel as the binned builder: subtrees of at least kTaskThreshold references are TBB
 // tasks building into their own chunks (nodes and leaf triangles in local pre-order), placed
-// at their pre-order offsets at the end; the recorded build is the serial recursion from the
-// root, with the same decisions, so the same tree.
+// at their pre-order offsets at the end (bvh_chunks.h); the recorded build is the serial
+// recursion from the root, with the same decisions, so the same tree.
 #include "structures/bvh_spatial_builder.h"
 
 #include <algorithm>
@@ -49,6 +49,7 @@
 #include "check.h"
 #include "parallel.h"
 #include "structures/bvh_binned_detail.h"
+#include "structures/bvh_chunks.h"
 
 namespace accel {
 namespace {
@@ -186,18 +187,6 @@ struct SpatialSplit {
   float cost = 0.0f;
 };
 
-/// A subtree built by one task. Serial: nodes and prims of the whole subtree in local
-/// pre-order (child links relative to nodes[0], leaf `first` relative to prims[0]).
-/// Parallel: `node` alone, whose children are the chunks left and right.
-struct Chunk {
-  BuildNode node;
-  std::unique_ptr<Chunk> left, right;
-  std::vector<BuildNode> nodes;
-  std::vector<uint32_t> prims;
-  size_t size = 0;        ///< nodes in the subtree
-  size_t prim_count = 0;  ///< leaf references in the subtree
-};
-
 template <class Sink>
 class SpatialBuilder {
  public:
@@ -206,7 +195,7 @@ class SpatialBuilder {
 
   /// Serial build of `t` (consumed), appended to `out` in pre-order; returns its index
   /// there (the node's id in the recorded steps: the index in the finished tree).
-  uint32_t build_serial(Task& t, Chunk& out, ProgressCounter* progress, uint32_t parent = kNoBuildNode) {
+  uint32_t build_serial(Task& t, BuildChunk& out, ProgressCounter* progress, uint32_t parent = kNoBuildNode) {
     const uint32_t index = uint32_t(out.nodes.size());
     out.nodes.emplace_back();
     out.nodes[index].box = t.range.box.aabb();
@@ -530,9 +519,9 @@ class SpatialBuilder {
   std::vector<SplitCandidate> planes_;  ///< recording only: one axis's spatial planes
 };
 
-std::unique_ptr<Chunk> build_chunk(const Scene& scene, const BvhBuildOptions& o, float root_area, Task& t,
+std::unique_ptr<BuildChunk> build_chunk(const Scene& scene, const BvhBuildOptions& o, float root_area, Task& t,
                                    ProgressCounter& progress) {
-  auto c = std::make_unique<Chunk>();
+  auto c = std::make_unique<BuildChunk>();
   if (progress.stopped()) return c;  // cancelled: the caller discards the tree
   NullBuildSink no_steps;
   SpatialBuilder<NullBuildSink> builder(scene, o, root_area, no_steps);
@@ -560,27 +549,6 @@ std::unique_ptr<Chunk> build_chunk(const Scene& scene, const BvhBuildOptions& o,
   return c;
 }
 
-struct Placed {
-  const Chunk* chunk;
-  uint32_t node, prim;  ///< offsets of its nodes and leaf references
-};
-
-/// Numbers the upper nodes in pre-order from the subtree sizes and collects the serial
-/// chunks with their node and prim offsets.
-void place_chunks(const Chunk& c, uint32_t node, uint32_t prim, std::vector<BuildNode>& nodes,
-                  std::vector<Placed>& serial) {
-  if (!c.left) {
-    serial.push_back({&c, node, prim});
-    return;
-  }
-  BuildNode& n = nodes[node];
-  n = c.node;
-  n.left = node + 1;
-  n.right = node + 1 + uint32_t(c.left->size);
-  place_chunks(*c.left, n.left, prim, nodes, serial);
-  place_chunks(*c.right, n.right, prim + uint32_t(c.left->prim_count), nodes, serial);
-}
-
 }  // namespace
 
 BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
@@ -599,7 +567,7 @@ BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& op
   const float root_area = root.range.box.area();
   if (recorder) {  // recorded: the serial build from the root (the same tree, in pre-order)
     SpatialBuilder<BuildRecorder> builder(scene, options, root_area, *recorder);
-    Chunk whole;
+    BuildChunk whole;
     builder.build_serial(root, whole, nullptr);
     if (progress) progress->advance(1.0);
     tree.nodes = std::move(whole.nodes);
@@ -607,27 +575,9 @@ BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& op
     return tree;
   }
   ProgressCounter shared(progress, ProgressCounter::kWhole);  // leaves add their share (weight) of the build
-  const std::unique_ptr<Chunk> top = build_chunk(scene, options, root_area, root, shared);
+  const std::unique_ptr<BuildChunk> top = build_chunk(scene, options, root_area, root, shared);
   if (shared.stopped()) return tree;  // cancelled: the caller discards the tree
-  tree.nodes.resize(top->size);
-  tree.prims.resize(top->prim_count);
-  std::vector<Placed> serial;
-  place_chunks(*top, 0, 0, tree.nodes, serial);
-  par::parallel_for(size_t(0), serial.size(), [&](size_t k) {
-    const Placed& p = serial[k];
-    BuildNode* dst = tree.nodes.data() + p.node;
-    for (const BuildNode& src : p.chunk->nodes) {
-      *dst = src;
-      if (src.count) {
-        dst->first += p.prim;
-      } else {
-        dst->left += p.node;
-        dst->right += p.node;
-      }
-      ++dst;
-    }
-    std::copy(p.chunk->prims.begin(), p.chunk->prims.end(), tree.prims.begin() + long(p.prim));
-  });
+  stitch_chunks(*top, tree.nodes, &tree.prims);
   tree.root = 0;
   return tree;
 }

@@ -19,6 +19,7 @@
 #include "geometry.h"
 #include "parallel.h"
 #include "structures/bvh_builders.h"
+#include "structures/bvh_chunks.h"
 
 namespace accel::top_down {
 
@@ -151,10 +152,9 @@ class InPlaceSplitter {
 /// The recursion, over a Splitter (see InPlaceSplitter).
 ///
 /// Parallel and deterministic: subtrees of more than kTaskThreshold references are tasks,
-/// each building into its own Chunk in local pre-order; place_chunks() then gives every
-/// chunk its offset in the global pre-order (the order of the serial recursion: node, left
-/// subtree, right subtree) and relocates them in parallel. Every decision depends only on
-/// the references of the node, so the tree is the same for any thread count.
+/// the smaller ones serial chunks, stitched into one pre-order by bvh_chunks.h. Every
+/// decision depends only on the references of the node, so the tree is the same for any
+/// thread count.
 ///
 /// Sink (build_trace.h): NullBuildSink for the normal build; BuildRecorder records every
 /// node, axis, candidate sweep, split and leaf. Recording builds the whole tree in one
@@ -170,9 +170,8 @@ class TopDownBuilder {
     BuildTree tree;
     prims_.assign(total_, 0);
     splitter_.prepare();
-    const std::unique_ptr<Chunk> root = build_chunk(0, total_, 0, kRefsOrder);
-    tree.nodes.resize(root->size);
-    place_chunks(*root, tree.nodes);
+    const std::unique_ptr<BuildChunk> root = build_chunk(0, total_, 0, kRefsOrder);
+    stitch_chunks(*root, tree.nodes);
     tree.prims = std::move(prims_);
     tree.root = 0;
     return tree;
@@ -185,15 +184,6 @@ class TopDownBuilder {
 
   using Scratch = typename Splitter::Scratch;
 
-  /// A subtree built by one task. Serial: `nodes` is the whole subtree in local pre-order
-  /// (child links relative to nodes[0]). Parallel: `nodes` is its root alone, whose
-  /// children are the chunks `left` and `right`.
-  struct Chunk {
-    std::vector<BuildNode> nodes;
-    std::unique_ptr<Chunk> left, right;
-    size_t size = 0;  ///< nodes in the subtree
-  };
-
   /// A node's decision: a leaf, or children [begin, mid) and [mid, end).
   struct Decision {
     BuildNode node;  ///< box, and first/count for a leaf
@@ -202,8 +192,8 @@ class TopDownBuilder {
     int child_order = kRefsOrder;  ///< the order the children's references arrive in
   };
 
-  std::unique_ptr<Chunk> build_chunk(size_t begin, size_t end, int depth, int order) {
-    auto chunk = std::make_unique<Chunk>();
+  std::unique_ptr<BuildChunk> build_chunk(size_t begin, size_t end, int depth, int order) {
+    auto chunk = std::make_unique<BuildChunk>();
     Scratch scratch;
     if (Sink::kRecords || end - begin <= kTaskThreshold) {  // recording: one serial chunk, in pre-order
       chunk->nodes.reserve(2 * (end - begin));
@@ -213,9 +203,12 @@ class TopDownBuilder {
     }
     const Decision d = decide(scratch, begin, end, depth, order, 0, kNoBuildNode);
     scratch = Scratch{};  // the children allocate their own: free the big buffers first
-    chunk->nodes.push_back(d.node);
     chunk->size = 1;
-    if (d.leaf) return chunk;
+    if (d.leaf) {  // a serial chunk of one node
+      chunk->nodes.push_back(d.node);
+      return chunk;
+    }
+    chunk->node = d.node;
     par::parallel_invoke([&] { chunk->left = build_chunk(begin, d.mid, depth + 1, d.child_order); },
                          [&] { chunk->right = build_chunk(d.mid, end, depth + 1, d.child_order); });
     chunk->size += chunk->left->size + chunk->right->size;
@@ -235,39 +228,6 @@ class TopDownBuilder {
     nodes[index].left = left;
     nodes[index].right = right;
     return index;
-  }
-
-  /// Gives each chunk its offset in the global pre-order, links the parallel nodes, then
-  /// copies the serial chunks to their place in parallel.
-  void place_chunks(const Chunk& root, std::vector<BuildNode>& out) const {
-    std::vector<std::pair<const Chunk*, uint32_t>> serial;
-    std::vector<std::pair<const Chunk*, uint32_t>> stack{{&root, 0}};
-    while (!stack.empty()) {
-      const auto [c, offset] = stack.back();
-      stack.pop_back();
-      if (!c->left) {
-        serial.push_back({c, offset});
-        continue;
-      }
-      BuildNode& n = out[offset];
-      n = c->nodes[0];
-      n.left = offset + 1;
-      n.right = offset + 1 + uint32_t(c->left->size);
-      stack.push_back({c->left.get(), n.left});
-      stack.push_back({c->right.get(), n.right});
-    }
-    par::parallel_for(size_t(0), serial.size(), [&](size_t k) {
-      const auto [c, offset] = serial[k];
-      BuildNode* dst = out.data() + offset;
-      for (const BuildNode& n : c->nodes) {
-        *dst = n;
-        if (n.count == 0) {
-          dst->left += offset;
-          dst->right += offset;
-        }
-        ++dst;
-      }
-    });
   }
 
   /// One node: its box, the splitter's split, the leaf rule. `id` and `parent` name the
