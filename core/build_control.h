@@ -133,6 +133,8 @@ class ProgressSpan {
   }
   /// Whether the build was cancelled.
   bool cancelled() const { return build_cancelled(control_); }
+  /// Whether there is a control to report to (without one, advance() does nothing).
+  bool reports() const { return control_ != nullptr; }
   /// The last fraction reported through this span (lo before any report).
   double last() const { return last_; }
 
@@ -154,9 +156,10 @@ class ProgressCounter {
   /// down so the sum of the shares never passes 1.
   static constexpr uint64_t kWhole = uint64_t(1) << 52;
 
-  /// A counter of `total` units reporting done / total to `span`. Without a span it counts
-  /// nothing and never stops.
-  ProgressCounter(ProgressSpan* span, uint64_t total) : span_(span), total_(double(total)) {}
+  /// A counter of `total` units reporting done / total to `span`. Without a span, or a span
+  /// without a control, it counts nothing (no shared atomic in the fast path) and never stops.
+  ProgressCounter(ProgressSpan* span, uint64_t total)
+      : span_(span && span->reports() ? span : nullptr), total_(double(total)) {}
   ProgressCounter(const ProgressCounter&) = delete;
   ProgressCounter& operator=(const ProgressCounter&) = delete;
 

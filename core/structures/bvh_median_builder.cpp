@@ -40,9 +40,7 @@ class MedianSplitter : public InPlaceSplitter {
 
 BuildTree build_median_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                             BuildRecorder* recorder) {
-  return with_build_sink(recorder, [&](auto& sink) {
-    return build_top_down<MedianSplitter>(scene, options, progress, sink);
-  });
+  return build_top_down<MedianSplitter>(scene, options, progress, recorder);
 }
 
 }  // namespace accel

@@ -128,9 +128,7 @@ class PcaSplitter : public InPlaceSplitter {
 
 BuildTree build_pca_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                          BuildRecorder* recorder) {
-  return with_build_sink(recorder, [&](auto& sink) {
-    return build_top_down<PcaSplitter>(scene, options, progress, sink);
-  });
+  return build_top_down<PcaSplitter>(scene, options, progress, recorder);
 }
 
 }  // namespace accel

@@ -520,7 +520,7 @@ class SpatialBuilder {
 };
 
 std::unique_ptr<BuildChunk> build_chunk(const Scene& scene, const BvhBuildOptions& o, float root_area, Task& t,
-                                   ProgressCounter& progress) {
+                                        ProgressCounter& progress) {
   auto c = std::make_unique<BuildChunk>();
   if (progress.stopped()) return c;  // cancelled: the caller discards the tree
   NullBuildSink no_steps;

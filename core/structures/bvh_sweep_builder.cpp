@@ -267,9 +267,7 @@ class SweepSplitter {
 
 BuildTree build_sweep_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                            BuildRecorder* recorder) {
-  return with_build_sink(recorder, [&](auto& sink) {
-    return build_top_down<SweepSplitter>(scene, options, progress, sink);
-  });
+  return build_top_down<SweepSplitter>(scene, options, progress, recorder);
 }
 
 }  // namespace accel

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -326,14 +327,19 @@ inline std::vector<PrimRef> make_refs(const Scene& scene) {
   return refs;
 }
 
-/// A top-down build with splitter class template S: build_bvh_tree()'s contract.
-template <template <class> class S, class Sink>
-BuildTree build_top_down(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress, Sink& sink) {
-  sink.scene_box(scene.bounds());
-  std::vector<PrimRef> refs = make_refs(scene);
-  if (refs.empty()) return {};
-  S<Sink> splitter(o, refs, sink);
-  return TopDownBuilder<S<Sink>, Sink>(o, refs, splitter, progress, sink).build();
+/// A top-down build with splitter class template S, recorded into `recorder` when there is
+/// one: build_bvh_tree()'s contract.
+template <template <class> class S>
+BuildTree build_top_down(const Scene& scene, const BvhBuildOptions& o, ProgressSpan* progress,
+                         BuildRecorder* recorder) {
+  return with_build_sink(recorder, [&](auto& sink) -> BuildTree {
+    using Sink = std::remove_reference_t<decltype(sink)>;
+    sink.scene_box(scene.bounds());
+    std::vector<PrimRef> refs = make_refs(scene);
+    if (refs.empty()) return {};
+    S<Sink> splitter(o, refs, sink);
+    return TopDownBuilder<S<Sink>, Sink>(o, refs, splitter, progress, sink).build();
+  });
 }
 
 }  // namespace accel::top_down

@@ -117,7 +117,7 @@ class KdBuilder {
         progress_(control, progress_from, 1.0),
         parallel_(parallel),
         exact_errors_(exact_errors),
-        leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole) {}
+        leaves_done_(&progress_, ProgressCounter::kWhole) {}
   /// `recorder` (nullptr = none): every step is recorded into it (the builder must be serial).
   Result<KdTreeData> run(BuildRecorder* recorder = nullptr);
   /// The last fraction reported.

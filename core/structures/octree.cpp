@@ -172,7 +172,7 @@ class OctreeBuilder {
                 Sink& sink)
       : scene_(scene), options_(options), control_(control), parallel_(parallel && !Sink::kRecords),
         sink_(sink), progress_(control, 0.0, 1.0),
-        leaves_done_(control ? &progress_ : nullptr, ProgressCounter::kWhole) {}
+        leaves_done_(&progress_, ProgressCounter::kWhole) {}
 
   /// The failure a build stopped with (checked in this order of priority by build_octree()).
   enum class Failure : int { None, Cancelled, Nodes, References, Memory };
