@@ -5,6 +5,7 @@
 #include "check.h"
 #include "parallel.h"
 #include "structures/wide_bvh_isa.h"
+#include "structures/wide_collapse.h"
 
 namespace accel {
 
@@ -20,11 +21,6 @@ void WideBvhOf<W>::clear() {
   triangle_count_ = 0;
 }
 
-namespace {
-template <int W>
-void record_collapse(const BuildTree& tree, BuildRecorder& recorder);
-}  // namespace
-
 template <int W>
 Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) {
   // Progress as in the binary layouts (hierarchy.h): the builder reports the triangles it
@@ -33,10 +29,11 @@ Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, Buil
   clear();
   if (build_cancelled(control)) return cancelled_error();
   const HierarchyOptions options = hierarchy_options(params);
-  // Per binary node: its entry, box and depth, and its share of a wide node (W - 1 binary
-  // inner nodes collapse into one).
+  // Per binary node: its entry, box and depth, its share of a wide node (W - 1 binary
+  // inner nodes collapse into one at best) and the collapse's cost table.
   const size_t layout_bytes = sizeof(Entry) + sizeof(Aabb) + sizeof(uint16_t) +
-                              (sizeof(Node) + sizeof(std::array<NodeId, W>)) / (W - 1);
+                              (sizeof(Node) + sizeof(std::array<NodeId, W>)) / (W - 1) +
+                              WideCollapse<W>::kBytesPerNode;
   if (Status fits = check_bvh_memory(name(), scene, options.build, layout_bytes, build_memory_limit(control));
       !fits)
     return fits;
@@ -59,16 +56,14 @@ Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, Buil
   if (build_cancelled(control)) return cancelled_error();
   tree_span.finish();
   if (build_cancelled(control)) return cancelled_error();  // e.g. cancelled from the callback
-  collapse(scene, tree);
-  if (recorder) {
-    if (!tree.empty()) record_collapse<W>(tree, *recorder);
-    recorder->done(entries_.size());
-  }
+  collapse(scene, tree, recorder);
+  if (recorder) recorder->done(entries_.size());
   return {};
 }
 
 // ----------------------------------------------------------------------------
-// Collapse, in parallel: the top of the binary tree is planned serially; every subtree
+// Collapse, in parallel: the SAH-optimal choice of each wide node's children is solved
+// first (wide_collapse.h); then the top of the binary tree is planned serially; every subtree
 // below it is emitted by its own task into its own WideLayout with local numbering, then
 // all are placed at their pre-order offsets and relocated in parallel. The result is the
 // serial emission's, for any thread count: each node's children depend only on its binary
@@ -93,48 +88,17 @@ std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
   return size;
 }
 
-/// The children of wide node `src`: it opens its largest inner child in place (that
-/// child's two children take its slot, keeping tree order) until there are W children or
-/// only leaves are left. Returns how many (2..W). `sink` sees each opening (a Collapse
-/// step: the wide node adopts its child's children).
-template <int W, class Sink>
-int wide_children(const BuildTree& tree, uint32_t src, uint32_t kids[W], Sink& sink) {
-  const BuildNode& b = tree.nodes[src];
-  kids[0] = b.left;
-  kids[1] = b.right;
-  int n = 2;
-  while (n < W) {
-    int widest = -1;
-    float widest_area = -1.0f;
-    for (int k = 0; k < n; ++k) {
-      const BuildNode& c = tree.nodes[kids[k]];
-      if (!c.count && c.box.area() > widest_area) {
-        widest = k;
-        widest_area = c.box.area();
-      }
-    }
-    if (widest < 0) break;
-    const BuildNode& c = tree.nodes[kids[widest]];
-    sink.collapse(tree.event_id(src), tree.event_id(kids[widest]));
-    for (int k = n; k > widest + 1; --k) kids[k] = kids[k - 1];
-    kids[widest] = c.left;
-    kids[widest + 1] = c.right;
-    ++n;
-  }
-  return n;
-}
-
-/// Records the collapse steps: the same choices the collapse makes (wide_children), node by
-/// node from the root, each wide node's openings in order.
+/// Records the collapse steps: the same choices the collapse makes, wide node by wide node
+/// from the root, each one's openings in pre-order.
 template <int W>
-void record_collapse(const BuildTree& tree, BuildRecorder& recorder) {
+void record_collapse(const BuildTree& tree, const WideCollapse<W>& choice, BuildRecorder& recorder) {
   std::vector<uint32_t> stack{tree.root};
   while (!stack.empty()) {
     const uint32_t src = stack.back();
     stack.pop_back();
     if (tree.nodes[src].count) continue;
     uint32_t kids[W];
-    const int n = wide_children<W>(tree, src, kids, recorder);
+    const int n = choice.children(src, kids, recorder);
     for (int s = n; s-- > 0;) stack.push_back(kids[s]);
   }
 }
@@ -152,7 +116,8 @@ struct WideBvhOf<W>::Layout {
   std::vector<TriangleBlock> blocks;
 
   /// The subtree of binary node `src` at `depth`, in depth-first order; returns its node id.
-  NodeId emit(const Scene& scene, const BuildTree& tree, uint32_t src, int depth_of_src) {
+  NodeId emit(const Scene& scene, const BuildTree& tree, const WideCollapse<W>& choice, uint32_t src,
+               int depth_of_src) {
     ACCEL_CHECK(depth_of_src < kMaxBvhDepth);  // collapsing only makes the tree shallower
     const NodeId id = NodeId(entries.size());
     const BuildNode& b = tree.nodes[src];
@@ -165,13 +130,13 @@ struct WideBvhOf<W>::Layout {
     }
     uint32_t kids[W];
     NullBuildSink no_steps;
-    const int n = wide_children<W>(tree, src, kids, no_steps);
+    const int n = choice.children(src, kids, no_steps);
     const uint32_t w = uint32_t(nodes.size());
     entries[id] = {w, 0};
     nodes.push_back(empty_node());
     child_ids.push_back(no_children());
     for (int s = 0; s < n; ++s) {
-      const NodeId child = emit(scene, tree, kids[s], depth_of_src + 1);  // may reallocate: index, not reference
+      const NodeId child = emit(scene, tree, choice, kids[s], depth_of_src + 1);  // may reallocate: index, not reference
       set_slot(nodes[w], s, tree.nodes[kids[s]].box, ref_of(child));
       child_ids[w][s] = child;
     }
@@ -228,12 +193,14 @@ struct WideBvhOf<W>::Layout {
 };
 
 template <int W>
-void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
+void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree, BuildRecorder* recorder) {
   clear();
   if (tree.empty()) return;
   prim_count_ = tree.prims.size();
   triangle_count_ = scene.valid_prims().size();  // every builder places each valid triangle (sbvh: at least once)
   const std::vector<uint32_t> size = binary_subtree_sizes(tree);
+  const WideCollapse<W> choice(tree, options_, size, kCollapseTaskNodes);
+  if (recorder) record_collapse(tree, choice, *recorder);
 
   // Plan the top: wide nodes over binary subtrees of kCollapseTaskNodes or more. A child
   // below that size (or a leaf) becomes a task, emitted into its own Layout.
@@ -254,7 +221,7 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
     top.push_back({src, depth, 0, {}, {}});
     TopNode node = top.back();
     NullBuildSink no_steps;
-    node.n = wide_children<W>(tree, src, node.kids, no_steps);
+    node.n = choice.children(src, node.kids, no_steps);
     for (int s = 0; s < node.n; ++s) {
       const uint32_t kid = node.kids[s];
       if (!tree.nodes[kid].count && size[kid] >= kCollapseTaskNodes) {
@@ -270,7 +237,7 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
   if (tree.nodes[tree.root].count || size[tree.root] < kCollapseTaskNodes) {
     Layout whole;
     whole.entries.reserve(size[tree.root]);
-    whole.emit(scene, tree, tree.root, 0);
+    whole.emit(scene, tree, choice, tree.root, 0);
     nodes_ = std::move(whole.nodes);
     child_ids_ = std::move(whole.child_ids);
     entries_ = std::move(whole.entries);
@@ -284,7 +251,7 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree) {
   std::vector<Layout> parts(tasks.size());
   par::parallel_for(size_t(0), tasks.size(), [&](size_t t) {
     parts[t].entries.reserve(size[tasks[t].src]);
-    parts[t].emit(scene, tree, tasks[t].src, tasks[t].depth);
+    parts[t].emit(scene, tree, choice, tasks[t].src, tasks[t].depth);
   });
 
   // Pre-order offsets: a top node, then each child's subtree in slot order.

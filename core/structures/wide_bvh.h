@@ -189,9 +189,9 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   /// Refits the subtree whose node ids are [node, end) (depth-first ids: contiguous).
   void refit_subtree(const Scene& scene, NodeId node, NodeId end);
   void refit_node(const Scene& scene, NodeId node);
-  /// Collapses a builder's binary tree: each inner node adopts the children of its largest
-  /// inner child (by surface area, the child most rays enter) until it has W.
-  void collapse(const Scene& scene, const BuildTree& tree);
+  /// Collapses a builder's binary tree into the W-wide tree of least SAH cost
+  /// (wide_collapse.h); `recorder` (optional) gets its Collapse steps.
+  void collapse(const Scene& scene, const BuildTree& tree, BuildRecorder* recorder);
   void clear();
   struct Layout;  // a subtree being emitted by one task (wide_bvh.cpp)
 
