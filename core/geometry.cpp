@@ -27,27 +27,6 @@ std::string kernel_names_text(std::string_view separator) {
   return s;
 }
 
-TriangleTester::TriangleTester(const Ray& ray, Kernel kernel) : ray_(ray), kernel_(kernel) {
-  // Woop et al. 2013, section 3: permute so that kz is the dominant direction axis and the
-  // winding is preserved, then shear so the ray becomes the +z axis. Written with selects,
-  // not branches: the axes are random per ray, so a branch here was a misprediction.
-  const Vec3 a(std::fabs(ray.dir.x), std::fabs(ray.dir.y), std::fabs(ray.dir.z));  // glm::abs branches
-  const int xy = a.x >= a.y ? 0 : 1;
-  kz_ = std::max(a.x, a.y) >= a.z ? xy : 2;  // max returns a.x on a tie, as xy chose
-  static constexpr int kNext[3] = {1, 2, 0};
-  const int x = kNext[kz_], y = kNext[x];
-  const bool flip = component(ray.dir, kz_) < 0.0f;
-  kx_ = flip ? y : x;
-  ky_ = flip ? x : y;
-  const float dz = component(ray.dir, kz_);
-  sx_ = component(ray.dir, kx_) / dz;
-  sy_ = component(ray.dir, ky_) / dz;
-  sz_ = 1.0f / dz;
-  org_kx_ = component(ray.org, kx_);
-  org_ky_ = component(ray.org, ky_);
-  org_kz_ = component(ray.org, kz_);
-}
-
 bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax,
                                TriangleHit* out) const {
   double t, u, v;
@@ -115,17 +94,6 @@ bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const DVec3 n = glm::cross(e1, e2);
   return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
 }
-
-BoxTester::BoxTester(const Ray& ray) : org(ray.org) {
-  // 1/(-0.0) = -inf and 1/(+0.0) = +inf, so the slab test needs no special case.
-  inv_dir = Vec3(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
-  for (int axis = 0; axis < 3; ++axis) {
-    const int negative = std::signbit(inv_dir[axis]) ? 1 : 0;
-    near_index[axis] = axis + 3 * negative;
-    far_index[axis] = axis + 3 * (1 - negative);
-  }
-}
-
 
 bool intersect_sphere(const Ray& ray, const BoundingSphere& s, float tmin, float tmax, float* t_enter,
                       float* t_exit) {

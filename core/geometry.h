@@ -58,7 +58,8 @@ static_assert(sizeof(TriangleBlock) == 160);
 /// the watertight test are computed once here, not per triangle).
 class TriangleTester {
  public:
-  TriangleTester(const Ray& ray, Kernel kernel);
+  /// Inline: every query makes one, and the call and its loads were ~50 instructions a ray.
+  ACCEL_FORCE_INLINE TriangleTester(const Ray& ray, Kernel kernel);
   /// True when the ray hits triangle (p0,p1,p2) at some t in [ray.tmin, tmax]; fills `out`.
   /// The caller guarantees the triangle has non-zero area (Scene marks degenerate ones).
   ACCEL_FORCE_INLINE bool intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
@@ -121,7 +122,7 @@ bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2);
 
 /// A ray prepared for slab tests: reciprocal direction with -0.0 giving -inf.
 struct BoxTester {
-  explicit BoxTester(const Ray& ray);
+  ACCEL_FORCE_INLINE explicit BoxTester(const Ray& ray);
   /// Clips [tmin, tmax] to the box. Conservative (Ize 2013): the far distance is widened by
   /// 1 + 2*gamma(3) so rounding never loses a hit on a box face; a zero direction component
   /// with the origin on a slab plane gives no NaN (Williams et al. 2005).
@@ -158,6 +159,38 @@ constexpr float gamma_bound(int n) {
 // ---------------------------------------------------------------------------
 // Inline definitions of the hot tests.
 // ---------------------------------------------------------------------------
+
+TriangleTester::TriangleTester(const Ray& ray, Kernel kernel) : ray_(ray), kernel_(kernel) {
+  // Woop et al. 2013, section 3: permute so that kz is the dominant direction axis and the
+  // winding is preserved, then shear so the ray becomes the +z axis. Written with selects,
+  // not branches: the axes are random per ray, so a branch here was a misprediction.
+  const Vec3 a(std::fabs(ray.dir.x), std::fabs(ray.dir.y), std::fabs(ray.dir.z));  // glm::abs branches
+  const int xy = a.x >= a.y ? 0 : 1;
+  kz_ = std::max(a.x, a.y) >= a.z ? xy : 2;  // max returns a.x on a tie, as xy chose
+  // The next axes after kz, cyclically (no static table: the ISA units inline this and may
+  // not emit a shared symbol, tests/isa_symbols_test.sh).
+  const int x = kz_ == 2 ? 0 : kz_ + 1, y = x == 2 ? 0 : x + 1;
+  const bool flip = component(ray.dir, kz_) < 0.0f;
+  kx_ = flip ? y : x;
+  ky_ = flip ? x : y;
+  const float dz = component(ray.dir, kz_);
+  sx_ = component(ray.dir, kx_) / dz;
+  sy_ = component(ray.dir, ky_) / dz;
+  sz_ = 1.0f / dz;
+  org_kx_ = component(ray.org, kx_);
+  org_ky_ = component(ray.org, ky_);
+  org_kz_ = component(ray.org, kz_);
+}
+
+BoxTester::BoxTester(const Ray& ray) : org(ray.org) {
+  // 1/(-0.0) = -inf and 1/(+0.0) = +inf, so the slab test needs no special case.
+  inv_dir = Vec3(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
+  for (int axis = 0; axis < 3; ++axis) {
+    const int negative = std::signbit(inv_dir[axis]) ? 1 : 0;
+    near_index[axis] = axis + 3 * negative;
+    far_index[axis] = axis + 3 * (1 - negative);
+  }
+}
 
 bool TriangleTester::intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax,
                                TriangleHit* out) const {

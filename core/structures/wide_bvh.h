@@ -115,6 +115,23 @@ ACCEL_FORCE_INLINE int intersect_children(const WideNodeOf<W>& node, const WideR
   return mask;
 }
 
+/// The slots whose entry distance orders before slot s's: strictly nearer, or as near and
+/// earlier in tree order (the order of a stable sort by distance). Slots beyond the hit
+/// ones give bits the caller masks off. SSE2, four slots at a time; the ISA units overload
+/// it for their tag with one eight-slot compare (wide_bvh_isa_unit.h). The traversal calls
+/// it unqualified with its tag, so the overload is found where the tag is an ISA unit's.
+template <int W>
+ACCEL_FORCE_INLINE int nearer_slots(Sse2Tag, std::integral_constant<int, W>, const float* t0, int s) {
+  const __m128 key = _mm_set1_ps(t0[s]);
+  int lt = 0, eq = 0;
+  for (int first = 0; first < W; first += 4) {
+    const __m128 t = _mm_load_ps(t0 + first);
+    lt |= _mm_movemask_ps(_mm_cmplt_ps(t, key)) << first;
+    eq |= _mm_movemask_ps(_mm_cmpeq_ps(t, key)) << first;
+  }
+  return lt | (eq & ((1 << s) - 1));
+}
+
 // ============================================================================
 // [SECTION] WideBvhOf: build, views, stats
 // ============================================================================
@@ -230,13 +247,21 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
     if constexpr (kObservesNothing<Sink>) return 0;
     else return depth_[id];
   }
+  /// Where a traversal's prefetches point: the two arrays' addresses, read once per query
+  /// (through members, every store of the loop might have changed them).
+  struct PrefetchBases {
+    uintptr_t nodes, blocks;
+  };
+  PrefetchBases prefetch_bases() const {
+    return {reinterpret_cast<uintptr_t>(nodes_.data()), reinterpret_cast<uintptr_t>(blocks_.data())};
+  }
   /// Starts fetching what a pushed child will read when it is popped: the first 192 bytes of
   /// its node or its leaf's first block. The address is selected with a mask, not a branch
   /// on the kind (the compiler turned the plain ?: into a mispredicted branch).
-  void prefetch(ChildRef r) const {
+  ACCEL_FORCE_INLINE static void prefetch(ChildRef r, PrefetchBases at) {
     // Integer arithmetic: the address not taken may lie outside its array.
-    const uintptr_t leaf = reinterpret_cast<uintptr_t>(blocks_.data()) + uintptr_t(ref_first(r)) * sizeof(TriangleBlock);
-    const uintptr_t inner = reinterpret_cast<uintptr_t>(nodes_.data()) + uintptr_t(uint32_t(r)) * sizeof(Node);
+    const uintptr_t leaf = at.blocks + uintptr_t(ref_first(r)) * sizeof(TriangleBlock);
+    const uintptr_t inner = at.nodes + uintptr_t(uint32_t(r)) * sizeof(Node);
     const uintptr_t is_leaf = uintptr_t(0) - uintptr_t(ref_is_leaf(r));
     const char* p = reinterpret_cast<const char*>((leaf & is_leaf) | (inner & ~is_leaf));
     for (int k = 0; k < 3; ++k) _mm_prefetch(p + 64 * k, _MM_HINT_T0);
@@ -251,18 +276,6 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
     m = m - ((m >> 1) & 0x55u);
     m = (m & 0x33u) + ((m >> 2) & 0x33u);
     return int((m + (m >> 4)) & 0x0fu);
-  }
-  /// The slots whose entry distance orders before slot s's: strictly nearer, or as near and
-  /// earlier in tree order. Slots beyond the hit ones give bits the caller masks off.
-  ACCEL_FORCE_INLINE static int nearer_mask(const float* t0, int s) {
-    const __m128 key = _mm_set1_ps(t0[s]);
-    int lt = 0, eq = 0;
-    for (int first = 0; first < W; first += 4) {
-      const __m128 t = _mm_load_ps(t0 + first);
-      lt |= _mm_movemask_ps(_mm_cmplt_ps(t, key)) << first;
-      eq |= _mm_movemask_ps(_mm_cmpeq_ps(t, key)) << first;
-    }
-    return lt | (eq & ((1 << s) - 1));
   }
   // Each pop pushes at most W children in place of one node: W - 1 per level, plus slack.
   static constexpr int kStackSize = (W - 1) * kMaxBvhDepth + W;
@@ -407,6 +420,7 @@ void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, cons
   Item stack[kStackSize];
   int top = 0;
   const float tmin = ray.tmin;  // a local: the loop's stores cannot alias it
+  const PrefetchBases bases = prefetch_bases();
   Item cur = pending<Sink>(root.ref, root.node, root.t0, root.t1);
   for (;;) {
     sink.visit(node_of(cur), node_depth<Sink>(node_of(cur)), cur.t0, exit_of(cur));
@@ -421,7 +435,7 @@ void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, cons
       const auto child = [&](int s) { return pending<Sink>(n.ref[s], child_id<Sink>(w, s), t0[s], t1[s]); };
       const auto push = [&](int s) {
         stack[top++] = child(s);
-        prefetch(n.ref[s]);
+        prefetch(n.ref[s], bases);
         sink.push(child_id<Sink>(w, s), node_depth<Sink>(child_id<Sink>(w, s)), t0[s]);
       };
       if (mask != 0) {
@@ -450,9 +464,10 @@ void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, cons
         Item* const dst = stack + top + hits - 1;
         for (int rest = hit_mask; rest; rest &= rest - 1) {
           const int s = __builtin_ctz(unsigned(rest));
-          const int before = nearest_first ? nearer_mask(t0, s) & hit_mask : hit_mask & ((1 << s) - 1);
+          const int before = nearest_first ? nearer_slots(Tag{}, std::integral_constant<int, W>{}, t0, s) & hit_mask
+                                           : hit_mask & ((1 << s) - 1);
           *(dst - popcount8<Tag>(unsigned(before))) = child(s);
-          prefetch(n.ref[s]);
+          prefetch(n.ref[s], bases);
         }
         cur = *dst;
         if constexpr (!kObservesNothing<Sink>)  // the pushes in stack order, farthest first

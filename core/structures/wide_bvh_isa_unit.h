@@ -56,6 +56,16 @@ ACCEL_FORCE_INLINE int intersect_children(const WideNode8& node, const WideRayFo
   return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
 }
 
+/// nearer_slots() of wide_bvh.h on all eight slots in one compare each: the same ordered
+/// less-than and equality per lane, so the same ranks.
+ACCEL_FORCE_INLINE int nearer_slots(ACCEL_ISA_TAG, std::integral_constant<int, 8>, const float* t0, int s) {
+  const __m256 t = _mm256_load_ps(t0);
+  const __m256 key = _mm256_broadcast_ss(t0 + s);
+  const int lt = _mm256_movemask_ps(_mm256_cmp_ps(t, key, _CMP_LT_OQ));
+  const int eq = _mm256_movemask_ps(_mm256_cmp_ps(t, key, _CMP_EQ_OQ));
+  return lt | (eq & ((1 << s) - 1));
+}
+
 Hit ACCEL_ISA_NAME(wide8_fast_)(const WideBvh8& bvh, const Ray& ray) {
   NullSink sink;
   return bvh.traverse_with<ACCEL_ISA_TAG>(ray, sink);
