@@ -427,7 +427,7 @@ const PseudoCode& build_kd_code() {
 std::vector<std::pair<const char*, const char*>> hierarchy_tail() {
   return {
       {"unrecorded", "(below the recorded depth: built, not shown)"},
-      {"collapse", "width 4 / 8: open a child where its SAH cost drops (it gives its children)"},
+      {"collapse", "width 4 / 8: open a child where that lowers the SAH cost"},
       {"fit", "fit each node's bounding volume (box / sphere)"},
       {"done", "done"},
   };
