@@ -168,7 +168,7 @@ void BuildReplay::apply(const BuildEvent& e) {
   }
 }
 
-double BuildReplay::sah_cost(double ct, double ci) const {
+double BuildReplay::sah_cost(double ct, double ci, int prims_per_test) const {
   const auto area = [](const ReplayNode& n) {
     return n.sphere.radius >= 0.0f ? 4.0 * 3.14159265358979323846 * double(n.sphere.radius) * double(n.sphere.radius)
                                    : double(n.box.area());
@@ -181,7 +181,8 @@ double BuildReplay::sah_cost(double ct, double ci) const {
   for (const ReplayNode& n : nodes_) {
     if (n.gone) continue;
     const bool open = n.children.empty();  // a leaf, or a node not split yet: priced as a leaf
-    cost += (open ? ci * double(n.prim_count) : ct) * area(n) / root_area;
+    const double tests = double((size_t(n.prim_count) + size_t(prims_per_test) - 1) / size_t(prims_per_test));
+    cost += (open ? ci * tests : ct) * area(n) / root_area;
   }
   return cost;
 }

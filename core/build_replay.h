@@ -63,10 +63,11 @@ class BuildReplay {
   size_t leaves() const { return leaves_; }
   size_t references() const { return references_; }
   /// The SAH cost of the tree as it stands (the lecture's C(T), normalised to the root's
-  /// area): ct per inner node and ci per triangle of a leaf, weighted by area / root area,
+  /// area): ct per inner node and ci per `prims_per_test` triangles of a leaf (rounded up;
+  /// BuildStats::sah_prims_per_test: 4 for the wide layouts), weighted by area / root area,
   /// with the nodes not yet split counted as leaves -- it falls as the build advances and
   /// ends at the finished tree's cost (for boxes; spheres use their area). NaN for a grid.
-  double sah_cost(double ct, double ci) const;
+  double sah_cost(double ct, double ci, int prims_per_test = 1) const;
 
  private:
   void reset();

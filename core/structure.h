@@ -36,6 +36,9 @@ struct BuildStats {
   std::vector<size_t> leaf_size_histogram;
   double sah_cost = std::nan("");     ///< expected cost (ct, ci below), normalised to the root's area
   double sah_ct = 0.0, sah_ci = 0.0;  ///< cost constants used for sah_cost
+  /// Triangles one leaf test prices as one ci in sah_cost: 1, or 4 for the wide layouts'
+  /// four-lane leaf test (a leaf of n triangles costs ci * ceil(n / this)).
+  int sah_prims_per_test = 1;
   std::vector<std::pair<std::string, std::string>> extra;  ///< e.g. {"cells", "32x32x16"}
 
   /// Adds a leaf of `n` triangles to the leaf counters and the histogram.

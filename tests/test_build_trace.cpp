@@ -347,6 +347,20 @@ TEST(BuildReplay, SahCostSoFarEndsAtTheTreesCost) {
     EXPECT_NEAR(replay.sah_cost(1.0, 2.0), built.value()->build_stats().sah_cost, 1e-6 * replay.sah_cost(1.0, 2.0))
         << builder;
   }
+  // The wide layouts: after the collapse steps, the collapsed tree's cost, whose leaves are
+  // priced per test of four triangles.
+  for (const char* width : {"4", "8"}) {
+    BuildRecorder recorder;
+    auto built = build_structure("bvh", cornell(), {std::string("width=") + width, "ct=1", "ci=2"}, Kernel::Watertight,
+                                 nullptr, &recorder);
+    ASSERT_TRUE(built);
+    const BuildStats stats = built.value()->build_stats();
+    EXPECT_EQ(stats.sah_prims_per_test, 4);
+    BuildReplay replay(recorder.trace());
+    replay.seek(replay.steps());
+    EXPECT_NEAR(replay.sah_cost(1.0, 2.0, stats.sah_prims_per_test), stats.sah_cost, 1e-6 * stats.sah_cost)
+        << "width " << width;
+  }
 }
 
 TEST(BuildTraceJson, OneLinePerStepAfterAHeader) {

@@ -389,6 +389,7 @@ BuildStats WideBvhOf<W>::compute_stats() const {
   s.memory_bytes = memory_bytes();
   s.sah_ct = options_.ct;
   s.sah_ci = options_.ci;
+  s.sah_prims_per_test = options_.prims_per_test;
   if (!entries_.empty()) {
     const double root_area = double(boxes_[0].area());
     double cost = 0.0;

@@ -76,6 +76,7 @@ accel::Result<RecordedBuild> record_structure(const accel::Scene& scene, const S
   auto choice = accel::parse_structure(request.name, request.params);
   if (!choice) return choice.error();
   double ct = 1.0, ci = 1.0;
+  int per_test = 1;
   auto recorded = record_with_retry(
       [&](accel::BuildRecorder& recorder) -> accel::Status {
         auto s = accel::build_structure(*choice.value().info, scene, choice.value().params, request.kernel, control,
@@ -84,12 +85,14 @@ accel::Result<RecordedBuild> record_structure(const accel::Scene& scene, const S
         const accel::BuildStats stats = s.value()->build_stats();
         if (stats.sah_ct > 0.0) ct = stats.sah_ct;
         if (stats.sah_ci > 0.0) ci = stats.sah_ci;
+        per_test = std::max(1, stats.sah_prims_per_test);
         return {};
       },
       scene.triangle_count(), budget_bytes);
   if (recorded) {
     recorded.value().sah_ct = ct;
     recorded.value().sah_ci = ci;
+    recorded.value().sah_prims_per_test = per_test;
   }
   return recorded;
 }

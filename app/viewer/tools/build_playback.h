@@ -65,9 +65,10 @@ class BuildStepPlayer {
 struct RecordedBuild {
   std::shared_ptr<const accel::BuildTrace> trace;
   std::vector<accel::RecordAttempt> attempts;
-  /// The structure's SAH constants (BuildStats::sah_ct, sah_ci; 1 where it has none), for
-  /// the cost of the tree so far (BuildReplay::sah_cost).
+  /// The structure's SAH constants (BuildStats::sah_ct, sah_ci, sah_prims_per_test; 1 where
+  /// it has none), for the cost of the tree so far (BuildReplay::sah_cost).
   double sah_ct = 1.0, sah_ci = 1.0;
+  int sah_prims_per_test = 1;
 };
 
 /// Runs one recorded build into the recorder it is given.

@@ -76,6 +76,7 @@ void BuildPlayer::poll() {
   attempts_ = result.value().attempts;
   sah_ct_ = result.value().sah_ct;
   sah_ci_ = result.value().sah_ci;
+  sah_prims_per_test_ = result.value().sah_prims_per_test;
   replay_ = std::make_unique<accel::BuildReplay>(*trace_);
   code_kind_ = build_code_kind(request_.name, request_.params);
   player_.load(trace_->events.size());
@@ -215,7 +216,7 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     }
     // The tree as it stands, open nodes priced as leaves (a grid has no tree: "-").
     ImGui::TableSetColumnIndex(4);
-    const double cost = replay_->sah_cost(sah_ct_, sah_ci_);
+    const double cost = replay_->sah_cost(sah_ct_, sah_ci_, sah_prims_per_test_);
     if (std::isnan(cost))
       ImGui::TextDisabled("-");
     else

@@ -81,6 +81,7 @@ class BuildPlayer {
   std::unique_ptr<accel::BuildReplay> replay_;
   std::vector<accel::RecordAttempt> attempts_;
   double sah_ct_ = 1.0, sah_ci_ = 1.0;  ///< the structure's SAH constants, for the cost so far
+  int sah_prims_per_test_ = 1;           ///< and its triangles per leaf test (4: wide layouts)
   std::string error_;
   BuildCodeKind code_kind_ = BuildCodeKind::Unknown;
   BuildStepPlayer player_;
