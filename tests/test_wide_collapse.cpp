@@ -17,13 +17,6 @@
 namespace accel {
 namespace {
 
-std::vector<uint32_t> subtree_sizes(const BuildTree& tree) {
-  std::vector<uint32_t> size(tree.nodes.size(), 1);
-  for (size_t i = tree.nodes.size(); i-- > 0;)
-    if (!tree.nodes[i].count) size[i] += size[tree.nodes[i].left] + size[tree.nodes[i].right];
-  return size;
-}
-
 /// The least SAH cost of the subtree of `node` as one child slot, by exhaustive search:
 /// a leaf costs its area times its leaf cost; an inner node is a wide node whose children
 /// are any frontier of at most W nodes strictly below it (every binary subtree's frontiers:
@@ -70,7 +63,7 @@ void expect_least_cost(const Scene& scene, BvhBuildOptions o) {
   o.prims_per_test = 4;
   const BuildTree tree = build_bvh_tree(scene, o, nullptr, nullptr);
   ASSERT_FALSE(tree.empty());
-  const std::vector<uint32_t> size = subtree_sizes(tree);
+  const std::vector<uint32_t> size = binary_subtree_sizes(tree);
   const WideCollapse<W> collapse(tree, o, size, 64);
   ExhaustiveCollapse<W> exhaustive{tree, o, {}};
   const double least = exhaustive.cost(tree.root);
@@ -107,7 +100,7 @@ TEST(WideCollapse, TheBuiltTreeHasTheCostTheCollapseComputed) {
     BvhBuildOptions o;
     o.prims_per_test = 4;
     const BuildTree tree = build_bvh_tree(scene, o, nullptr, nullptr);
-    const std::vector<uint32_t> size = subtree_sizes(tree);
+    const std::vector<uint32_t> size = binary_subtree_sizes(tree);
     const float root_area = tree.nodes[tree.root].box.area();
     const double expected = width[0] == '4' ? WideCollapse<4>(tree, o, size, 64).cost(tree.root)
                                             : WideCollapse<8>(tree, o, size, 64).cost(tree.root);

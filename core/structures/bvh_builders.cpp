@@ -8,6 +8,8 @@
 //              Salmon), both finished by bvh_binary_tree.cpp.
 #include "structures/bvh_builders.h"
 
+#include "check.h"
+
 #include "structures/bvh_binned_builder.h"
 #include "structures/bvh_insertion_builder.h"
 #include "structures/bvh_median_builder.h"
@@ -47,6 +49,18 @@ Status check_bvh_memory(const std::string& structure, const Scene& scene, const 
   return make_error(structure + ": " + std::to_string(triangles) + " triangles with builder=" +
                     builder_name(options.builder) + " " + over_budget_text(need, memory_limit) +
                     (spatial && options.sbvh_budget > 1.0f ? "; lower sbvh_budget" : "; raise the memory limit"));
+}
+
+// Every builder numbers a node before its children, so one reverse pass suffices.
+std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
+  std::vector<uint32_t> size(tree.nodes.size(), 1);
+  for (size_t i = tree.nodes.size(); i-- > 0;) {
+    const BuildNode& n = tree.nodes[i];
+    if (n.count) continue;
+    ACCEL_CHECK(n.left > i && n.right > i);
+    size[i] += size[n.left] + size[n.right];
+  }
+  return size;
 }
 
 BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,

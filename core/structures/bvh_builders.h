@@ -86,6 +86,9 @@ struct BuildTree {
   bool empty() const { return nodes.empty(); }
 };
 
+/// The binary nodes below each node of `tree`, itself included (bvh_builders.cpp).
+std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree);
+
 /// Runs the chosen builder over scene.valid_prims(). Guarantees: every valid triangle is in
 /// exactly one leaf (sbvh: in at least one leaf, never twice in the same leaf, and every point
 /// of it lies in the box of a leaf that holds it and of that leaf's ancestors -- a spatial

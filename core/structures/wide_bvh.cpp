@@ -75,19 +75,6 @@ namespace {
 /// leaves) are one task each.
 constexpr uint32_t kCollapseTaskNodes = 2048;
 
-/// The binary nodes below each node, itself included. Every builder numbers a node before
-/// its children, so one reverse pass suffices.
-std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
-  std::vector<uint32_t> size(tree.nodes.size(), 1);
-  for (size_t i = tree.nodes.size(); i-- > 0;) {
-    const BuildNode& n = tree.nodes[i];
-    if (n.count) continue;
-    ACCEL_CHECK(n.left > i && n.right > i);
-    size[i] += size[n.left] + size[n.right];
-  }
-  return size;
-}
-
 /// Records the collapse steps: the same choices the collapse makes, wide node by wide node
 /// from the root, each one's openings in pre-order.
 template <int W>

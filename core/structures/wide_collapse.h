@@ -49,7 +49,9 @@ class WideCollapse {
   template <class Sink>
   int children(uint32_t src, uint32_t kids[W], Sink& sink) const {
     int n = 0;
-    distribute(src, src, W, kids, n, sink);
+    int left_slots;
+    shared_cost(src, W, &left_slots);
+    distribute(src, src, W, left_slots, kids, n, sink);
     return n;
   }
 
@@ -101,11 +103,11 @@ class WideCollapse {
     solve(node);
   }
 
-  /// Gives `node`'s two children `slots` slots of wide node `wide`.
+  /// Gives `node`'s two children `slots` slots of wide node `wide`, `left_slots` of them
+  /// to the left child (the best split, from shared_cost).
   template <class Sink>
-  void distribute(uint32_t wide, uint32_t node, int slots, uint32_t kids[W], int& n, Sink& sink) const {
-    int left_slots;
-    shared_cost(node, slots, &left_slots);
+  void distribute(uint32_t wide, uint32_t node, int slots, int left_slots, uint32_t kids[W], int& n,
+                  Sink& sink) const {
     const BuildNode& b = tree_.nodes[node];
     place(wide, b.left, left_slots, kids, n, sink);
     place(wide, b.right, slots - left_slots, kids, n, sink);
@@ -117,7 +119,7 @@ class WideCollapse {
     int left_slots;
     if (!tree_.nodes[node].count && slots > 1 && shared_cost(node, slots, &left_slots) < cost_[node][0]) {
       sink.collapse(tree_.event_id(wide), tree_.event_id(node));
-      distribute(wide, node, slots, kids, n, sink);
+      distribute(wide, node, slots, left_slots, kids, n, sink);
       return;
     }
     kids[n++] = node;
