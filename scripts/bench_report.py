@@ -5,10 +5,12 @@ tinybvh), build time per mesh and structure against
 Embree's medium build, and errors per structure and kernel.
 
     scripts/bench_report.py A.json [B.json ...] [--out-json ALL.json] > report.md
-    scripts/bench_report.py --builds DEFAULT.json SWEEP.json > builds_report.md
+    scripts/bench_report.py --builds DEFAULT.json SWEEP.json [COLD.json] > builds_report.md
 
 --builds (scripts/bench_builds.sh): the build table of DEFAULT.json's rows, then the bvh's
-SAH cost and build time by default (binned SAH) and with SWEEP.json's builder=sah rows.
+SAH cost and build time by default (binned SAH) and with SWEEP.json's builder=sah rows, then
+COLD.json's cold builds (one fresh `stats` process each) against the same build warm and
+against Embree medium, both from DEFAULT.json.
 
 Rows of all files are merged; a peer row (Embree or tinybvh) is kept once per (scene, rays,
 structure): later files timed the peers again only to give their own rows a ratio from the
@@ -182,6 +184,34 @@ def build_table(rows):
     return out
 
 
+def cold_table(default_rows, cold_rows):
+    """Cold builds (COLD.json: the median of three fresh `stats` processes) against the warm
+    build of the same structure and Embree medium's, both from the bench run of DEFAULT.json
+    (best of 3 builds in one process). Issue #31's targets are in the last column."""
+    targets = {"bvh": 1.0, "grid": 1.5, "kdtree": 3.0, "octree": 3.0, "spheretree": 3.0}
+    out = ["\nCold builds: the median of 3 fresh `accelviz-cli stats` processes (the first build of a process, "
+           "what every CLI run and the viewer's first build of a scene pay), against the same build warm (best "
+           "of 3 in the bench process above) and against Embree medium's build there:\n",
+           "| mesh | structure | cold ms | warm ms | cold / warm | Embree medium ms | cold / Embree | target (issue #31) |",
+           "|---|---|---:|---:|---:|---:|---:|---|"]
+    for c in cold_rows:
+        name = mesh(c["scene"])
+        warm = next((r for r in default_rows if mesh(r["scene"]) == name and r["structure"] == c["structure"]), None)
+        embree = next((r for r in default_rows if mesh(r["scene"]) == name and r["structure"] == "embree-medium"), None)
+        cold = c["cold_median_ms"]
+        if name == "crytek_sponza.obj":
+            target = f"cold / Embree <= {targets[c['structure']]:g}"
+        elif name == "procedural:terrain":
+            target = "cold < 500 ms"
+        else:
+            target = ""
+        out.append(f"| {name} | {c['structure']} | {cold:.1f} | " +
+                   (f"{warm['build_ms']:.1f} | {cold / warm['build_ms']:.2f}" if warm else " | ") + " | " +
+                   (f"{embree['build_ms']:.1f} | {cold / embree['build_ms']:.2f}" if embree else " | ") +
+                   f" | {target} |")
+    return out
+
+
 def error_table(rows):
     keys = list(dict.fromkeys((r["structure"], r["kernel"]) for r in rows))
     out = ["\nErrors against the double-precision reference, summed over every mesh and both ray sets "
@@ -247,11 +277,14 @@ def main():
     ap.add_argument("--builds", action="store_true", help="build report: DEFAULT.json SWEEP.json")
     a = ap.parse_args()
     if a.builds:
-        if len(a.files) != 2:
-            ap.error("--builds takes DEFAULT.json SWEEP.json")
-        default_rows, sweep_rows = (merge([f]) for f in a.files)
+        if len(a.files) not in (2, 3):
+            ap.error("--builds takes DEFAULT.json SWEEP.json [COLD.json]")
+        default_rows, sweep_rows = (merge([f]) for f in a.files[:2])
         lines = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} (`scripts/bench_builds.sh`)."]
         lines += build_table(default_rows) + sah_table(default_rows, sweep_rows)
+        if len(a.files) == 3:
+            with open(a.files[2]) as f:
+                lines += cold_table(default_rows, json.load(f))
         print("\n".join(lines))
         return 0
     rows = merge(a.files)

@@ -14,6 +14,7 @@
 #include "registry.h"
 #include "scene.h"
 #include "tinybvh_baseline.h"
+#include "warm_start.h"
 
 namespace {
 
@@ -69,6 +70,7 @@ int check_stdout(int code) {
 
 int main(int argc, char** argv) {
   cli::install_interrupt_handlers();
+  accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   CLI::App app{"accelviz-cli: batch ray queries, statistics and benchmarks of acceleration structures"};
   app.require_subcommand(1);
 

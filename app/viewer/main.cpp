@@ -30,6 +30,7 @@
 #include "scene.h"
 #include "screenshot.h"
 #include "script.h"
+#include "warm_start.h"
 
 namespace {
 
@@ -311,6 +312,7 @@ int run_script(const std::string& script_name, const std::vector<viz::ScriptComm
 }  // namespace
 
 int main(int argc, char** argv) {
+  accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   Options options;
   if (const auto code = parse_command_line(argc, argv, options)) return *code;
   const bool screenshot_mode = !options.screenshot.empty();

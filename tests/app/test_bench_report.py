@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """scripts/bench_report.py on small synthetic bench JSON files: the speed table's Embree and
 fastest-peer columns and geometric means, the error table's ratio columns, with tinybvh rows and peer_ratio_* keys, and with
-an older file that has neither (its peer columns fall back to the Embree rows)."""
+an older file that has neither (its peer columns fall back to the Embree rows); --builds with a
+cold-build file (its ratios to the warm build and to Embree medium)."""
 import json
 import os
 import subprocess
@@ -21,14 +22,14 @@ def row(scene, structure, kernel, mt, t1, **extra):
     return r
 
 
-def report(*files):
+def report(*files, options=()):
     with tempfile.TemporaryDirectory() as tmp:
         paths = []
         for i, rows in enumerate(files):
             paths.append(os.path.join(tmp, f"{i}.json"))
             with open(paths[-1], "w") as f:
                 json.dump(rows, f)
-        return subprocess.run([sys.executable, SCRIPT, *paths], capture_output=True, text=True, check=True).stdout
+        return subprocess.run([sys.executable, SCRIPT, *options, *paths], capture_output=True, text=True, check=True).stdout
 
 
 def table_row(text, mesh):
@@ -90,6 +91,18 @@ class BenchReport(unittest.TestCase):
         a = table_row(text, "a.obj")
         self.assertEqual(a[-3:], ["", "", ""])
         self.assertNotIn("fastest peer over", text)
+
+    def test_cold_builds(self):
+        default = [row("crytek_sponza.obj", "embree-medium", "embree", 10.0, 5.0, build_ms=40.0),
+                   row("crytek_sponza.obj", "bvh", "watertight", 10.0, 5.0, build_ms=50.0)]
+        sweep = [row("crytek_sponza.obj", "bvh", "watertight", 10.0, 5.0, build_ms=90.0)]
+        cold = [{"scene": "../shared/scenes/crytek_sponza.obj", "structure": "bvh", "cold_ms": [70.0, 60.0, 80.0],
+                 "cold_median_ms": 70.0}]
+        text = report(default, sweep, cold, options=("--builds",))
+        line = next(l for l in text.splitlines() if l.startswith("| crytek_sponza.obj | bvh |"))
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        # cold, warm, cold / warm, Embree medium, cold / Embree, target
+        self.assertEqual(cells[2:], ["70.0", "50.0", "1.40", "40.0", "1.75", "cold / Embree <= 1"])
 
 
 if __name__ == "__main__":
