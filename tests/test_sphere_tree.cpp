@@ -1,6 +1,8 @@
 // Sphere tree: the builders and traversals of the AABB tree with bounding spheres.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "registry.h"
 #include "structures/sphere_tree.h"
 #include "structure_suite.h"
@@ -49,6 +51,32 @@ TEST(SphereTree, EverySphereContainsItsTriangles) {
                 << name << " " << builder << " node " << i;
       }
     }
+  }
+}
+
+TEST(SphereTree, AnInnerSphereIsNoLargerThanTheSphereAroundItsChildren) {
+  // Nodes above SphereTree::kDirectFit triangles are fitted from their subtrees: the first
+  // candidate centre is that of the smallest sphere around the two children's, and its exact
+  // radius (the farthest vertex) can only be smaller; later candidates are kept only when
+  // smaller still. 10,000 triangles: hundreds of such nodes.
+  const Scene scene = make_procedural_scene("soup").value();
+  for (const char* builder : {"binned_sah", "median", "sbvh"}) {
+    auto s = build_structure("spheretree", scene, {std::string("builder=") + builder});
+    ASSERT_TRUE(s);
+    const auto& nodes = dynamic_cast<const SphereTree&>(*s.value()).nodes();
+    std::vector<size_t> below(nodes.size());
+    size_t fitted_from_children = 0;
+    for (size_t i = nodes.size(); i-- > 0;) {
+      const auto& n = nodes[i];
+      below[i] = n.leaf() ? n.count : below[i + 1] + below[n.index];
+      if (n.leaf() || below[i] <= SphereTree::kDirectFit) continue;
+      ++fitted_from_children;
+      const BoundingSphere &a = nodes[i + 1].volume, &b = nodes[n.index].volume;
+      const double d = glm::length(DVec3(a.center) - DVec3(b.center));
+      const double around = std::max({double(a.radius), double(b.radius), 0.5 * (d + a.radius + b.radius)});
+      EXPECT_LE(double(n.volume.radius), around * (1.0 + 1e-5)) << builder << " node " << i;
+    }
+    EXPECT_GT(fitted_from_children, 100u) << builder;
   }
 }
 

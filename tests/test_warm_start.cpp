@@ -9,6 +9,15 @@
 
 #include "warm_start.h"
 
+// The sanitizers replace malloc (GCC says so by __SANITIZE_ADDRESS__, clang by __has_feature).
+#if defined(__SANITIZE_ADDRESS__)
+#define ACCEL_TEST_OWN_MALLOC 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ACCEL_TEST_OWN_MALLOC 1
+#endif
+#endif
+
 namespace accel {
 namespace {
 
@@ -28,7 +37,7 @@ void touch_and_free(size_t bytes) {
 }
 
 TEST(WarmStart, AFreedBlockServesTheNextAllocationWithoutPageFaults) {
-#if defined(__SANITIZE_ADDRESS__) || !defined(__GLIBC__)
+#if defined(ACCEL_TEST_OWN_MALLOC) || !defined(__GLIBC__)
   GTEST_SKIP() << "glibc's allocator only (the sanitizers bring their own)";
 #else
   prepare_for_builds();

@@ -248,11 +248,10 @@ class Hierarchy : public StructureWithTraversal<Derived> {
     return dst;
   }
 
-  /// Fits every node's volume to all triangles below it (an inner node's not to its
-  /// children's volumes, which for spheres would grow at every level), the nodes in
-  /// parallel: each fit depends only on its triangles, so the result is the serial one.
-  /// Reports nodes fitted / nodes to `span` between batches; false when cancelled.
-  /// Defined in hierarchy_refit.cpp, which fits refitted volumes the same way.
+  /// Fits every node's volume to all triangles below it: a box is its own (set by
+  /// flatten()); spheres go through fit_levels(). Reports nodes fitted / nodes to `span`
+  /// between batches; false when cancelled. Defined in hierarchy_refit.cpp, which fits
+  /// refitted volumes the same way.
   bool fit_volumes(ProgressSpan* span);
 
   // ==========================================================================
@@ -422,6 +421,10 @@ class Hierarchy : public StructureWithTraversal<Derived> {
   /// Refits the subtree whose nodes are [node, end) (depth-first layout: a subtree is
   /// contiguous); `ranges` (null when Volume is the box itself) receives each node's range.
   void refit_subtree(const Scene& scene, uint32_t node, uint32_t end, PrimRange* ranges);
+  /// Sphere trees: fits the volumes level by level, deepest first (sphere_tree.h: small
+  /// subtrees by Derived::fit over their vertices, larger ones by Derived::fit_inner from
+  /// their fitted subtrees). Reports levels done to `span`; false when cancelled.
+  bool fit_levels(const PrimRange* ranges, ProgressSpan* span);
   void refit_node(const Scene& scene, uint32_t node, PrimRange* ranges);
 };
 

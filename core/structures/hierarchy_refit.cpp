@@ -50,13 +50,8 @@ Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
     constexpr bool kVolumeIsBox = std::is_same_v<Volume, Aabb>;
     std::vector<PrimRange> ranges(kVolumeIsBox ? 0 : nodes_.size());
     refit_subtree(scene, 0, uint32_t(nodes_.size()), kVolumeIsBox ? nullptr : ranges.data());
-    if constexpr (!kVolumeIsBox) {
-      par::parallel_for(par::blocked_range<size_t>(0, nodes_.size(), 64), [&](const par::blocked_range<size_t>& r) {
-        for (size_t k = r.begin(); k < r.end(); ++k)
-          nodes_[k].volume =
-              Derived::fit(scene, prims_.data() + ranges[k].first, ranges[k].end - ranges[k].first, boxes_[k]);
-      });
-    }
+    scene_ = &scene;
+    if constexpr (!kVolumeIsBox) fit_levels(ranges.data(), nullptr);
   }
   scene_ = &scene;
   return {};
@@ -108,7 +103,9 @@ bool Hierarchy<Derived, Volume, VolumeRay>::fit_volumes(ProgressSpan* span) {
                          : PrimRange{std::min(ranges[k + 1].first, ranges[n.index].first),
                                      std::max(ranges[k + 1].end, ranges[n.index].end)};
   }
-  // Batches, so that the build thread can report progress and notice a cancel between them.
+  if constexpr (!std::is_same_v<Volume, Aabb>) return fit_levels(ranges.data(), span);
+  // Boxes: every node's is its own (flatten() set it). Batches, so that the build thread can
+  // report progress and notice a cancel between them.
   constexpr size_t kFitBatch = 8192;
   for (size_t begin = 0; begin < nodes_.size(); begin += kFitBatch) {
     const size_t end = std::min(nodes_.size(), begin + kFitBatch);
@@ -118,6 +115,37 @@ bool Hierarchy<Derived, Volume, VolumeRay>::fit_volumes(ProgressSpan* span) {
             Derived::fit(*scene_, prims_.data() + ranges[k].first, ranges[k].end - ranges[k].first, boxes_[k]);
     });
     if (span && !span->advance(double(end) / double(nodes_.size()))) return false;
+  }
+  return true;
+}
+
+template <class Derived, class Volume, class VolumeRay>
+bool Hierarchy<Derived, Volume, VolumeRay>::fit_levels(const PrimRange* ranges, ProgressSpan* span) {
+  // The nodes by depth, deepest first: a level's nodes depend only on deeper ones (their
+  // subtrees), so each level is one parallel loop, and the result is the serial one.
+  int max_depth = 0;
+  for (uint16_t d : depth_) max_depth = std::max(max_depth, int(d));
+  std::vector<uint32_t> level_start(size_t(max_depth) + 2, 0);
+  for (uint16_t d : depth_) ++level_start[size_t(max_depth - d) + 1];
+  for (size_t l = 1; l < level_start.size(); ++l) level_start[l] += level_start[l - 1];
+  std::vector<uint32_t> order(nodes_.size());
+  {
+    std::vector<uint32_t> next(level_start.begin(), level_start.end() - 1);
+    for (uint32_t k = 0; k < uint32_t(nodes_.size()); ++k) order[next[size_t(max_depth - depth_[k])]++] = k;
+  }
+  const Derived& derived = static_cast<const Derived&>(*this);
+  for (size_t l = 0; l + 1 < level_start.size(); ++l) {
+    par::parallel_for(par::blocked_range<uint32_t>(level_start[l], level_start[l + 1], 32),
+                      [&](const par::blocked_range<uint32_t>& r) {
+                        for (uint32_t i = r.begin(); i < r.end(); ++i) {
+                          const uint32_t k = order[i];
+                          const size_t n = ranges[k].end - ranges[k].first;
+                          nodes_[k].volume = nodes_[k].leaf() || n <= Derived::kDirectFit
+                                                 ? Derived::fit(*scene_, prims_.data() + ranges[k].first, n, boxes_[k])
+                                                 : derived.fit_inner(k);
+                        }
+                      });
+    if (span && !span->advance(double(level_start[l + 1]) / double(nodes_.size()))) return false;
   }
   return true;
 }
