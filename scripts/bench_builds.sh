@@ -13,7 +13,8 @@
 # process) and against Embree medium's build of that bench run.
 # Writes bench/builds.json (default builds), bench/builds_sweep.json (bvh builder=sah),
 # bench/builds_cold.json (cold builds) and bench/builds_report.md (by scripts/bench_report.py
-# --builds). Takes about 2.5 minutes on a 2-core machine. The CLI is taken from $ACCEL_BUILD_DIR/bin (default build/).
+# --builds). Takes about 2.5 minutes on a 2-core machine. The CLI is taken from
+# $ACCEL_BUILD_DIR/bin (default build/).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cli="${ACCEL_BUILD_DIR:-$root/build}/bin/accelviz-cli"

@@ -43,17 +43,16 @@ Status Hierarchy<Derived, Volume, VolumeRay>::refit_impl(const Scene& scene) {
       [](size_t a, size_t b) { return std::min(a, b); });
   const uint32_t bad = bad_at < prims_.size() ? prims_[bad_at] : ~0u;
   if (Status s = check_refit_prims(this->name(), scene, triangles_, bad); !s) return s;
+  scene_ = &scene;  // the sphere fits below read the moved vertices through it
   if (!nodes_.empty()) {
-    // A box is its own volume: one pass. A sphere is fitted to every vertex below it, as
-    // fit_volumes() does, from the triangle range the bottom-up pass records: a second pass,
-    // where every node is independent once the boxes exist.
+    // A box is its own volume: one pass. Spheres are fitted as fit_volumes() fits them
+    // (fit_levels()), from the triangle ranges the bottom-up pass records: a second pass,
+    // once every node's box exists.
     constexpr bool kVolumeIsBox = std::is_same_v<Volume, Aabb>;
     std::vector<PrimRange> ranges(kVolumeIsBox ? 0 : nodes_.size());
     refit_subtree(scene, 0, uint32_t(nodes_.size()), kVolumeIsBox ? nullptr : ranges.data());
-    scene_ = &scene;
     if constexpr (!kVolumeIsBox) fit_levels(ranges.data(), nullptr);
   }
-  scene_ = &scene;
   return {};
 }
 

@@ -1,7 +1,7 @@
 #include "structures/sphere_tree.h"
 
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
