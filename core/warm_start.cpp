@@ -1,9 +1,26 @@
 #include "warm_start.h"
 
+#include <cstdint>
 #include <cstdlib>  // defines __GLIBC__ where it applies
+#include <new>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
+#endif
+
+// The sanitizers bring their own allocator and operator new (GCC says so by
+// __SANITIZE_ADDRESS__ / __SANITIZE_THREAD__, clang by __has_feature): leave both to them.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define ACCEL_SANITIZER_ALLOCATOR 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define ACCEL_SANITIZER_ALLOCATOR 1
+#endif
+#endif
+
+#if defined(__linux__) && !defined(__EMSCRIPTEN__) && !defined(ACCEL_SANITIZER_ALLOCATOR)
+#define ACCEL_HUGE_PAGE_NEW 1
+#include <sys/mman.h>
 #endif
 
 namespace accel {
@@ -14,11 +31,46 @@ void prepare_for_builds() {
   // it when freed, and the heap keeps up to 1 GiB of free memory at its top instead of
   // trimming it, so the first build reuses the pages the loader faulted in, and each rebuild
   // (the viewer rebuilds on every parameter change) those of the build before. Larger blocks
-  // (scenes of millions of triangles) are still mapped and unmapped one by one: there the
-  // faults are a small part of the build.
+  // (scenes of millions of triangles) are mapped and unmapped one by one; operator new
+  // below advises them to huge pages.
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
 }
 
+bool large_blocks_advised_to_huge_pages() {
+#if defined(ACCEL_HUGE_PAGE_NEW)
+  return true;
+#else
+  return false;
+#endif
+}
+
 }  // namespace accel
+
+#if defined(ACCEL_HUGE_PAGE_NEW)
+// The replaceable global operator new (the array, nothrow and sized forms of the standard
+// library call this one; operator delete stays the library's free()): a block of at least
+// kHugePageAdviseFrom bytes is advised to transparent huge pages before anyone touches it.
+// Linux enables them for advised memory only by default ("madvise"), and a build's large
+// arrays are fresh memory whose first touch faults one 4 KiB page at a time: the million-
+// triangle terrain's grid build took ~34,000 faults (a third of its time; ~10 us a fault
+// on the virtual machines measured), with the advice ~1,600. The advice covers the whole
+// 2 MiB pages inside the block; on memory already in use it changes nothing.
+namespace {
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+constexpr std::size_t kHugePageAdviseFrom = kHugePage;
+}  // namespace
+
+void* operator new(std::size_t size) {
+  void* block = std::malloc(size != 0 ? size : 1);
+  if (!block) throw std::bad_alloc();
+  if (size >= kHugePageAdviseFrom) {
+    const auto address = reinterpret_cast<std::uintptr_t>(block);
+    const std::uintptr_t first = (address + kHugePage - 1) & ~(kHugePage - 1);
+    const std::uintptr_t last = (address + size) & ~(kHugePage - 1);
+    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);  // advice only
+  }
+  return block;
+}
+#endif

@@ -11,11 +11,18 @@
 // virtual machine). With prepare_for_builds() the first build takes ~1,700 faults and
 // ~70 ms. TBB's thread start was also looked at (its pool starts at the first parallel
 // loop): a warm-up loop on a background thread made no difference measurable here.
+// Blocks too large for the heap (a million-triangle scene's arrays) are fresh memory in
+// every build; warm_start.cpp's operator new advises them to transparent huge pages, one
+// fault per 2 MiB instead of per 4 KiB.
 namespace accel {
 
 /// Call once, early in main (before the scene load): freed memory stays in the process for
 /// the next allocation instead of going back to the kernel. Does nothing outside glibc
 /// (the web build has the browser's allocator).
 void prepare_for_builds();
+
+/// Whether this build's operator new advises blocks of 4 MiB and more to huge pages (Linux,
+/// outside the sanitizers, which bring their own operator new).
+bool large_blocks_advised_to_huge_pages();
 
 }  // namespace accel

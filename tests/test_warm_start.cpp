@@ -5,7 +5,12 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdlib>
+#include <fstream>
+#include <new>
+#include <sstream>
+#include <string>
 
 #include "warm_start.h"
 
@@ -49,6 +54,39 @@ TEST(WarmStart, AFreedBlockServesTheNextAllocationWithoutPageFaults) {
   // takes fresh zeroed pages: ~4,096 faults. A few are allowed for the allocator's own use.
   EXPECT_LT(minor_faults() - before, 64);
 #endif
+}
+
+/// The VmFlags line of the mapping holding `address` in /proc/self/smaps ("" if none).
+std::string vm_flags_at(const void* address) {
+  const auto a = reinterpret_cast<std::uintptr_t>(address);
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line)) {
+    std::uintptr_t lo = 0, hi = 0;
+    char dash = 0;
+    std::istringstream header(line);
+    if (header >> std::hex >> lo >> dash >> hi && dash == '-') {  // a mapping's first line
+      inside = lo <= a && a < hi;
+    } else if (inside && line.rfind("VmFlags:", 0) == 0) {
+      return line;
+    }
+  }
+  return "";
+}
+
+TEST(WarmStart, OperatorNewAdvisesLargeBlocksToHugePages) {
+  if (!large_blocks_advised_to_huge_pages()) GTEST_SKIP() << "no advice in this build (sanitizers, not Linux)";
+  if (access("/sys/kernel/mm/transparent_hugepage/enabled", R_OK) != 0)
+    GTEST_SKIP() << "kernel without transparent huge pages";
+  constexpr size_t kBytes = 40 << 20;  // above glibc's mmap threshold: a mapping of its own
+  void* block = ::operator new(kBytes);  // called directly: a new-expression may be elided
+  // The middle of the block lies in a whole 2 MiB page, advised: the kernel marks its
+  // mapping "hg" (VM_HUGEPAGE), and its first touch faults a 2 MiB page in where it can.
+  const std::string flags = vm_flags_at(static_cast<char*>(block) + kBytes / 2);
+  ::operator delete(block);
+  if (flags.empty()) GTEST_SKIP() << "no /proc/self/smaps";
+  EXPECT_NE(flags.find(" hg"), std::string::npos) << flags;
 }
 
 }  // namespace
