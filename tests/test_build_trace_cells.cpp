@@ -195,7 +195,7 @@ std::vector<uint32_t> block(uint32_t first) {
 TEST(BuildTraceCells, OctreeStepsDepthFirstChildZeroFirst) {
   const Scene scene = octree_scene();
   std::unique_ptr<Structure> built;
-  const BuildTrace t = record("octree", scene, {"max_prims=1"}, &built);
+  const BuildTrace t = record("octree", scene, {"max_prims=1", "ct=0"}, &built);
   const auto few = LeafReason::FewPrims;
   std::vector<Step> want = {{Kind::SceneBox, 0, {}},
                             {Kind::Node, 0, {0, 1, 2}},
@@ -239,7 +239,7 @@ TEST(BuildTraceCells, OctreeStepsDepthFirstChildZeroFirst) {
 
 TEST(BuildTraceCells, OctreeMaxDepthStop) {
   const Scene scene = octree_scene();
-  const BuildTrace t = record("octree", scene, {"max_prims=1", "max_depth=1"});
+  const BuildTrace t = record("octree", scene, {"max_prims=1", "ct=0", "max_depth=1"});
   const auto few = LeafReason::FewPrims;
   std::vector<Step> want = {{Kind::SceneBox, 0, {}},
                             {Kind::Node, 0, {0, 1, 2}},

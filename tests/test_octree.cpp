@@ -85,7 +85,7 @@ std::vector<std::string> tokens(const TraceRecorder& rec) {
 // [SECTION] Hand-checked traces
 //
 // Scene "octants": the root is the unit cube (T0 touches (0,0,0), T1 touches (1,1,1)), split
-// once at 0.5 (max_prims = 1, 5 triangles). Children are ids 1 + octant, octant bits
+// once at 0.5 (max_prims = 1 and ct = 0, the stop by references alone; 5 triangles). Children are ids 1 + octant, octant bits
 // x = 1, y = 2, z = 4 (set = upper half):
 //   id 1 = octant 0 (x lo y lo z lo): T0 in the plane x = 0
 //   id 2 = octant 1 (x hi y lo z lo): T2 in x = 0.75, y in [0.05, 0.45], z in [0.3, 0.45]
@@ -107,7 +107,7 @@ Scene octants_scene() {
 
 TEST(OctreeTrace, OctantsSceneHasTheExpectedLayout) {
   const Scene scene = octants_scene();
-  auto s = build(scene, {"max_prims=1"});
+  auto s = build(scene, {"max_prims=1", "ct=0"});
   ASSERT_TRUE(s);
   const auto& octree = static_cast<const Octree&>(*s);
   EXPECT_EQ(octree.data().root_box.min, Vec3(0.0f));
@@ -135,10 +135,26 @@ TEST(OctreeTrace, OctantsSceneHasTheExpectedLayout) {
 // every triangle (z = 0.25 < 0.3), so nothing is hit and every child it passes is visited.
 // It passes octant 1 (t in [0, 0.4]), then octant 3 (y > 0.5 from t = 0.4), then octant 2
 // (x < 0.5 from t = 0.5); it misses octant 0 (x < 0.5 only once y > 0.5) and octant 7 (z).
+// The no-gain stop weighs the visits a split adds: the octants scene's root (5 triangles,
+// each in one child: 5 references) splits while 3 ct + 5 / 4 < 5, i.e. for ct = 0 and 1,
+// and is a leaf (no gain) for ct = 2, the default.
+TEST(OctreeTrace, CtStopsASplitThatSavesLessThanItsVisits) {
+  const Scene scene = octants_scene();
+  for (const char* ct : {"ct=0", "ct=1", "ct=2"}) {
+    SCOPED_TRACE(ct);
+    auto s = build(scene, {"max_prims=1", ct});
+    ASSERT_TRUE(s);
+    const OctreeData& data = static_cast<const Octree&>(*s).data();
+    const bool splits = std::string(ct) != "ct=2";
+    EXPECT_EQ(data.nodes.size(), splits ? 9u : 1u);
+    EXPECT_EQ(data.reasons.no_gain, splits ? 0u : 1u);
+  }
+}
+
 /// Ray R1 through the octants scene's octree (max_prims=1) with child `order`: no hit.
 TraceRecorder trace_r1(const std::string& order) {
   const Scene scene = octants_scene();
-  auto s = build(scene, {"max_prims=1", "order=" + order});
+  auto s = build(scene, {"max_prims=1", "ct=0", "order=" + order});
   TraceRecorder rec;
   if (!s) return rec;  // build() has reported the failure
   EXPECT_FALSE(s->intersect_traced(make_ray({1.0f, 0.1f, 0.25f}, {-1, 1, 0}), rec).valid());
@@ -188,7 +204,7 @@ TEST(OctreeTrace, SortedOrderVisitsOctantsFrontToBack) {
 // octant 1 for [0.5, 0.9] (would hit T2 at t = 0.65, x = 0.75, y = 0.35).
 TEST(OctreeTrace, SortedSkipsChildrenBeyondTheClosestHit) {
   const Scene scene = octants_scene();
-  auto s = build(scene, {"max_prims=1", "order=sorted"});
+  auto s = build(scene, {"max_prims=1", "ct=0", "order=sorted"});
   ASSERT_TRUE(s);
   TraceRecorder rec;
   const Hit h = s->intersect_traced(make_ray({0.1f, 1.0f, 0.32f}, {1, -1, 0}), rec);
@@ -215,7 +231,7 @@ TEST(OctreeTrace, SortedSkipsChildrenBeyondTheClosestHit) {
 
 TEST(OctreeTrace, FixedOrderFindsTheFarHitFirstThenTheCloserOne) {
   const Scene scene = octants_scene();
-  auto s = build(scene, {"max_prims=1", "order=fixed"});
+  auto s = build(scene, {"max_prims=1", "ct=0", "order=fixed"});
   ASSERT_TRUE(s);
   TraceRecorder rec;
   const Hit h = s->intersect_traced(make_ray({0.1f, 1.0f, 0.32f}, {1, -1, 0}), rec);
@@ -233,7 +249,7 @@ TEST(OctreeTrace, FixedOrderFindsTheFarHitFirstThenTheCloserOne) {
   EXPECT_EQ(tokens(rec), expected);
 }
 
-// Scene "straddle" (max_prims = 2; same corner triangles TA, TB as above, so the root is the
+// Scene "straddle" (max_prims = 2, ct = 0; same corner triangles TA, TB as above, so the root is the
 // unit cube again): S reaches from x = 0.1 (octant 0) to x = 0.95 (octant 1) and is hit by
 // the ray below at x = 0.78, in octant 1; C in the plane x = 0.6, also in octant 1, is
 // closer. Leaves: id 1 = octant 0 {TA, S}, id 2 = octant 1 {S, C}, id 8 = octant 7 {TB}.
@@ -246,7 +262,7 @@ TEST(OctreeTrace, StraddlingTriangleHitInTheFarChildDoesNotEndTheSearch) {
   });
   for (const char* order : {"order=sorted", "order=fixed"}) {
     SCOPED_TRACE(order);
-    auto s = build(scene, {"max_prims=2", order});
+    auto s = build(scene, {"max_prims=2", "ct=0", order});
     ASSERT_TRUE(s);
     EXPECT_EQ(s->node_prims(1), (std::vector<uint32_t>{0, 2}));
     EXPECT_EQ(s->node_prims(2), (std::vector<uint32_t>{2, 3}));
@@ -668,7 +684,7 @@ class ReferenceOctreeBuilder {
     const size_t n = prims.size();
     size_t refs = 0;
     for (const auto& child : children) refs += child.size();
-    if (refs >= 4 * n) return leaf(id, prims, &why.no_gain);
+    if (3.0 * options_.ct + double(refs) / 4.0 >= double(n)) return leaf(id, prims, &why.no_gain);
     const uint32_t first = uint32_t(data_.nodes.size());
     for (int k = 0; k < 8; ++k) add(id, depth + 1);
     data_.nodes[id] = OctreeNode{first, OctreeNode::kInner};

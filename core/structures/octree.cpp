@@ -402,8 +402,10 @@ class OctreeBuilder {
     size_t starts[8], refs = 0;
     for (unsigned octant = 0; octant < 8; ++octant) starts[octant] = refs, refs += sizes[octant];
     // No gain: each child has a quarter of the node's surface area, so a ray through the
-    // node passes 2 children on average and would test refs/4 triangles instead of n.
-    if (refs >= 4 * n) return leaf(part, self, LeafReason::NoGain, prims, n, &why.no_gain, share, out);
+    // node passes 2 children on average and would test refs/4 triangles instead of n, after
+    // visiting the node and those two children.
+    if (3.0 * options_.ct + double(refs) / 4.0 >= double(n))
+      return leaf(part, self, LeafReason::NoGain, prims, n, &why.no_gain, share, out);
     std::vector<uint32_t>& lists = scratch.refs[depth];
     lists.resize(refs);
     {
@@ -518,6 +520,9 @@ const ParamTable<OctreeOptions>& Octree::param_table() {
                   std::vector<std::pair<std::string, OctreeInsert>>{{"bbox", OctreeInsert::Bbox},
                                                                    {"exact", OctreeInsert::Exact}},
                   "a triangle goes to each child its bounding box (bbox) or the triangle itself (exact) overlaps")
+          .number("ct", [](O& o) -> auto& { return o.build.ct; }, 0, 100,
+                  "cost of a node visit in triangle tests: a cell is split only when 3 ct + its children's "
+                  "references / 4 < its triangles (0 = references < 4 x triangles)")
           .choice("order", &O::order,
                   std::vector<std::pair<std::string, OctreeOrder>>{{"sorted", OctreeOrder::Sorted},
                                                                   {"fixed", OctreeOrder::Fixed}},
