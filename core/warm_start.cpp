@@ -1,5 +1,6 @@
 #include "warm_start.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>  // defines __GLIBC__ where it applies
 #include <new>
@@ -49,8 +50,8 @@ bool large_blocks_advised_to_huge_pages() {
 }  // namespace accel
 
 #if defined(ACCEL_HUGE_PAGE_NEW)
-// The replaceable global operator new (the array, nothrow and sized forms of the standard
-// library call this one; operator delete stays the library's free()): a block of at least
+// The replaceable global operator new (the array and nothrow forms of the standard library
+// call this one; operator delete stays the library's free()): a block of at least
 // kHugePageAdviseFrom bytes is advised to transparent huge pages before anyone touches it.
 // Linux enables them for advised memory only by default ("madvise"), and a build's large
 // arrays are fresh memory whose first touch faults one 4 KiB page at a time: the million-
@@ -62,15 +63,31 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 constexpr std::size_t kHugePageAdviseFrom = kHugePage;
 }  // namespace
 
+namespace {
+void advise_huge_pages(void* block, std::size_t size) {
+  if (size < kHugePageAdviseFrom) return;
+  const auto address = reinterpret_cast<std::uintptr_t>(block);
+  const std::uintptr_t first = (address + kHugePage - 1) & ~(kHugePage - 1);
+  const std::uintptr_t last = (address + size) & ~(kHugePage - 1);
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);  // advice only
+}
+}  // namespace
+
 void* operator new(std::size_t size) {
   void* block = std::malloc(size != 0 ? size : 1);
   if (!block) throw std::bad_alloc();
-  if (size >= kHugePageAdviseFrom) {
-    const auto address = reinterpret_cast<std::uintptr_t>(block);
-    const std::uintptr_t first = (address + kHugePage - 1) & ~(kHugePage - 1);
-    const std::uintptr_t last = (address + size) & ~(kHugePage - 1);
-    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);  // advice only
-  }
+  advise_huge_pages(block, size);
+  return block;
+}
+
+// The over-aligned form (the wide BVH's nodes, the octree's triangle records): as the
+// library's, aligned_alloc of the size rounded up to the alignment, freed by its free().
+void* operator new(std::size_t size, std::align_val_t align) {
+  const std::size_t a = std::max(std::size_t(align), sizeof(void*));
+  const std::size_t rounded = ((size != 0 ? size : 1) + a - 1) & ~(a - 1);
+  void* block = std::aligned_alloc(a, rounded);
+  if (!block) throw std::bad_alloc();
+  advise_huge_pages(block, rounded);
   return block;
 }
 #endif

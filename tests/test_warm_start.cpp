@@ -80,13 +80,18 @@ TEST(WarmStart, OperatorNewAdvisesLargeBlocksToHugePages) {
   if (access("/sys/kernel/mm/transparent_hugepage/enabled", R_OK) != 0)
     GTEST_SKIP() << "kernel without transparent huge pages";
   constexpr size_t kBytes = 40 << 20;  // above glibc's mmap threshold: a mapping of its own
-  void* block = ::operator new(kBytes);  // called directly: a new-expression may be elided
-  // The middle of the block lies in a whole 2 MiB page, advised: the kernel marks its
+  // Called directly (a new-expression may be elided): the plain and the over-aligned form.
+  void* block = ::operator new(kBytes);
+  void* aligned = ::operator new(kBytes, std::align_val_t(64));
+  // The middle of each block lies in a whole 2 MiB page, advised: the kernel marks its
   // mapping "hg" (VM_HUGEPAGE), and its first touch faults a 2 MiB page in where it can.
   const std::string flags = vm_flags_at(static_cast<char*>(block) + kBytes / 2);
+  const std::string aligned_flags = vm_flags_at(static_cast<char*>(aligned) + kBytes / 2);
   ::operator delete(block);
-  if (flags.empty()) GTEST_SKIP() << "no /proc/self/smaps";
+  ::operator delete(aligned, std::align_val_t(64));
+  if (flags.empty() || aligned_flags.empty()) GTEST_SKIP() << "no /proc/self/smaps";
   EXPECT_NE(flags.find(" hg"), std::string::npos) << flags;
+  EXPECT_NE(aligned_flags.find(" hg"), std::string::npos) << aligned_flags;
 }
 
 }  // namespace
