@@ -14,7 +14,7 @@
 #            smoke-testing on a small scene, e.g. scripts/bench_huge.sh procedural:soup 10000 --out /tmp/soup)
 # brute tests every triangle for every ray: when triangles x rays exceeds 5e8 it traces only
 # the first 5e8 / triangles rays of the same set, and its trace time is scaled up to all the
-# rays (marked "extrapolated"). Takes about 15 minutes on a 2-core machine for procedural:huge.
+# rays (marked "extrapolated"). Takes about 3 minutes on a 2-core machine for procedural:huge.
 # The CLI is taken from $ACCEL_BUILD_DIR/bin (default build/).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
