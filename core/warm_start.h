@@ -21,7 +21,7 @@ namespace accel {
 /// (the web build has the browser's allocator).
 void prepare_for_builds();
 
-/// Whether this build's operator new advises blocks of 4 MiB and more to huge pages (Linux,
+/// Whether this build's operator new advises blocks of 2 MiB and more to huge pages (Linux,
 /// outside the sanitizers, which bring their own operator new).
 bool large_blocks_advised_to_huge_pages();
 

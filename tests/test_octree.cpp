@@ -85,8 +85,8 @@ std::vector<std::string> tokens(const TraceRecorder& rec) {
 // [SECTION] Hand-checked traces
 //
 // Scene "octants": the root is the unit cube (T0 touches (0,0,0), T1 touches (1,1,1)), split
-// once at 0.5 (max_prims = 1 and ct = 0, the stop by references alone; 5 triangles). Children are ids 1 + octant, octant bits
-// x = 1, y = 2, z = 4 (set = upper half):
+// once at 0.5 (max_prims = 1 and ct = 0, the stop by references alone; 5 triangles).
+// Children are ids 1 + octant, octant bits x = 1, y = 2, z = 4 (set = upper half):
 //   id 1 = octant 0 (x lo y lo z lo): T0 in the plane x = 0
 //   id 2 = octant 1 (x hi y lo z lo): T2 in x = 0.75, y in [0.05, 0.45], z in [0.3, 0.45]
 //   id 3 = octant 2 (x lo y hi z lo): T3 in x = 0.25, y in [0.55, 0.95], z in [0.3, 0.45]
@@ -131,10 +131,6 @@ TEST(OctreeTrace, OctantsSceneHasTheExpectedLayout) {
   EXPECT_EQ(st.prim_references, 5u);
 }
 
-// Ray R1 from (1, 0.1, 0.25) along (-1, 1, 0), starting on the root's face x = 1, below
-// every triangle (z = 0.25 < 0.3), so nothing is hit and every child it passes is visited.
-// It passes octant 1 (t in [0, 0.4]), then octant 3 (y > 0.5 from t = 0.4), then octant 2
-// (x < 0.5 from t = 0.5); it misses octant 0 (x < 0.5 only once y > 0.5) and octant 7 (z).
 // The no-gain stop weighs the visits a split adds: the octants scene's root (5 triangles,
 // each in one child: 5 references) splits while 3 ct + 5 / 4 < 5, i.e. for ct = 0 and 1,
 // and is a leaf (no gain) for ct = 2, the default.
@@ -151,6 +147,10 @@ TEST(OctreeTrace, CtStopsASplitThatSavesLessThanItsVisits) {
   }
 }
 
+// Ray R1 from (1, 0.1, 0.25) along (-1, 1, 0), starting on the root's face x = 1, below
+// every triangle (z = 0.25 < 0.3), so nothing is hit and every child it passes is visited.
+// It passes octant 1 (t in [0, 0.4]), then octant 3 (y > 0.5 from t = 0.4), then octant 2
+// (x < 0.5 from t = 0.5); it misses octant 0 (x < 0.5 only once y > 0.5) and octant 7 (z).
 /// Ray R1 through the octants scene's octree (max_prims=1) with child `order`: no hit.
 TraceRecorder trace_r1(const std::string& order) {
   const Scene scene = octants_scene();
@@ -249,8 +249,8 @@ TEST(OctreeTrace, FixedOrderFindsTheFarHitFirstThenTheCloserOne) {
   EXPECT_EQ(tokens(rec), expected);
 }
 
-// Scene "straddle" (max_prims = 2, ct = 0; same corner triangles TA, TB as above, so the root is the
-// unit cube again): S reaches from x = 0.1 (octant 0) to x = 0.95 (octant 1) and is hit by
+// Scene "straddle" (max_prims = 2, ct = 0; same corner triangles TA, TB as above, so the
+// root is the unit cube again): S reaches from x = 0.1 (octant 0) to x = 0.95 (octant 1) and is hit by
 // the ray below at x = 0.78, in octant 1; C in the plane x = 0.6, also in octant 1, is
 // closer. Leaves: id 1 = octant 0 {TA, S}, id 2 = octant 1 {S, C}, id 8 = octant 7 {TB}.
 TEST(OctreeTrace, StraddlingTriangleHitInTheFarChildDoesNotEndTheSearch) {
