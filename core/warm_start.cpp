@@ -39,6 +39,14 @@ void prepare_for_builds() {
 #endif
 }
 
+bool builds_reuse_freed_memory() {
+#if defined(__GLIBC__) && !defined(ACCEL_SANITIZER_ALLOCATOR)
+  return true;
+#else
+  return false;
+#endif
+}
+
 bool large_blocks_advised_to_huge_pages() {
 #if defined(ACCEL_HUGE_PAGE_NEW)
   return true;
@@ -52,7 +60,7 @@ bool large_blocks_advised_to_huge_pages() {
 #if defined(ACCEL_HUGE_PAGE_NEW)
 // The replaceable global operator new (the array and nothrow forms of the standard library
 // call this one; operator delete stays the library's free()): a block of at least
-// kHugePageAdviseFrom bytes is advised to transparent huge pages before anyone touches it.
+// kHugePage bytes (one huge page) is advised to transparent huge pages before anyone touches it.
 // Linux enables them for advised memory only by default ("madvise"), and a build's large
 // arrays are fresh memory whose first touch faults one 4 KiB page at a time: the million-
 // triangle terrain's grid build took ~34,000 faults (a third of its time; ~10 us a fault
@@ -60,10 +68,9 @@ bool large_blocks_advised_to_huge_pages() {
 // 2 MiB pages inside the block; on memory already in use it changes nothing.
 namespace {
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
-constexpr std::size_t kHugePageAdviseFrom = kHugePage;
 
 void advise_huge_pages(void* block, std::size_t size) {
-  if (size < kHugePageAdviseFrom) return;
+  if (size < kHugePage) return;
   const auto address = reinterpret_cast<std::uintptr_t>(block);
   const std::uintptr_t first = (address + kHugePage - 1) & ~(kHugePage - 1);
   const std::uintptr_t last = (address + size) & ~(kHugePage - 1);

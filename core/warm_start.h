@@ -21,6 +21,10 @@ namespace accel {
 /// (the web build has the browser's allocator).
 void prepare_for_builds();
 
+/// Whether prepare_for_builds() tunes the allocator this process really uses: glibc's,
+/// outside the sanitizers (which bring their own malloc) and outside the web build.
+bool builds_reuse_freed_memory();
+
 /// Whether this build's operator new advises blocks of 2 MiB and more to huge pages (Linux,
 /// outside the sanitizers, which bring their own operator new).
 bool large_blocks_advised_to_huge_pages();

@@ -14,15 +14,6 @@
 
 #include "warm_start.h"
 
-// The sanitizers replace malloc (GCC says so by __SANITIZE_ADDRESS__, clang by __has_feature).
-#if defined(__SANITIZE_ADDRESS__)
-#define ACCEL_TEST_OWN_MALLOC 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ACCEL_TEST_OWN_MALLOC 1
-#endif
-#endif
-
 namespace accel {
 namespace {
 
@@ -42,9 +33,7 @@ void touch_and_free(size_t bytes) {
 }
 
 TEST(WarmStart, AFreedBlockServesTheNextAllocationWithoutPageFaults) {
-#if defined(ACCEL_TEST_OWN_MALLOC) || !defined(__GLIBC__)
-  GTEST_SKIP() << "glibc's allocator only (the sanitizers bring their own)";
-#else
+  if (!builds_reuse_freed_memory()) GTEST_SKIP() << "glibc's allocator only (the sanitizers bring their own)";
   prepare_for_builds();
   constexpr size_t kBytes = 16 << 20;  // like crytek_sponza's build arrays; 4,096 pages
   touch_and_free(kBytes);               // the "loader": faults its pages in once
@@ -53,7 +42,6 @@ TEST(WarmStart, AFreedBlockServesTheNextAllocationWithoutPageFaults) {
   // Without prepare_for_builds() the first block is unmapped on free and the second one
   // takes fresh zeroed pages: ~4,096 faults. A few are allowed for the allocator's own use.
   EXPECT_LT(minor_faults() - before, 64);
-#endif
 }
 
 /// The VmFlags line of the mapping holding `address` in /proc/self/smaps ("" if none).

@@ -397,6 +397,8 @@ const PseudoCode& build_octree_code() {
       {"scene_box", "start with the bbox of the whole scene"},
       {"node", "build(cell, objects):"},
       {"leaf", "    if few objects or max depth: leaf"},
+      {"", "    if the sub-cells save less than their visits:"},
+      {"", "        leaf   (added: 3 ct + refs/4 >= objects)"},
       {"subdivide", "    subdivide the cell into 8 equal sub-cells"},
       {"", "    for each sub-cell:"},
       {"", "        build(sub-cell, objects overlapping it)"},
