@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "planar_geometry.h"
+
 namespace accel {
 
 const char* verdict_name(HitVerdict v) {
@@ -15,9 +17,12 @@ const char* verdict_name(HitVerdict v) {
   return "?";
 }
 
-ReferenceHit reference_closest(const Scene& scene, const Ray& ray) {
+namespace {
+
+/// The closest hit by `tester` (DoubleRayTester or PlanarRayTester) over every valid triangle.
+template <class Tester>
+ReferenceHit closest_by(const Scene& scene, const Ray& ray, const Tester& tester) {
   ReferenceHit best;
-  const DoubleRayTester tester(ray);
   for (uint32_t prim : scene.valid_prims()) {
     double t, u, v;
     const double tmax = best.prim < 0 ? double(ray.tmax) : best.t;
@@ -27,6 +32,21 @@ ReferenceHit reference_closest(const Scene& scene, const Ray& ray) {
     }
   }
   return best;
+}
+
+/// The exact (double) t of `ray` on triangle `prim` by the scene's hit rule, if it hits.
+bool exact_t(const Scene& scene, const Ray& ray, uint32_t prim, double* t) {
+  double u, v;
+  const Vec3 &a = scene.vertex(prim, 0), &b = scene.vertex(prim, 1), &c = scene.vertex(prim, 2);
+  if (scene.planar()) return PlanarRayTester(ray).intersect(a, b, c, INFINITY, t, &u, &v);
+  return intersect_triangle_double(ray, a, b, c, INFINITY, t, &u, &v);
+}
+
+}  // namespace
+
+ReferenceHit reference_closest(const Scene& scene, const Ray& ray) {
+  if (scene.planar()) return closest_by(scene, ray, PlanarRayTester(ray));
+  return closest_by(scene, ray, DoubleRayTester(ray));
 }
 
 double point_triangle_distance(const DVec3& p, const DVec3& a, const DVec3& b, const DVec3& c) {
@@ -73,10 +93,8 @@ HitVerdict judge_hit(const Scene& scene, const Ray& ray, const Hit& got, const R
   Ray unclipped = ray;
   unclipped.tmin = -INFINITY;
   unclipped.tmax = INFINITY;
-  double t, u, v;
-  if (intersect_triangle_double(unclipped, scene.vertex(got.prim, 0), scene.vertex(got.prim, 1),
-                                scene.vertex(got.prim, 2), INFINITY, &t, &u, &v) &&
-      std::abs(t - ref.t) <= tol)
+  double t;
+  if (exact_t(scene, unclipped, uint32_t(got.prim), &t) && std::abs(t - ref.t) <= tol)
     return HitVerdict::Correct;
   if (t_close && near_triangle(got.prim)) return HitVerdict::Correct;
   return HitVerdict::WrongPrim;

@@ -1,7 +1,10 @@
 #include "geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
+
+#include "planar_geometry.h"
 
 namespace accel {
 
@@ -10,6 +13,7 @@ std::string_view kernel_name(Kernel k) {
     case Kernel::Watertight: return "watertight";
     case Kernel::Moller: return "moller";
     case Kernel::Double: return "double";
+    case Kernel::Planar: return "planar";
   }
   return "?";
 }
@@ -35,6 +39,15 @@ bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
   // A t beyond FLT_MAX (a subnormal direction: t in units of a tiny d) has no float answer.
   if (std::isinf(out->t)) return false;
   // Rounding t to float may push it past an inclusive bound; keep the float answer inside.
+  out->t = std::clamp(out->t, ray_.tmin, tmax);
+  return true;
+}
+
+bool TriangleTester::planar(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const {
+  double t, u, v;
+  if (!PlanarRayTester(ray_).intersect(p0, p1, p2, tmax, &t, &u, &v)) return false;
+  *out = {float(t), float(u), float(v)};
+  if (std::isinf(out->t)) return false;  // as reference(): no float answer
   out->t = std::clamp(out->t, ray_.tmin, tmax);
   return true;
 }

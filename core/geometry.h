@@ -29,8 +29,10 @@ enum class Kernel : uint8_t {
   Watertight,  ///< Woop, Benthin, Wald 2013, "Watertight Ray/Triangle Intersection", float (default)
   Moller,      ///< Moller & Trumbore 1997 in float: fast, not watertight at shared edges
   Double,      ///< the watertight algorithm in double precision: the reference
+  Planar,      ///< 2D scenes (docs/hits.md): the 2D hit rule in double (planar_geometry.h)
 };
-/// Every kernel, the default (watertight) first.
+/// Every kernel of 3D scenes, the default (watertight) first: what --kernel offers. Planar is
+/// not among them: build_structure() gives it to every structure over a 2D scene.
 inline constexpr Kernel kAllKernels[] = {Kernel::Watertight, Kernel::Moller, Kernel::Double};
 /// "watertight", "moller" or "double": what --kernel and the script command take.
 std::string_view kernel_name(Kernel k);
@@ -84,6 +86,7 @@ class TriangleTester {
   ACCEL_FORCE_INLINE bool watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   inline bool moller(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   bool reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
+  bool planar(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
 
   Ray ray_;
   Kernel kernel_;
@@ -201,6 +204,7 @@ bool TriangleTester::intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
     case Kernel::Watertight: return watertight(p0, p1, p2, tmax, out);
     case Kernel::Moller: return moller(p0, p1, p2, tmax, out);
     case Kernel::Double: return reference(p0, p1, p2, tmax, out);
+    case Kernel::Planar: return planar(p0, p1, p2, tmax, out);
   }
   return false;
 }
@@ -263,9 +267,9 @@ int TriangleTester::intersect4(const TriangleBlock& block, int lanes, float tmax
                                float* v) const {
   if (kernel_ == Kernel::Watertight) return watertight4(block, lanes, tmax, t, u, v);
   if (kernel_ == Kernel::Moller) return moller4(block, lanes, tmax, t, u, v);
-  // Double: the reference has no SIMD form; lane by lane.
+  // Double and planar have no SIMD form; lane by lane.
   return test_lanes(block, lanes, tmax, t, u, v, [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max,
-                                                       TriangleHit* h) { return reference(p0, p1, p2, t_max, h); });
+                                                       TriangleHit* h) { return intersect(p0, p1, p2, t_max, h); });
 }
 
 template <class Test>

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "planar_geometry.h"
 #include "random.h"
 #include "rays_io.h"
 
@@ -42,7 +43,7 @@ std::vector<Ray> primary_rays(const PinholeCamera& cam, int width, int height) {
   return rays;
 }
 
-std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed) {
+std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed, bool planar) {
   std::vector<Ray> rays;
   rays.reserve(n);
   Rng rng(seed);
@@ -54,9 +55,10 @@ std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed) {
   const Vec3 e = bounds.empty() ? Vec3(1.0f) : glm::max(bounds.extent(), Vec3(std::max(1e-6f, far)));
   while (rays.size() < n) {
     const auto [ox, oy, oz] = rng.uniform_xyz(-0.5f, 0.5f);
-    const Vec3 o = c + 1.5f * e * Vec3(ox, oy, oz);
+    Vec3 o = c + 1.5f * e * Vec3(ox, oy, oz);
     const auto [px, py, pz] = rng.uniform_xyz(-0.5f, 0.5f);
-    const Vec3 p = c + e * Vec3(px, py, pz);
+    Vec3 p = c + e * Vec3(px, py, pz);
+    if (planar) o.z = p.z = 0.0f;  // the same draws, in the plane z = 0
     const Vec3 d = p - o;
     if (d == Vec3(0.0f)) continue;
     Ray r;
@@ -90,6 +92,8 @@ Result<std::vector<Ray>> make_rays(const std::string& spec, const Scene& scene) 
     if (parts.size() != 3 || !parse_positive(parts[1], &w) || !parse_positive(parts[2], &h) || w == 0 || h == 0 ||
         w > 16384 || h > 16384)
       return make_error("rays '" + spec + "': expected primary:W:H with W, H in [1, 16384]");
+    if (scene.planar())
+      return make_error("rays '" + spec + "': a 2D scene has no camera; use random:N:SEED or a file of 2D rays");
     return primary_rays(default_camera(scene.bounds()), int(w), int(h));
   }
   if (parts[0] == "random") {
@@ -97,9 +101,16 @@ Result<std::vector<Ray>> make_rays(const std::string& spec, const Scene& scene) 
     if (parts.size() != 3 || !parse_positive(parts[1], &n) || !parse_positive(parts[2], &seed) || n == 0 ||
         n > 100'000'000)
       return make_error("rays '" + spec + "': expected random:N:SEED with N in [1, 1e8]");
-    return random_rays(scene.bounds(), n, seed);
+    return random_rays(scene.bounds(), n, seed, scene.planar());
   }
-  return read_rays(spec);
+  auto rays = read_rays(spec);
+  if (!rays || !scene.planar()) return rays;
+  // docs/hits.md, 2D scenes: a 3D ray would leave the plane the triangles lie in.
+  for (size_t i = 0; i < rays.value().size(); ++i)
+    if (!is_planar_ray(rays.value()[i]))
+      return make_error(spec + ": ray " + std::to_string(i) +
+                        " (0-based) is not a 2D ray, which a 2D scene needs: oz = dz = 0, dx and dy not both 0");
+  return rays;
 }
 
 }  // namespace accel

@@ -31,10 +31,12 @@ std::vector<Ray> primary_rays(const PinholeCamera& cam, int width, int height);
 
 /// `n` random rays for `scene` from `seed` (SplitMix64, random.h): origins uniform in the scene
 /// box grown by 50% around its centre, directions towards a uniform point of the box (most
-/// rays hit, many start inside the scene).
-std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed);
+/// rays hit, many start inside the scene). `planar`: 2D rays, the same draws with z = 0.
+std::vector<Ray> random_rays(const Aabb& bounds, size_t n, uint64_t seed, bool planar = false);
 
 /// Parses a ray-set spec: "primary:W:H", "random:N:SEED", or a rays file path (docs/hits.md).
+/// A 2D scene (Scene::planar()) takes 2D rays only: random ones in its plane, or a file
+/// whose every ray is 2D (the error names the first that is not); primary rays are an error.
 Result<std::vector<Ray>> make_rays(const std::string& spec, const Scene& scene);
 
 }  // namespace accel

@@ -38,6 +38,19 @@ bool parse_ray_number(std::string_view token, float* out) {
   return true;
 }
 
+std::vector<std::string_view> split_whitespace(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) tokens.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return tokens;
+}
+
 Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& source_name) {
   std::vector<Ray> rays;
   std::istringstream in(text);
@@ -48,18 +61,7 @@ Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& 
   };
   while (std::getline(in, line)) {
     ++line_no;
-    std::vector<std::string_view> tok;
-    {
-      std::string_view s(line);
-      size_t i = 0;
-      while (i < s.size()) {
-        while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-        size_t j = i;
-        while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-        if (j > i) tok.push_back(s.substr(i, j - i));
-        i = j;
-      }
-    }
+    const std::vector<std::string_view> tok = split_whitespace(line);
     if (tok.empty() || tok[0][0] == '#') continue;
     if (tok.size() != 6 && tok.size() != 8)
       return fail("expected 6 or 8 numbers (ox oy oz dx dy dz [tmin tmax]), got " + std::to_string(tok.size()));

@@ -2,6 +2,7 @@
 // The CLI's file formats (docs/hits.md): rays in, hits out.
 #include <atomic>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "geometry.h"
@@ -11,6 +12,9 @@ namespace accel {
 
 /// Parses one rays-file number: decimal, C99 hex-float ("0x1.8p+3", signed), inf/-inf.
 bool parse_ray_number(std::string_view token, float* out);
+
+/// The tokens of one line of a text format (rays, 2D scenes), separated by whitespace.
+std::vector<std::string_view> split_whitespace(std::string_view line);
 
 /// Reads a rays file: `ox oy oz dx dy dz [tmin tmax]` per line, '#' comments and blank lines
 /// skipped. Errors name the file and line: wrong field count, malformed or non-finite number,

@@ -60,7 +60,7 @@ Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, co
                                                    const ParamSet& params, Kernel kernel, BuildControl* control,
                                                    BuildRecorder* recorder) {
   std::unique_ptr<Structure> s = info.create(params);
-  s->set_kernel(kernel);
+  s->set_kernel(scene.planar() ? Kernel::Planar : kernel);  // a 2D scene has one hit rule
   auto built = recorder ? s->build_recorded(scene, params, *recorder, control) : s->build(scene, params, control);
   if (!built) return built.error();
   return s;

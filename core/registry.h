@@ -65,7 +65,8 @@ struct StructureChoice {
 Result<StructureChoice> parse_structure(const std::string& name, const std::vector<std::string>& params);
 
 /// The one way the CLI, the bench, the tests and the viewer build a structure: create
-/// the class the parameters ask for, set the kernel, build. Errors name the parameter
+/// the class the parameters ask for, set the kernel (Kernel::Planar over a 2D scene,
+/// whatever `kernel` says), build. Errors name the parameter
 /// or the internal limit. `control` (optional) reports progress and can cancel the build
 /// (then the error is cancelled_error()). With a `recorder` the build is recorded step by
 /// step (Structure::build_recorded()).

@@ -2,11 +2,13 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <utility>
 
 #include "geometry.h"
 #include "parallel.h"
+#include "scene2d.h"
 
 namespace accel {
 
@@ -25,9 +27,20 @@ Status Scene::move_vertices(std::span<const Vec3> positions) {
     const Vec3& p = positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       return make_error("move_vertices: vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+    if (planar_ && p.z != 0.0f)
+      return make_error("move_vertices: vertex " + std::to_string(i) + " leaves the plane z = 0 of a 2D scene");
   }
   positions_.assign(positions.begin(), positions.end());
   compute_triangle_data();
+  return {};
+}
+
+Status Scene::mark_planar() {
+  for (size_t i = 0; i < positions_.size(); ++i)
+    if (positions_[i].z != 0.0f)
+      return make_error("2D scene: vertex " + std::to_string(i) + " has z = " + std::to_string(positions_[i].z) +
+                        ", not 0");
+  planar_ = true;
   return {};
 }
 
@@ -80,6 +93,7 @@ Result<Scene> load_scene(const std::string& spec) {
   constexpr std::string_view prefix = "procedural:";
   if (spec.rfind(prefix, 0) == 0) return make_procedural_scene(std::string_view(spec).substr(prefix.size()));
   if (is_mesh_format(spec)) return load_mesh(spec);
+  if (spec.size() > std::strlen(kScene2dExtension) && spec.ends_with(kScene2dExtension)) return load_scene2d(spec);
   return load_obj(spec);
 }
 

@@ -39,13 +39,18 @@ class Scene {
   /// Largest absolute coordinate (the M of docs/hits.md's ulp allowance).
   float max_abs_coordinate() const;
   const std::string& name() const { return name_; }
+  /// A 2D scene (blackboard mode, docs/hits.md "2D scenes"): every vertex lies in the plane
+  /// z = 0 and rays are 2D rays in it, tested by the 2D hit rule (planar_geometry.h).
+  bool planar() const { return planar_; }
+  /// Marks the scene 2D. Error when a vertex has z != 0 (naming it).
+  Status mark_planar();
 
   /// Replaces the vertex positions (same count; the triangles stay) and recomputes what
   /// derives from them: triangle bounds, centroids, degenerate flags, valid_prims(), bounds().
   /// A triangle may change between degenerate and valid; structures built over the old
   /// positions are then stale: Structure::refit() them (it fails when valid_prims() changed)
   /// or rebuild. Errors, leaving the scene unchanged: a count other than vertex_count(), a
-  /// NaN or infinite coordinate (named by vertex index).
+  /// NaN or infinite coordinate (named by vertex index), a 2D scene's vertex off z = 0.
   Status move_vertices(std::span<const Vec3> positions);
 
  private:
@@ -61,6 +66,7 @@ class Scene {
   std::vector<uint32_t> valid_prims_;
   Aabb bounds_;
   std::string name_;
+  bool planar_ = false;
 };
 
 /// Loads a Wavefront OBJ (docs/hits.md: polygons fan-triangulated in place, materials,
@@ -112,7 +118,7 @@ struct ScatteredSceneSize {
 Scene make_scattered_scene(const ScatteredSceneSize& size, uint32_t seed = 1, std::string name = "procedural:huge");
 
 /// Loads "procedural:NAME" via make_procedural_scene, .ply/.stl/.gltf/.glb via load_mesh,
-/// anything else via load_obj.
+/// a .scene2d file via load_scene2d (scene2d.h: a 2D scene), anything else via load_obj.
 Result<Scene> load_scene(const std::string& spec);
 
 }  // namespace accel

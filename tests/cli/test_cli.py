@@ -101,6 +101,52 @@ def expect_bad(cli, args, must_contain, out=None, code_expected=2):
     check("Traceback" not in err and "Aborted" not in err, f"{args}: crashed")
 
 
+# A 2D scene (docs/hits.md, 2D scenes): prim 0 = (0,0),(4,0),(0,4); prim 1 = (6,0),(8,0),(6,2).
+SCENE_2D = """# two triangles
+tri 0 0 4 0 0 4
+tri 6 0 8 0 6 2
+"""
+RAYS_2D = """-2 1 0 1 0 0
+1 1 0 1 0 0
+5 1 0 1 0 0
+-1 3 0 1 1 0
+5 5 0 1 0 0
+9 1 0 -2 0 0
+"""
+# enters through an edge, starts inside, enters the other, grazes a vertex, misses, d of length 2
+EXPECTED_2D = [(0, 2.0), (0, 0.0), (1, 1.0), (0, 1.0), (-1, math.inf), (1, 1.0)]
+
+
+def test_trace_2d(cli, work):
+    scene = os.path.join(work, "two.scene2d")
+    rays = os.path.join(work, "rays_2d.txt")
+    with open(scene, "w") as f:
+        f.write(SCENE_2D)
+    with open(rays, "w") as f:
+        f.write(RAYS_2D)
+    for structure in ("brute", "grid", "octree", "kdtree", "bvh", "spheretree"):
+        out = os.path.join(work, f"hits_2d_{structure}.csv")
+        code, _, err = run(cli, "trace", "--scene", scene, "--structure", structure, "--rays", rays, "--out", out)
+        check(code == 0, f"2D trace {structure} exit {code}: {err}")
+        if code != 0:
+            continue
+        _, rows = read_csv(out)
+        got = [(int(r[1]), float(r[2])) for r in rows]
+        check(got == EXPECTED_2D, f"2D trace {structure}: {got}, expected {EXPECTED_2D}")
+    three_d = os.path.join(work, "rays_3d.txt")
+    with open(three_d, "w") as f:
+        f.write("# a 3D ray\n-2 1 0 1 0 0\n0 0 1 0 0 -1\n")
+    out = os.path.join(work, "hits_2d_bad.csv")
+    expect_bad(cli, ["trace", "--scene", scene, "--rays", three_d, "--out", out],
+               f"{three_d}: ray 1 (0-based) is not a 2D ray", out)
+    expect_bad(cli, ["trace", "--scene", scene, "--rays", "primary:4:4", "--out", out], "a 2D scene has no camera", out)
+    bad_scene = os.path.join(work, "bad.scene2d")
+    with open(bad_scene, "w") as f:
+        f.write("tri 0 0 1 0 0 1\ntri 0 0 1 0 0\n")
+    expect_bad(cli, ["trace", "--scene", bad_scene, "--rays", rays, "--out", out],
+               f"{bad_scene}:2: tri needs 6 numbers", out)
+
+
 def test_bad_input(cli, source, shared, work):
     scene = os.path.join(source, "scenes", "steps.obj")
     good_rays = os.path.join(work, "steps_rays.txt")
@@ -379,6 +425,7 @@ def main():
     os.makedirs(a.work)
     test_trace(a.cli, a.source, a.work)
     test_bad_input(a.cli, a.source, a.shared, a.work)
+    test_trace_2d(a.cli, a.work)
     test_bench(a.cli, a.work)
     test_build_trace(a.cli, a.source, a.work)
     print(f"{'FAILED' if FAILURES else 'OK'}: {len(FAILURES)} failures")
