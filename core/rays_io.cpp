@@ -38,31 +38,49 @@ bool parse_ray_number(std::string_view token, float* out) {
   return true;
 }
 
-std::vector<std::string_view> split_whitespace(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    if (j > i) tokens.push_back(line.substr(i, j - i));
-    i = j;
+TokenLines::TokenLines(const std::string& text, std::string source_name)
+    : in_(text), source_name_(std::move(source_name)) {}
+
+bool TokenLines::next() {
+  while (std::getline(in_, line_)) {
+    ++line_no_;
+    tokens_.clear();
+    const std::string_view s(line_);
+    size_t i = 0;
+    while (i < s.size()) {
+      while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+      size_t j = i;
+      while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
+      if (j > i) tokens_.push_back(s.substr(i, j - i));
+      i = j;
+    }
+    if (!tokens_.empty() && tokens_[0][0] != '#') return true;
   }
-  return tokens;
+  return false;
+}
+
+Error TokenLines::error(const std::string& what) const {
+  return make_error(source_name_ + ":" + std::to_string(line_no_) + ": " + what);
+}
+
+Result<std::string> read_text_file(const std::string& path, const std::string& what) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    return make_error(path + ": cannot open " + what + " for reading: Is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return make_error(path + ": cannot open " + what + " for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();  // to the end: a FIFO is read until its writer closes it
+  if (in.bad()) return make_error(path + ": read error");
+  return buffer.str();
 }
 
 Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& source_name) {
   std::vector<Ray> rays;
-  std::istringstream in(text);
-  std::string line;
-  size_t line_no = 0;
-  auto fail = [&](const std::string& what) {
-    return make_error(source_name + ":" + std::to_string(line_no) + ": " + what);
-  };
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::vector<std::string_view> tok = split_whitespace(line);
-    if (tok.empty() || tok[0][0] == '#') continue;
+  TokenLines lines(text, source_name);
+  auto fail = [&](const std::string& what) { return lines.error(what); };
+  while (lines.next()) {
+    const std::vector<std::string_view>& tok = lines.tokens();
     if (tok.size() != 6 && tok.size() != 8)
       return fail("expected 6 or 8 numbers (ox oy oz dx dy dz [tmin tmax]), got " + std::to_string(tok.size()));
     float v[8] = {0, 0, 0, 0, 0, 0, 0, kInf};
@@ -88,15 +106,9 @@ Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& 
 }
 
 Result<std::vector<Ray>> read_rays(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    return make_error(path + ": cannot open rays file for reading: Is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(path + ": cannot open rays file for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();  // to the end: a FIFO is read until its writer closes it
-  if (in.bad()) return make_error(path + ": read error");
-  return parse_rays(buffer.str(), path);
+  auto text = read_text_file(path, "rays file");
+  if (!text) return text.error();
+  return parse_rays(text.value(), path);
 }
 
 std::string format_hit_row(size_t ray_index, const Hit& hit) {

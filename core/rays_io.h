@@ -1,6 +1,7 @@
 #pragma once
 // The CLI's file formats (docs/hits.md): rays in, hits out.
 #include <atomic>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,8 +14,28 @@ namespace accel {
 /// Parses one rays-file number: decimal, C99 hex-float ("0x1.8p+3", signed), inf/-inf.
 bool parse_ray_number(std::string_view token, float* out);
 
-/// The tokens of one line of a text format (rays, 2D scenes), separated by whitespace.
-std::vector<std::string_view> split_whitespace(std::string_view line);
+/// The content lines of a text format (rays, 2D scenes) one at a time, split into tokens at
+/// whitespace; blank lines and lines whose first token starts with '#' are skipped.
+class TokenLines {
+ public:
+  TokenLines(const std::string& text, std::string source_name);
+  /// Moves to the next content line; false at the end of the text.
+  bool next();
+  const std::vector<std::string_view>& tokens() const { return tokens_; }
+  /// "SOURCE:LINE: what", for the current line.
+  Error error(const std::string& what) const;
+
+ private:
+  std::istringstream in_;
+  std::string source_name_, line_;
+  size_t line_no_ = 0;
+  std::vector<std::string_view> tokens_;
+};
+
+/// The whole text file at `path`, read to its end (a FIFO until its writer closes it).
+/// Errors name the path: "PATH: cannot open WHAT for reading" (also for a directory), a
+/// read error.
+Result<std::string> read_text_file(const std::string& path, const std::string& what);
 
 /// Reads a rays file: `ox oy oz dx dy dz [tmin tmax]` per line, '#' comments and blank lines
 /// skipped. Errors name the file and line: wrong field count, malformed or non-finite number,

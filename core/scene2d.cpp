@@ -2,12 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 #include <vector>
-
-#include <sys/stat.h>
 
 #include "rays_io.h"
 
@@ -16,16 +12,10 @@ namespace accel {
 Result<Scene> parse_scene2d(const std::string& text, const std::string& source_name) {
   std::vector<Vec3> positions;
   std::vector<UVec3> triangles;
-  std::istringstream in(text);
-  std::string line;
-  size_t line_no = 0;
-  auto fail = [&](const std::string& what) {
-    return make_error(source_name + ":" + std::to_string(line_no) + ": " + what);
-  };
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::vector<std::string_view> tok = split_whitespace(line);
-    if (tok.empty() || tok[0][0] == '#') continue;
+  TokenLines lines(text, source_name);
+  auto fail = [&](const std::string& what) { return lines.error(what); };
+  while (lines.next()) {
+    const std::vector<std::string_view>& tok = lines.tokens();
     if (tok[0] == "seg")
       return fail("'seg': 2D scenes hold triangles only (a segment has no area: docs/hits.md, 2D scenes)");
     if (tok[0] != "tri") return fail("unknown command '" + printable(tok[0]) + "' (expected tri x1 y1 x2 y2 x3 y3)");
@@ -50,15 +40,9 @@ Result<Scene> parse_scene2d(const std::string& text, const std::string& source_n
 }
 
 Result<Scene> load_scene2d(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    return make_error(path + ": cannot open 2D scene for reading: Is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(path + ": cannot open 2D scene for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) return make_error(path + ": read error");
-  return parse_scene2d(buffer.str(), path);
+  auto text = read_text_file(path, "2D scene");
+  if (!text) return text.error();
+  return parse_scene2d(text.value(), path);
 }
 
 std::string format_scene2d(const Scene& scene) {
