@@ -40,6 +40,7 @@ namespace {
 
 using testing::make_ray;
 using testing::visited;
+using testing::trace_tokens;
 
 // [SECTION] Helpers
 
@@ -58,28 +59,6 @@ std::unique_ptr<Structure> build(const Scene& scene, const std::vector<std::stri
   auto built = build_structure("octree", scene, params);
   EXPECT_TRUE(built) << built.error().message;
   return built ? std::move(built.value()) : nullptr;
-}
-
-/// Compact event list: "push 0", "visit 2", "cull 1 missed", "cull 4 beyond", "test 3 hit",
-/// "closest 3", "done 3" -- node ids and prims, no distances (checked separately).
-std::vector<std::string> tokens(const TraceRecorder& rec) {
-  std::vector<std::string> out;
-  for (const TraceEvent& e : rec.events()) {
-    const std::string n = std::to_string(e.node), p = std::to_string(e.prim);
-    switch (e.kind) {
-      case TraceEventKind::Push: out.push_back("push " + n); break;
-      case TraceEventKind::Pop: out.push_back("pop " + n); break;
-      case TraceEventKind::Visit: out.push_back("visit " + n); break;
-      case TraceEventKind::EnterCell: out.push_back("enter " + n); break;
-      case TraceEventKind::Cull:
-        out.push_back("cull " + n + (e.reason == CullReason::MissedBounds ? " missed" : " beyond"));
-        break;
-      case TraceEventKind::TestPrim: out.push_back("test " + p + (e.hit ? " hit" : " miss")); break;
-      case TraceEventKind::NewClosest: out.push_back("closest " + p); break;
-      case TraceEventKind::Done: out.push_back("done " + p); break;
-    }
-  }
-  return out;
 }
 
 // [SECTION] Hand-checked traces
@@ -173,7 +152,7 @@ TEST(OctreeTrace, FixedOrderVisitsOctantsZeroToSeven) {
       "pop 3", "visit 3", "test 3 miss",
       "pop 4", "visit 4", "test 4 miss",
       "done -1"};
-  EXPECT_EQ(tokens(rec), expected);
+  EXPECT_EQ(trace_tokens(rec), expected);
   EXPECT_EQ(visited(rec), (std::vector<NodeId>{0, 2, 3, 4}));
 }
 
@@ -189,7 +168,7 @@ TEST(OctreeTrace, SortedOrderVisitsOctantsFrontToBack) {
       "pop 4", "visit 4", "test 4 miss",
       "pop 3", "visit 3", "test 3 miss",
       "done -1"};
-  EXPECT_EQ(tokens(rec), expected);
+  EXPECT_EQ(trace_tokens(rec), expected);
   std::vector<float> entries;
   for (const TraceEvent& e : rec.events())
     if (e.kind == TraceEventKind::Visit && e.node != 0) entries.push_back(e.t0);
@@ -219,7 +198,7 @@ TEST(OctreeTrace, SortedSkipsChildrenBeyondTheClosestHit) {
       "pop 4", "cull 4 beyond",
       "pop 2", "cull 2 beyond",
       "done 3"};
-  EXPECT_EQ(tokens(rec), expected);
+  EXPECT_EQ(trace_tokens(rec), expected);
   for (const TraceEvent& e : rec.events()) {
     if (e.kind == TraceEventKind::Cull && e.reason == CullReason::BeyondClosestHit) {
       EXPECT_NEAR(e.t0, e.node == 4 ? 0.4f : 0.5f, 1e-6f);  // the skipped node's entry
@@ -246,7 +225,7 @@ TEST(OctreeTrace, FixedOrderFindsTheFarHitFirstThenTheCloserOne) {
       "pop 3", "visit 3", "test 3 hit", "closest 3",
       "pop 4", "cull 4 beyond",
       "done 3"};
-  EXPECT_EQ(tokens(rec), expected);
+  EXPECT_EQ(trace_tokens(rec), expected);
 }
 
 // Scene "straddle" (max_prims = 2, ct = 0; same corner triangles TA, TB as above, so the
@@ -281,7 +260,7 @@ TEST(OctreeTrace, StraddlingTriangleHitInTheFarChildDoesNotEndTheSearch) {
         "done 3"};
     // Re-testing S in octant 1 with tmax = its own t may report hit or miss (the kernel
     // decides at tmax in double): compare that one step by its triangle only.
-    std::vector<std::string> got = tokens(rec);
+    std::vector<std::string> got = trace_tokens(rec);
     ASSERT_EQ(got.size(), expected.size());
     EXPECT_EQ(got[13].substr(0, 7), "test 2 ");
     got[13] = expected[13];

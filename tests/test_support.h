@@ -57,6 +57,29 @@ inline Ray make_ray(Vec3 org, Vec3 dir, float tmin = 0.0f, float tmax = kInf) {
   return r;
 }
 
+/// A recorded traversal as a compact event list: "push 0", "visit 2", "cull 1 missed",
+/// "cull 4 beyond", "test 3 hit", "closest 3", "done 3" -- node ids and prims, no distances
+/// (checked separately).
+inline std::vector<std::string> trace_tokens(const TraceRecorder& rec) {
+  std::vector<std::string> out;
+  for (const TraceEvent& e : rec.events()) {
+    const std::string n = std::to_string(e.node), p = std::to_string(e.prim);
+    switch (e.kind) {
+      case TraceEventKind::Push: out.push_back("push " + n); break;
+      case TraceEventKind::Pop: out.push_back("pop " + n); break;
+      case TraceEventKind::Visit: out.push_back("visit " + n); break;
+      case TraceEventKind::EnterCell: out.push_back("enter " + n); break;
+      case TraceEventKind::Cull:
+        out.push_back("cull " + n + (e.reason == CullReason::MissedBounds ? " missed" : " beyond"));
+        break;
+      case TraceEventKind::TestPrim: out.push_back("test " + p + (e.hit ? " hit" : " miss")); break;
+      case TraceEventKind::NewClosest: out.push_back("closest " + p); break;
+      case TraceEventKind::Done: out.push_back("done " + p); break;
+    }
+  }
+  return out;
+}
+
 /// The nodes a recorded traversal visited, in order.
 inline std::vector<NodeId> visited(const TraceRecorder& rec) {
   std::vector<NodeId> ids;

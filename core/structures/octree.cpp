@@ -13,13 +13,15 @@ namespace accel {
 
 // [SECTION] Geometry: root cube, triangle/box overlap
 
-Aabb octree_root_box(const Aabb& bounds) {
+Aabb octree_root_box(const Aabb& bounds, bool planar) {
   if (bounds.empty()) return bounds;
-  // In double: max - min of floats near the float range would overflow in float.
+  // In double: max - min of floats near the float range would overflow in float. A 2D
+  // scene's root is a square in x and y and keeps its flat z (a quadtree's root).
+  const int axes = planar ? 2 : 3;
   double side = 0.0;
-  for (int axis = 0; axis < 3; ++axis) side = std::max(side, double(bounds.max[axis]) - double(bounds.min[axis]));
-  Aabb box;
-  for (int axis = 0; axis < 3; ++axis) {
+  for (int axis = 0; axis < axes; ++axis) side = std::max(side, double(bounds.max[axis]) - double(bounds.min[axis]));
+  Aabb box = bounds;
+  for (int axis = 0; axis < axes; ++axis) {
     const double centre = 0.5 * (double(bounds.min[axis]) + double(bounds.max[axis]));
     float lo = float(centre - 0.5 * side), hi = float(centre + 0.5 * side);
     if (!std::isfinite(lo)) lo = bounds.min[axis];
@@ -200,7 +202,8 @@ class OctreeBuilder {
                                           {scene_.vertex(prim, 0), scene_.vertex(prim, 1), scene_.vertex(prim, 2)}};
                         }
                       });
-    data.root_box = octree_root_box(bounds);
+    data.root_box = octree_root_box(bounds, planar_);
+    data.planar = planar_;
     sink_.scene_box(bounds);
     OctreePart main;  // the whole tree: its root is node 0, not outside
     add_node(main, kNoNode, 0);
@@ -347,7 +350,7 @@ class OctreeBuilder {
     // The halves the triangle's bounding box reaches (it overlaps the node's box, or, for
     // exact insertion, its slightly enlarged box: then the flags still say which side).
     const OctreePrim& record = prims_[prim];
-    const unsigned mask = octants_reached(record.bounds.min, record.bounds.max, mid);
+    const unsigned mask = octants_reached(record.bounds.min, record.bounds.max, mid) & octant_mask_;
     if (options_.insert == OctreeInsert::Bbox) return mask;
     const Vec3 &a = record.v[0], &b = record.v[1], &c = record.v[2];
     // A child holding a vertex (closed boxes) passes 12 of triangle_overlaps_box()'s 13 axes
@@ -385,7 +388,7 @@ class OctreeBuilder {
       return leaf(part, self, LeafReason::FewPrims, prims, n, &why.few_prims, share, out);
     if (depth >= options_.max_depth) return leaf(part, self, LeafReason::MaxDepth, prims, n, &why.max_depth, share, out);
     const Vec3 mid = 0.5f * box.min + 0.5f * box.max;
-    for (int axis = 0; axis < 3; ++axis) {
+    for (int axis = 0; axis < (planar_ ? 2 : 3); ++axis) {
       // At float resolution a half would equal the whole box: splitting cannot separate anything.
       if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis])
         return leaf(part, self, LeafReason::TooThin, prims, n, &why.tiny_box, share, out);
@@ -411,10 +414,10 @@ class OctreeBuilder {
       for (unsigned m = masks[k]; m; m &= m - 1) ++sizes[std::countr_zero(m)];
     size_t starts[8], refs = 0;
     for (unsigned octant = 0; octant < 8; ++octant) starts[octant] = refs, refs += sizes[octant];
-    // No gain: each child has a quarter of the node's surface area, so a ray through the
-    // node passes 2 children on average and would test refs/4 triangles instead of n, after
-    // visiting the node and those two children.
-    if (3.0 * options_.ct + double(refs) / 4.0 >= double(n))
+    // No gain: each child has a quarter of the node's surface area (in 2D half its
+    // perimeter), so a ray through the node passes 2 children on average and would test
+    // refs/4 (refs/2) triangles instead of n, after visiting the node and those two children.
+    if (3.0 * options_.ct + double(refs) * (planar_ ? 0.5 : 0.25) >= double(n))
       return leaf(part, self, LeafReason::NoGain, prims, n, &why.no_gain, share, out);
     std::vector<uint32_t>& lists = scratch.refs[depth];
     lists.resize(refs);
@@ -489,6 +492,8 @@ class OctreeBuilder {
   const OctreeBuildOptions& options_;
   BuildControl* control_;
   const bool parallel_;
+  const bool planar_ = scene_.planar();                   // a 2D scene: split x and y only (a quadtree)
+  const unsigned octant_mask_ = planar_ ? 0x0Fu : 0xFFu;  // the octants that may hold triangles
   Sink& sink_;
   std::vector<OctreePrim> prims_;        // by triangle id (valid ones only filled)
   ProgressSpan progress_;                // reported through leaves_done_ only
@@ -568,7 +573,8 @@ Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildContr
   size_t inner = 0;
   for (size_t id = 0; id < data_.nodes.size(); ++id) {
     const OctreeNode& n = data_.nodes[id];
-    const double area = std::ldexp(1.0, -2 * data_.depths[id]);  // children have 1/4 of the area
+    // Children have 1/4 of the area (a quadtree's 1/2 of the perimeter).
+    const double area = std::ldexp(1.0, -(data_.planar ? 1 : 2) * data_.depths[id]);
     if (n.leaf()) {
       s.add_leaf(n.count);
       s.max_depth = std::max(s.max_depth, int(data_.depths[id]));
@@ -582,7 +588,7 @@ Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildContr
   const Vec3 side = data_.root_box.extent();
   const OctreeLeafReasons& r = data_.reasons;
   s.extra = {
-      {"root cube side", std::to_string(std::max(side.x, std::max(side.y, side.z)))},
+      {data_.planar ? "root square side" : "root cube side", std::to_string(std::max(side.x, std::max(side.y, side.z)))},
       {"inner nodes", std::to_string(inner)},
       {"leaves by stop reason",
        "few prims " + std::to_string(r.few_prims) + ", max depth " + std::to_string(r.max_depth) + ", no gain " +
@@ -611,6 +617,7 @@ void Octree::for_each_node(const std::function<void(const NodeView&)>& fn) const
     v.box = boxes[id];
     if (!n.leaf())
       for (unsigned octant = 0; octant < 8; ++octant) boxes[n.first + octant] = octree_child_box(boxes[id], octant);
+    if (data_.planar && id > 0 && ((id - 1u) & 4u)) continue;  // a quadtree's unused octants
     fn(v);
   }
 }
@@ -642,7 +649,7 @@ std::vector<uint32_t> Octree::node_prims(NodeId id) const {
 std::vector<NodeId> Octree::node_children(NodeId id) const {
   if (id >= data_.nodes.size() || data_.nodes[id].leaf()) return {};
   std::vector<NodeId> children;
-  for (uint32_t octant = 0; octant < 8; ++octant) children.push_back(data_.nodes[id].first + octant);
+  for (uint32_t octant = 0; octant < (data_.planar ? 4u : 8u); ++octant) children.push_back(data_.nodes[id].first + octant);
   return children;
 }
 

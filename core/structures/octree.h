@@ -84,8 +84,9 @@ inline Aabb octree_child_box(const Aabb& parent, unsigned octant) {
 
 /// The octree's root: a cube around `bounds` (the non-degenerate triangles' box) centred on
 /// it, grown where rounding would leave part of `bounds` outside. Falls back to `bounds`
-/// itself on an axis where the cube would overflow float.
-Aabb octree_root_box(const Aabb& bounds);
+/// itself on an axis where the cube would overflow float. `planar` (a 2D scene): a square
+/// in x and y, z as in `bounds` (flat).
+Aabb octree_root_box(const Aabb& bounds, bool planar = false);
 
 /// True when triangle (a, b, c) overlaps the closed box `box`. Separating axis test of
 /// Akenine-Moller 2001, "Fast 3D Triangle-Box Overlap Testing" (box normals, triangle normal,
@@ -128,9 +129,16 @@ struct OctreeData {
   std::vector<uint32_t> parents;  ///< parent id per node (root: kNoNode); viewer only
   std::vector<uint8_t> depths;    ///< depth per node; viewer and stats only
   OctreeLeafReasons reasons;
+  /// Built over a 2D scene: a quadtree (see build_octree()).
+  bool planar = false;
 };
 
-/// Builds an octree over `scene.valid_prims()`. A node becomes a leaf when it holds at most
+/// Builds an octree over `scene.valid_prims()`. Over a 2D scene (Scene::planar()) it is the
+/// lecture's quadtree, by the same code: the root is a square, cells split in x and y only,
+/// and triangles go to the four lower-z octants of each block of 8 alone (the upper four stay
+/// empty leaves, which the traversal never visits and node_children() / for_each_node()
+/// leave out); the no-gain stop counts refs / 2 (a child has half the node's perimeter).
+/// A node becomes a leaf when it holds at most
 /// max_prims triangles, is at max_depth, is too small to halve in float, or when splitting
 /// cannot help:
 ///  * no gain: splitting would not lower the expected cost of a ray through the node. Each

@@ -33,8 +33,9 @@ std::string driving_param_text(const GridConfig& c) {
 /// n_axis = extent_axis * cbrt(density * N / volume), density = lambda^3): choose the cell
 /// edge s so that the box holds lambda^3 * N cubic cells. Axes shorter than one cell
 /// (flat or thin scenes) get a single cell and the others share the cell budget, so a flat
-/// scene gets lambda^3 * N square cells rather than one huge row. Returns real-valued
-/// cells per axis (rounded by fit_resolution).
+/// scene gets lambda^3 * N square cells rather than one huge row. A 2D scene (`dims` 2) takes
+/// the rule's 2D form, lambda * sqrt(N) cells per axis of a square: lambda^2 * N cells.
+/// Returns real-valued cells per axis (rounded by fit_resolution).
 /// The cbrt rule's iteration: the cell edge s, the axes it gives more than one cell, and the
 /// volume s was computed from (the product of those axes' extents; NaN for an empty box).
 struct CbrtRule {
@@ -42,8 +43,8 @@ struct CbrtRule {
   double volume = std::numeric_limits<double>::quiet_NaN();
   bool active[3] = {false, false, false};
 };
-CbrtRule cbrt_rule(const DVec3& extent, size_t n_prims, double lambda) {
-  const double target = lambda * lambda * lambda * double(n_prims);
+CbrtRule cbrt_rule(const DVec3& extent, size_t n_prims, double lambda, int dims) {
+  const double target = std::pow(lambda, dims) * double(n_prims);
   CbrtRule r;
   for (int a = 0; a < 3; ++a) r.active[a] = extent[a] > 0.0;
   for (int iter = 0; iter < 3; ++iter) {
@@ -62,8 +63,8 @@ CbrtRule cbrt_rule(const DVec3& extent, size_t n_prims, double lambda) {
   return r;
 }
 
-DVec3 resolution_cbrt(const DVec3& extent, size_t n_prims, double lambda) {
-  const CbrtRule r = cbrt_rule(extent, n_prims, lambda);
+DVec3 resolution_cbrt(const DVec3& extent, size_t n_prims, double lambda, int dims) {
+  const CbrtRule r = cbrt_rule(extent, n_prims, lambda, dims);
   DVec3 n(1.0);
   for (int a = 0; a < 3; ++a)
     if (r.active[a] && r.s > 0.0) n[a] = extent[a] / r.s;
@@ -316,7 +317,7 @@ Result<GridResolution> grid_resolution(const Scene& scene, const Aabb& bounds, c
   const size_t max_cells = max_cells_in_budget(config, triangles);
   if (config.rule == GridResolutionRule::AvgSize)
     return fit_resolution(resolution_avgsize(scene, extent, config.lambda), max_cells);
-  return fit_resolution(resolution_cbrt(extent, triangles, config.lambda), max_cells);
+  return fit_resolution(resolution_cbrt(extent, triangles, config.lambda, scene.planar() ? 2 : 3), max_cells);
 }
 
 namespace {
@@ -325,14 +326,15 @@ namespace {
 /// root}), NaN where one does not apply:
 ///  * cbrt: lambda; N = valid triangles; volume = the product of the extents of the axes the
 ///    rule gives more than one cell (the box volume, or the area of a flat scene); cube root =
-///    (lambda^3 * N / volume)^(1/k) over those k axes, the rule's cells per unit length:
+///    (lambda^3 * N / volume)^(1/k) over those k axes (lambda^2 in a 2D scene), the rule's
+///    cells per unit length:
 ///    extent * it = the real-valued cells of an axis before rounding (on a unit cube it is
 ///    the lecture's lambda * cbrt(N)).
 ///  * avgsize: lambda and N; volume and cube root NaN (the rule has neither).
 ///  * explicit res: N; lambda, volume and cube root NaN.
 /// The cells per axis of the event are the grid's final ones (after any shrinking to the
 /// memory budget).
-std::array<double, 4> resolution_terms(const GridConfig& config, const DVec3& extent, size_t n_prims) {
+std::array<double, 4> resolution_terms(const GridConfig& config, const DVec3& extent, size_t n_prims, int dims) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> v = {config.lambda, double(n_prims), nan, nan};
   if (config.explicit_res) {
@@ -341,7 +343,7 @@ std::array<double, 4> resolution_terms(const GridConfig& config, const DVec3& ex
   }
   if (config.rule != GridResolutionRule::Cbrt) return v;
   // The numbers of the very iteration resolution_cbrt() runs.
-  const CbrtRule r = cbrt_rule(extent, n_prims, config.lambda);
+  const CbrtRule r = cbrt_rule(extent, n_prims, config.lambda, dims);
   v[2] = r.volume;
   v[3] = r.s > 0.0 ? 1.0 / r.s : nan;
   return v;
@@ -414,7 +416,7 @@ Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, B
     g.clamped_to_budget = true;
   }
   if constexpr (Sink::kRecords) {
-    const std::array<double, 4> values = resolution_terms(config, extent, valid.size());
+    const std::array<double, 4> values = resolution_terms(config, extent, valid.size(), scene.planar() ? 2 : 3);
     sink.grid_resolution(g.bounds, values.data(), g.res.data());
   }
 
