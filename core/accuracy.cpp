@@ -38,14 +38,14 @@ ReferenceHit closest_by(const Scene& scene, const Ray& ray, const Tester& tester
 bool exact_t(const Scene& scene, const Ray& ray, uint32_t prim, double* t) {
   double u, v;
   const Vec3 &a = scene.vertex(prim, 0), &b = scene.vertex(prim, 1), &c = scene.vertex(prim, 2);
-  if (scene.planar()) return PlanarRayTester(ray).intersect(a, b, c, INFINITY, t, &u, &v);
+  if (scene.planar() && is_planar_ray(ray)) return PlanarRayTester(ray).intersect(a, b, c, INFINITY, t, &u, &v);
   return intersect_triangle_double(ray, a, b, c, INFINITY, t, &u, &v);
 }
 
 }  // namespace
 
 ReferenceHit reference_closest(const Scene& scene, const Ray& ray) {
-  if (scene.planar()) return closest_by(scene, ray, PlanarRayTester(ray));
+  if (scene.planar() && is_planar_ray(ray)) return closest_by(scene, ray, PlanarRayTester(ray));
   return closest_by(scene, ray, DoubleRayTester(ray));
 }
 

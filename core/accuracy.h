@@ -26,8 +26,8 @@ enum class HitVerdict : uint8_t {
 };
 const char* verdict_name(HitVerdict v);
 
-/// Brute-force closest hit with the double-precision kernel (the oracle); over a 2D scene
-/// (Scene::planar()) by the 2D hit rule, PlanarRayTester: the 2D brute force.
+/// Brute-force closest hit with the double-precision kernel (the oracle); a 2D ray over a 2D
+/// scene (Scene::planar()) by the 2D hit rule, PlanarRayTester: the 2D brute force.
 ReferenceHit reference_closest(const Scene& scene, const Ray& ray);
 
 /// Distance from p to triangle (a, b, c), in double.

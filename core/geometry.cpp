@@ -44,6 +44,9 @@ bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
 }
 
 bool TriangleTester::planar(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const {
+  // A ray leaving the plane (the viewer's perspective rays onto a 2D scene) meets it at one
+  // point, as it meets any flat scene: the 3D rule (docs/hits.md, 2D scenes).
+  if (!is_planar_ray(ray_)) return reference(p0, p1, p2, tmax, out);
   double t, u, v;
   if (!PlanarRayTester(ray_).intersect(p0, p1, p2, tmax, &t, &u, &v)) return false;
   *out = {float(t), float(u), float(v)};

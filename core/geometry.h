@@ -29,7 +29,7 @@ enum class Kernel : uint8_t {
   Watertight,  ///< Woop, Benthin, Wald 2013, "Watertight Ray/Triangle Intersection", float (default)
   Moller,      ///< Moller & Trumbore 1997 in float: fast, not watertight at shared edges
   Double,      ///< the watertight algorithm in double precision: the reference
-  Planar,      ///< 2D scenes (docs/hits.md): the 2D hit rule in double (planar_geometry.h)
+  Planar,      ///< 2D scenes (docs/hits.md): the 2D hit rule in double for 2D rays, the 3D one (double) for others
 };
 /// Every kernel of 3D scenes, the default (watertight) first: what --kernel offers. Planar is
 /// not among them: build_structure() gives it to every structure over a 2D scene.

@@ -45,6 +45,18 @@ Result<Scene> load_scene2d(const std::string& path) {
   return parse_scene2d(text.value(), path);
 }
 
+Scene scene2d_with_triangle(const Scene& scene, const std::array<float, 6>& xy) {
+  std::vector<Vec3> positions = scene.positions();
+  std::vector<UVec3> triangles = scene.triangles();
+  const uint32_t first = uint32_t(positions.size());
+  for (int k = 0; k < 3; ++k) positions.emplace_back(xy[size_t(2 * k)], xy[size_t(2 * k + 1)], 0.0f);
+  triangles.push_back(UVec3(first, first + 1, first + 2));
+  Scene out(std::move(positions), std::move(triangles), scene.name());
+  const Status planar = out.mark_planar();
+  ACCEL_CHECK(planar.ok());  // a 2D scene's vertices and the new ones all have z = 0
+  return out;
+}
+
 std::string format_scene2d(const Scene& scene) {
   std::string out = "# accelviz 2D scene: tri x1 y1 x2 y2 x3 y3 (docs/hits.md, 2D scene files)\n";
   char buf[160];

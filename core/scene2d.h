@@ -3,6 +3,7 @@
 // per line, `tri x1 y1 x2 y2 x3 y3`, '#' comments and blank lines skipped. A scene read
 // from one lies in the plane z = 0, its triangles numbered in file order, and is marked
 // planar (Scene::planar()).
+#include <array>
 #include <string>
 
 #include "result.h"
@@ -20,6 +21,10 @@ inline constexpr const char* kScene2dExtension = ".scene2d";
 Result<Scene> parse_scene2d(const std::string& text, const std::string& source_name);
 /// Reads the 2D scene file at `path` (errors name it).
 Result<Scene> load_scene2d(const std::string& path);
+
+/// `scene` (a 2D one, or empty) with the triangle (x1, y1), (x2, y2), (x3, y3) appended as
+/// its last: the blackboard's edit. The result is planar and named as `scene`.
+Scene scene2d_with_triangle(const Scene& scene, const std::array<float, 6>& xy);
 
 /// The text of `scene` (a planar one) as a 2D scene file: a comment line, then one `tri`
 /// line per triangle in order, coordinates with %.9g (read back to the same floats).

@@ -47,6 +47,7 @@ accel::Status App::init(GLFWwindow* window, const std::string& shader_dir, const
   if (!renderer) return renderer.error();
   renderer_.emplace(std::move(renderer.value()));
   session_.init_gl();
+  board_lines_.emplace(GL_LINES);
   nodes_.init_gl();
   ray_.init_gl();
   build_.init_gl();
@@ -88,6 +89,7 @@ void App::shutdown() {
   build_.release_gl();
   nodes_.release_gl();
   session_.release_gl();
+  board_lines_.reset();
   renderer_.reset();
   if (window_ != nullptr) {
     // Reverse order of init(): ImGui's shutdown then restores the callbacks it replaced.
@@ -128,14 +130,22 @@ void App::sync_session() {
     trap_.on_scene_loaded(session_.scene_info().spec);
     compare_.clear();
     heatmap_.invalidate();
+    board_.clear();
+    camera_.set_top_down(session_.scene().planar());  // a 2D scene: the blackboard's view
+    if (!session_.scene().planar()) last_3d_scene_ = session_.scene_info().spec;
     frame_scene();
+  }
+  if (e.scene_edited) {  // the blackboard changed: the ray stays and replays on the new structure
+    build_.reset();
+    compare_.clear();
+    heatmap_.invalidate();
   }
   if (e.structure_installed) {
     nodes_.install(*session_.shown());
     ray_.replay(session_.current());
     build_.reset();  // recorded on another structure
   }
-  if (e.scene_loaded || e.structure_installed) update_window_title();
+  if (e.scene_loaded || e.scene_edited || e.structure_installed) update_window_title();
 }
 
 accel::Status App::apply_preset(const Preset& preset) {
@@ -154,7 +164,7 @@ accel::Status App::apply_preset(const Preset& preset) {
     ray.dir = glm::normalize(preset.ray_target - preset.ray_origin);
     set_ray(ray, "preset " + preset.name);
   } else {
-    camera_.frame(bounds, aspect_of(view_size()));
+    camera_.frame(frame_box(), aspect_of(view_size()));
     frame_requested_ = false;
     shoot_at_pixel(static_cast<float>(view_.x) + 0.5f * static_cast<float>(view_.z),
                    static_cast<float>(view_.y) + 0.5f * static_cast<float>(view_.w), false);
@@ -418,7 +428,8 @@ void App::update_camera_input() {
   // judged from the press and release positions (ClickTracker), never from the deltas.
   const ClickResult r = click_.update(io.MouseDown[ImGuiMouseButton_Left], {io.MousePos.x, io.MousePos.y},
                                       static_cast<double>(ImGui::GetTime()), !io.WantCaptureMouse);
-  if (r.orbit != glm::vec2(0.0f)) camera_.orbit(r.orbit.x, r.orbit.y);
+  if (camera_.top_down()) update_board_input(r);  // 2D: clicks place corners, drags shoot rays
+  else if (r.orbit != glm::vec2(0.0f)) camera_.orbit(r.orbit.x, r.orbit.y);
   if (!io.WantCaptureMouse && !click_.held()) {
     if (io.MouseDown[ImGuiMouseButton_Right] || io.MouseDown[ImGuiMouseButton_Middle]) {
       // Deltas are in window coordinates, so pan with the window's height, not the
@@ -427,7 +438,7 @@ void App::update_camera_input() {
     }
   }
   if (!io.WantCaptureMouse && io.MouseWheel != 0.0f) camera_.zoom(io.MouseWheel);
-  if (r.click) {
+  if (r.click && !camera_.top_down()) {
     // A click: shoot through that pixel. Window coordinates -> framebuffer pixels.
     const float sx = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
     const float sy = io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f;
@@ -446,6 +457,8 @@ void App::update_shortcuts() {
     const size_t n = (k.mods & GLFW_MOD_SHIFT) ? 10 : 1;
     switch (k.key) {
       case GLFW_KEY_F: frame_scene(); break;
+      case GLFW_KEY_D: (void)set_mode_2d(!mode_2d()); break;  // 2D / 3D; a failed load shows in the panel
+      case GLFW_KEY_ESCAPE: board_.clear(); break;
       case GLFW_KEY_H: ui_visible_ = !ui_visible_; break;
       case GLFW_KEY_L: lecture_mode_ = !lecture_mode_; break;
       case GLFW_KEY_SPACE: p.toggle(); break;
@@ -521,7 +534,7 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
   // Frame once the panels are placed: the view's rectangle (and aspect) is known then, so
   // the scene is framed into the part of the window the panels leave free.
   if (frame_requested_ && (!ui_visible_ || layout_frames_ == 0)) {
-    camera_.frame(session_.scene().bounds(), aspect);
+    camera_.frame(frame_box(), aspect);
     frame_requested_ = false;
   }
   FrameView view;
@@ -533,6 +546,7 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
   renderer_->begin_frame(view, background_);
   // The mesh first (translucent too: it writes depth), so nodes and highlights behind it
   // are drawn faintly by the x-ray passes and those in front stay crisp.
+  draw_board(true);  // 2D: the grid of world units, under everything
   renderer_->draw_mesh(nodes_.mesh_style());
   if (build_.active()) {
     build_.draw(*renderer_);  // the partly built structure instead of the finished one
@@ -544,6 +558,7 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
     tree_.draw(*renderer_);
   }
   session_.draw_bounds(*renderer_);
+  draw_board(false);  // the corners placed and the ray being dragged
   heatmap_.draw(*renderer_, heatmap_view());
   renderer_->end_frame();
 }

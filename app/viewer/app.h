@@ -8,6 +8,7 @@
 //   app.cpp         lifecycle, per-frame update, input, drawing, session events
 //   app_ui.cpp      the window layout, the main panel and the lecture mode
 //   app_script.cpp  the script commands (one table, calling tool methods)
+//   app_blackboard.cpp  the 2D mode (issue #32): a 2D scene seen from above, edited with the mouse
 #include <functional>
 #include <optional>
 #include <string>
@@ -22,6 +23,7 @@
 #include "renderer.h"
 #include "result.h"
 #include "script.h"
+#include "tools/blackboard_editor.h"
 #include "tools/build_player.h"
 #include "tools/compare_tool.h"
 #include "tools/heatmap_tool.h"
@@ -168,6 +170,24 @@ class App {
   void update_window_title();
   glm::ivec2 view_size() const { return {view_.z, view_.w}; }
 
+  // ---- app_blackboard.cpp: the 2D mode
+  /// 2D: the blackboard (the current 2D scene, else an empty one); 3D: back to the last 3D scene.
+  accel::Status set_mode_2d(bool on);
+  bool mode_2d() const { return session_.scene().planar(); }
+  /// Loads a 2D scene file (scene2d.h) onto the blackboard.
+  accel::Status load_scene2d(const std::string& path);
+  /// Adds a triangle (x1 y1 x2 y2 x3 y3) to the blackboard's scene and rebuilds.
+  accel::Status add_triangle_2d(const std::array<float, 6>& xy);
+  /// The debug ray in the plane.
+  accel::Status set_ray_2d(float ox, float oy, float dx, float dy);
+  /// The left button on the blackboard: corners of a new triangle, or a ray dragged.
+  void update_board_input(const ClickResult& r);
+  /// 2D: the grid of world units (`grid`, drawn first), or the corners placed and the ray
+  /// being dragged (drawn over the structure).
+  void draw_board(bool grid);
+  /// What the camera frames: the scene's box, or a 10 x 10 board for an empty 2D scene.
+  accel::Aabb frame_box() const;
+
   // ---- app_ui.cpp
   void apply_lecture_mode();
   void layout_windows();
@@ -195,6 +215,8 @@ class App {
     bool operator==(const StepSeen&) const = default;
   } step_seen_;  // the animation's step at the last frame: a new one is recorded
   BenchChartState chart_;  // the "Speed vs error" window (bench_chart_panel.cpp)
+  BlackboardEditor board_;  // the 2D mode's mouse editing
+  std::string last_3d_scene_ = "procedural:cornell";  // what `mode 3d` goes back to
 
   // ---- Camera, input and the 3D view
   Camera camera_;
@@ -235,6 +257,7 @@ class App {
   };
   std::vector<KeyPress> pressed_keys_;  // GLFW keys pressed (or repeated) since the last update()
   std::optional<Renderer> renderer_;
+  std::optional<ColorBatch> board_lines_;  // the 2D mode's grid, corners and dragged ray
 };
 
 }  // namespace viz

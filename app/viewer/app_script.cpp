@@ -102,6 +102,18 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       set_ray(r, "script");
       return {};
     }
+    case CommandKind::Mode:
+      if (auto st = set_mode_2d(c.on); !st) return st;
+      settle_camera();
+      return {};
+    case CommandKind::Scene2d:
+      if (auto st = load_scene2d(c.name); !st) return st;
+      settle_camera();
+      return {};
+    case CommandKind::Add2d:
+      return add_triangle_2d({c.values[0], c.values[1], c.values[2], c.values[3], c.values[4], c.values[5]});
+    case CommandKind::Ray2d:
+      return set_ray_2d(c.values[0], c.values[1], c.values[2], c.values[3]);
     case CommandKind::Step: {
       if (auto st = ray_.need_trace(); !st) return st;
       accel::TracePlayer& p = ray_.player();

@@ -24,6 +24,14 @@ void Camera::frame(const accel::Aabb& bounds, float aspect) {
   target_ = box.center();
   // A flat or point-like scene still needs a positive radius for zoom and clip limits.
   scene_radius_ = std::max(0.5f * glm::length(box.extent()), 1e-4f);
+  if (top_down_) {
+    // The plane's box fills the view with the same 8% margin; the eye well above it.
+    const glm::vec3 e = box.extent();
+    half_height_ = std::max({0.5f * e.y, 0.5f * e.x / std::max(aspect, 1e-3f), 1e-4f}) * 1.08f;
+    target_.z = 0.0f;
+    distance_ = 2.0f * scene_radius_ + 1.0f;
+    return;
+  }
   yaw_ = kDefaultYaw;
   pitch_ = kDefaultPitch;
 
@@ -50,11 +58,16 @@ void Camera::frame(const accel::Aabb& bounds, float aspect) {
 }
 
 void Camera::orbit(float dx, float dy) {
+  if (top_down_) return;
   yaw_ -= dx * kOrbitRadiansPerPixel;
   pitch_ = std::clamp(pitch_ - dy * kOrbitRadiansPerPixel, -kMaxPitch, kMaxPitch);
 }
 
 void Camera::pan(float dx, float dy, float viewport_height) {
+  if (top_down_) {
+    target_ += glm::vec3(-dx, dy, 0.0f) * units_per_pixel(viewport_height);
+    return;
+  }
   // World units per pixel at the target's depth, so the grabbed point stays under the cursor.
   const float units_per_pixel =
       2.0f * distance_ * std::tan(0.5f * fov_y_) / std::max(viewport_height, 1.0f);
@@ -65,6 +78,11 @@ void Camera::pan(float dx, float dy, float viewport_height) {
 }
 
 void Camera::zoom(float steps) {
+  if (top_down_) {
+    half_height_ = std::clamp(half_height_ * std::pow(kZoomFactorPerStep, steps), scene_radius_ * 1e-3f,
+                              scene_radius_ * 1e3f);
+    return;
+  }
   distance_ *= std::pow(kZoomFactorPerStep, steps);
   // Never through the target, and not so far that the scene becomes a dot.
   distance_ = std::clamp(distance_, scene_radius_ * 1e-3f, scene_radius_ * 1e3f);
@@ -101,19 +119,31 @@ glm::vec3 Camera::project(const glm::vec3& p, int width, int height) const {
           ndc.z};
 }
 
+glm::vec3 Camera::plane_point(float px, float py, int width, int height) const {
+  const float upp = units_per_pixel(static_cast<float>(height));
+  return {target_.x + (px - 0.5f * static_cast<float>(width)) * upp,
+          target_.y + (0.5f * static_cast<float>(height) - py) * upp, 0.0f};
+}
+
 glm::vec3 Camera::forward() const {
+  if (top_down_) return {0.0f, 0.0f, -1.0f};
   return {std::cos(pitch_) * -std::sin(yaw_), std::sin(pitch_), std::cos(pitch_) * -std::cos(yaw_)};
 }
 
 glm::vec3 Camera::eye() const { return target_ - distance_ * forward(); }
 
 glm::mat4 Camera::view() const { return glm::lookAt(eye(), target_, glm::vec3(0, 1, 0)); }
+// (Top-down, forward() is -Z: the eye straight above the target, +Y up on the screen.)
 
 glm::mat4 Camera::projection(float aspect) const {
   // Near and far bracket the scene's bounding sphere around the target, with slack for
   // panning; a near plane proportional to the distance keeps the depth ratio bounded.
   const float far_plane = distance_ + 4.0f * scene_radius_;
   const float near_plane = std::max(far_plane * 1e-4f, distance_ - 4.0f * scene_radius_);
+  if (top_down_) {
+    const float half_width = half_height_ * std::max(aspect, 1e-3f);
+    return glm::ortho(-half_width, half_width, -half_height_, half_height_, std::max(near_plane, 1e-6f), far_plane);
+  }
   return glm::perspective(fov_y_, std::max(aspect, 1e-3f), std::max(near_plane, 1e-6f), far_plane);
 }
 

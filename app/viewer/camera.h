@@ -1,7 +1,12 @@
 #pragma once
-// Orbit camera: a target point, a distance, and yaw/pitch angles around it, Y up.
+// Orbit camera: a target point, a distance, and yaw/pitch angles around it, Y up. In the
+// blackboard's 2D mode (set_top_down) it looks straight down -Z at the plane z = 0 with an
+// orthographic projection, +X right and +Y up: orbiting is off, pan and zoom move and scale
+// the window onto the plane.
 // It knows no GLFW or ImGui; App feeds it mouse deltas only while ImGui does not want
 // the mouse (io.WantCaptureMouse), so dragging a slider never spins the scene.
+#include <algorithm>
+
 #include <glm/glm.hpp>
 
 #include "vec_math.h"
@@ -17,7 +22,16 @@ class Camera {
   /// margin. An empty box frames the unit cube.
   void frame(const accel::Aabb& bounds, float aspect);
 
-  /// Rotates around the target; dx/dy are pixels dragged (right/down positive).
+  /// The 2D mode's top-down orthographic view (true), or the perspective orbit (false).
+  void set_top_down(bool on) { top_down_ = on; }
+  bool top_down() const { return top_down_; }
+  /// Top-down: the point of the plane z = 0 under framebuffer pixel (px, py) (from the
+  /// top-left) of a width x height view; z = 0.
+  glm::vec3 plane_point(float px, float py, int width, int height) const;
+  /// Top-down: world units per pixel of a view `height` pixels tall.
+  float units_per_pixel(float height) const { return 2.0f * half_height_ / std::max(height, 1.0f); }
+
+  /// Rotates around the target; dx/dy are pixels dragged (right/down positive). Not top-down.
   void orbit(float dx, float dy);
   /// Moves the target in the view plane so the point under the cursor follows it;
   /// dx/dy are pixels dragged, `viewport_height` the framebuffer height in pixels.
@@ -66,6 +80,8 @@ class Camera {
   float pitch_ = kDefaultPitch;  // radians; negative looks down on the scene
   float fov_y_ = glm::radians(45.0f);
   float scene_radius_ = 1.0f;  // of the last framed box; sets the near/far range
+  bool top_down_ = false;
+  float half_height_ = 1.0f;  // top-down: half the view's height in world units
 };
 
 }  // namespace viz

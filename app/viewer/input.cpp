@@ -19,6 +19,7 @@ ClickResult ClickTracker::update(bool down, glm::vec2 pos, double time, bool pre
   }
   if (!held_) return r;
   r.press_pos = press_pos_;
+  r.pos = pos;
   if (down) {
     if (!dragging_ && glm::length(pos - press_pos_) > kTolerance) {
       dragging_ = true;
@@ -31,6 +32,7 @@ ClickResult ClickTracker::update(bool down, glm::vec2 pos, double time, bool pre
   }
   if (released) {
     r.click = !dragging_ && glm::length(pos - press_pos_) <= kTolerance && time - press_time_ <= kMaxClickSeconds;
+    r.drag_end = dragging_;
     held_ = false;
     dragging_ = false;
   }

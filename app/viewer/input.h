@@ -10,6 +10,8 @@ struct ClickResult {
   bool click = false;           ///< released as a click this frame: shoot through press_pos
   glm::vec2 press_pos{0.0f};    ///< where the button went down (window coordinates)
   glm::vec2 orbit{0.0f};        ///< pixels to orbit by this frame (zero unless dragging)
+  bool drag_end = false;        ///< a drag ended this frame (released at `pos`)
+  glm::vec2 pos{0.0f};          ///< the cursor this frame, while held or at the release
 };
 
 /// Tells a click from a drag by positions and time, never by mouse deltas: on a slow frame

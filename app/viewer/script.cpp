@@ -117,6 +117,31 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (c.values[3] == 0.0f && c.values[4] == 0.0f && c.values[5] == 0.0f) return "ray: the direction is zero";
     return "";
   }
+  if (verb == "mode") {
+    c.kind = CommandKind::Mode;
+    if (n != 1 || (args[0] != "2d" && args[0] != "3d")) return count_error("mode 2d|3d");
+    c.on = args[0] == "2d";
+    return "";
+  }
+  if (verb == "scene2d") {
+    c.kind = CommandKind::Scene2d;
+    if (n != 1) return count_error("scene2d FILE");
+    c.name = args[0];
+    return "";
+  }
+  if (verb == "add2d") {
+    c.kind = CommandKind::Add2d;
+    const char* usage = "add2d tri X1 Y1 X2 Y2 X3 Y3";
+    if (n != 7 || args[0] != "tri") return count_error(usage);
+    return floats(1, 6, usage);
+  }
+  if (verb == "ray2d") {
+    c.kind = CommandKind::Ray2d;
+    if (n != 4) return count_error("ray2d OX OY DX DY");
+    if (auto e = floats(0, 4, "ray2d OX OY DX DY"); !e.empty()) return e;
+    if (c.values[2] == 0.0f && c.values[3] == 0.0f) return "ray2d: the direction is zero";
+    return "";
+  }
   if (verb == "step") {
     c.kind = CommandKind::Step;
     const char* usage = "step N | step end | step back N | step hit | step start";

@@ -14,6 +14,12 @@
 //   camera EX EY EZ TX TY TZ [FOVY_DEG]
 //   ray-at-pixel X Y                  shoot like a click; pixel from the top-left
 //   ray OX OY OZ DX DY DZ
+//   mode 2d|3d                        the blackboard (a 2D scene in the plane z = 0, seen
+//                                     from above; an empty one unless a 2D scene is loaded)
+//                                     or back to the last 3D scene
+//   scene2d FILE                      load a 2D scene file (docs/hits.md) into the blackboard
+//   add2d tri X1 Y1 X2 Y2 X3 Y3       add a triangle to the blackboard (2D mode)
+//   ray2d OX OY DX DY                 the debug ray in the plane (2D mode)
 //   step N | step end | step back N | step hit | step start
 //   show depth=A..B | show depth=A | show leaves | show all
 //   heatmap off|nodes|prims
@@ -89,7 +95,7 @@ enum class CommandKind {
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
   Playlist, Next, Prev, PrintState, Record, RecordStop, Colors, HeatmapScale, PrintHeatmap, HeatmapDiff,
-  MemoryLimit, TraceRays,
+  MemoryLimit, TraceRays, Mode, Scene2d, Add2d, Ray2d,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };
@@ -101,14 +107,15 @@ struct ScriptCommand {
   int line = 0;                      ///< 1-based line in the script
   std::string name;                  ///< scene spec, structure, kernel, preset, panel, path, prefix, param, trap
   std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
-  std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi)
+  std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi),
+                                     ///< add2d (6: from values[0]), ray2d (4)
   bool has_fov = false;              ///< camera: FOVY given
   size_t bytes = 0;                  ///< memory-limit (0: the default)
   int ints[2] = {0, 0};              ///< size W H; step / build-step count; sweep steps; frame count;
                                      ///< record: fps, and size W H in values[0..1] (0: as captured)
   StepMode step = StepMode::Forward;  ///< step, build-step (no Hit)
   ShowMode show = ShowMode::All;
-  bool on = true;                    ///< panel/large/empty-cells/nodes/show-chart/sah-plot on|off
+  bool on = true;                    ///< panel/large/empty-cells/nodes/show-chart/sah-plot on|off; mode: 2d
 };
 
 /// Parses `text` (the script named `script_name` in messages). Validates everything that

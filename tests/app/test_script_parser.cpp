@@ -227,6 +227,39 @@ TEST(Script, LectureCommands) {
   }
 }
 
+TEST(Script, BlackboardCommands) {
+  auto parsed = parse_script("mode 2d\nscene2d board.scene2d\nadd2d tri 0 0 1 0 0x1p-1 1\nray2d -1 0.5 1 0\nmode 3d\n",
+                             "b.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const auto& c = parsed.value();
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_EQ(c[0].kind, CommandKind::Mode);
+  EXPECT_TRUE(c[0].on);
+  EXPECT_EQ(c[1].kind, CommandKind::Scene2d);
+  EXPECT_EQ(c[1].name, "board.scene2d");
+  EXPECT_EQ(c[2].kind, CommandKind::Add2d);
+  EXPECT_EQ(c[2].values[4], 0.5f);
+  EXPECT_EQ(c[2].values[5], 1.0f);
+  EXPECT_EQ(c[3].kind, CommandKind::Ray2d);
+  EXPECT_EQ(c[3].values[0], -1.0f);
+  EXPECT_EQ(c[3].values[2], 1.0f);
+  EXPECT_FALSE(c[4].on);
+  const std::pair<const char*, const char*> errors[] = {
+      {"mode\n", "b.txt:1: usage: mode 2d|3d"},
+      {"mode 4d\n", "usage: mode 2d|3d"},
+      {"scene2d\n", "usage: scene2d FILE"},
+      {"add2d 0 0 1 0 0 1\n", "usage: add2d tri X1 Y1 X2 Y2 X3 Y3"},
+      {"add2d tri 0 0 1 0 0 nan\n", "'nan' is not a finite number (add2d tri X1 Y1 X2 Y2 X3 Y3)"},
+      {"ray2d 0 0 1\n", "usage: ray2d OX OY DX DY"},
+      {"ray2d 0 0 0 0\n", "ray2d: the direction is zero"},
+  };
+  for (const auto& [text, expected] : errors) {
+    auto bad = parse_script(text, "b.txt");
+    ASSERT_FALSE(bad.ok()) << text;
+    EXPECT_NE(bad.error().message.find(expected), std::string::npos) << bad.error().message;
+  }
+}
+
 TEST(Script, BenchChartCommands) {
   auto parsed = parse_script("load-bench out/bench.json\nshow-chart on x=t-error speed=1t y=log labels=off group=2\n"
                              "show-chart off\n",

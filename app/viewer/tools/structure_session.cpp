@@ -97,6 +97,15 @@ void StructureSession::install_scene(const std::string& spec, accel::Result<acce
   rebuild();
 }
 
+void StructureSession::set_scene(accel::Scene scene, const std::string& spec, bool edit) {
+  const bool new_scene_pending = events_.scene_loaded;
+  install_scene(spec, std::move(scene), 0.0);
+  if (edit && !new_scene_pending) {
+    events_.scene_loaded = false;
+    events_.scene_edited = true;
+  }
+}
+
 accel::Status StructureSession::load_preset_scene(const Preset& preset) {
   if (!preset.structure.empty() && editor_.info().name != preset.structure) {
     StructureRequest r = editor_.request();

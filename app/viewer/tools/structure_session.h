@@ -21,6 +21,7 @@ namespace viz {
 struct SessionEvents {
   bool scene_loaded = false;         ///< a new scene: old rays, comparisons and images are void
   bool structure_installed = false;  ///< a new structure is drawn (current() changed)
+  bool scene_edited = false;         ///< the blackboard's scene changed (the camera and ray stay)
 };
 
 /// What the Scene section's camera buttons asked for (the camera is App's).
@@ -45,6 +46,10 @@ class StructureSession {
   /// button; poll() installs the result. Synchronous in script mode. A load asked for while
   /// one runs replaces it (the running one's result is dropped).
   void load_scene_in_background(const std::string& spec);
+  /// Makes `scene` the scene, named `spec`, and rebuilds over it: the blackboard's 2D scenes.
+  /// `edit`: the same scene changed (a triangle added, moved or deleted), so the camera and
+  /// the debug ray stay (SessionEvents::scene_edited); otherwise a new scene (scene_loaded).
+  void set_scene(accel::Scene scene, const std::string& spec, bool edit);
   /// Queues a load for the next poll() (drop callback: outside any ImGui frame).
   void request_load(std::string spec) { pending_loads_.push_back(std::move(spec)); }
   /// True while a background load runs.
