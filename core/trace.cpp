@@ -131,10 +131,11 @@ void add(std::string& out, const std::string& name, const std::string& value) {
 
 std::string describe(const GridDdaVars& v) {
   std::string s;
-  for (int a = 0; a < 3; ++a) add(s, kAxisUpper[a], v.cell[a]);
-  for (int a = 0; a < 3; ++a) add(s, (std::string("step") + kAxisUpper[a]).c_str(), v.step[a]);
-  for (int a = 0; a < 3; ++a) add(s, (std::string("tMax") + kAxisUpper[a]).c_str(), v.t_max[a]);
-  for (int a = 0; a < 3; ++a) add(s, (std::string("tDelta") + kAxisUpper[a]).c_str(), v.t_delta[a]);
+  const int dims = v.dims == 2 ? 2 : 3;
+  for (int a = 0; a < dims; ++a) add(s, kAxisUpper[a], v.cell[a]);
+  for (int a = 0; a < dims; ++a) add(s, (std::string("step") + kAxisUpper[a]).c_str(), v.step[a]);
+  for (int a = 0; a < dims; ++a) add(s, (std::string("tMax") + kAxisUpper[a]).c_str(), v.t_max[a]);
+  for (int a = 0; a < dims; ++a) add(s, (std::string("tDelta") + kAxisUpper[a]).c_str(), v.t_delta[a]);
   add(s, "next", kAxisName[(v.next_axis % 3 + 3) % 3]);
   return s;
 }

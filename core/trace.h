@@ -73,6 +73,7 @@ struct GridDdaVars {
   float t_max[3] = {0, 0, 0};
   float t_delta[3] = {0, 0, 0};
   int next_axis = 0;
+  int dims = 3;  ///< 2 over a 2D scene: the lecture's 2D DDA, X and Y only (z never steps)
 };
 
 /// Which children of a kd-tree inner node the ray visits (the lecture's three cases).

@@ -77,6 +77,34 @@ const PseudoCode& grid_code() {
   return code;
 }
 
+// The lecture's 2D figure of the same loop: the blackboard's grid steps in X and Y only.
+const PseudoCode& grid_2d_code() {
+  static const PseudoCode code = listing("Uniform grid: 2D-DDA (Amanatides & Woo, lecture)", {
+      {"", "// for each cell intersected by the ray:   (added)"},
+      {"enter_first", "X,Y = cell where the ray enters the grid"},
+      {"", "loop:"},
+      {"test", "    for each object in ObjectList[X][Y]: is it hit?"},
+      {"closest", "        yes, and closer: closest hit = it"},
+      {"return_hit", "    if closest hit lies in this cell: return it"},
+      {"", "    list= NIL;"},
+      {"", "    do {"},
+      {"", "        if(tMaxX < tMaxY) {"},
+      {"step_x", "            X= X + stepX;"},
+      {"", "            if(X == justOutX)"},
+      {"outside", "                return(NIL); /* outside grid */"},
+      {"", "            tMaxX= tMaxX + tDeltaX;"},
+      {"", "        } else {"},
+      {"step_y", "            Y= Y + stepY;"},
+      {"", "            if(Y == justOutY)"},
+      {"", "                return(NIL);"},
+      {"", "            tMaxY= tMaxY + tDeltaY;"},
+      {"", "        }"},
+      {"list", "        list= ObjectList[X][Y];"},
+      {"", "    } while(list == NIL);"},
+  });
+  return code;
+}
+
 const PseudoCode& octree_code() {
   // Indented by two (the lecture's four would not fit a side panel); one long line wrapped.
   static const PseudoCode code = listing("Octree: OctreeNode::Trace (lecture)", {
@@ -237,6 +265,7 @@ std::string anchor_of(TraversalKind kind, std::span<const TraceEvent> events, si
       if (e.kind == TraceEventKind::Done) return "done";
       return "";
     case TraversalKind::Grid:
+    case TraversalKind::Grid2d:
       if (e.kind == TraceEventKind::EnterCell) {
         switch (stepped_axis(events, step, lookup)) {
           case 0: return "step_x";
@@ -323,6 +352,7 @@ const char* traversal_label(TraversalKind kind) {
   switch (kind) {
     case TraversalKind::Brute: return "linear scan";
     case TraversalKind::Grid: return "3D-DDA";
+    case TraversalKind::Grid2d: return "2D-DDA";
     case TraversalKind::Octree: return "octree recursion";
     case TraversalKind::KdTree: return "near/far recursion";
     case TraversalKind::HierarchyDfs: return "depth-first";
@@ -337,6 +367,7 @@ const PseudoCode& pseudo_code(TraversalKind kind) {
   switch (kind) {
     case TraversalKind::Brute: return brute_code();
     case TraversalKind::Grid: return grid_code();
+    case TraversalKind::Grid2d: return grid_2d_code();
     case TraversalKind::Octree: return octree_code();
     case TraversalKind::KdTree: return kd_code();
     case TraversalKind::HierarchyDfs: return dfs_code();

@@ -17,6 +17,7 @@ namespace viz {
 enum class TraversalKind {
   Brute,             ///< a loop over all triangles
   Grid,              ///< 3D-DDA (lecture: Amanatides & Woo loop)
+  Grid2d,            ///< the same over a 2D scene: the lecture's 2D DDA (X, Y)
   Octree,            ///< lecture: OctreeNode::Trace
   KdTree,            ///< lecture: traverse(r, n, t_min, t_max), cases (a)/(b)/(c)
   HierarchyDfs,      ///< BVH / sphere tree: stack, tree order

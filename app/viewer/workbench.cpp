@@ -66,6 +66,7 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   if (params.has("traversal")) built->traversal = params.get_choice("traversal");
   built->info = info;
   built->kind = traversal_kind(info->traversal, built->traversal);
+  if (built->kind == TraversalKind::Grid && built->scene->planar()) built->kind = TraversalKind::Grid2d;
   return BuiltPtr(std::move(built));
 }
 

@@ -253,6 +253,7 @@ void UniformGrid::walk(const Ray& ray, const TriangleTester& tester, Hit& closes
         v.t_delta[a] = float(std::abs(t_delta[a]));
       }
       v.next_axis = axis;
+      v.dims = scene_->planar() ? 2 : 3;
       sink.vars(v);
     }
     for (uint32_t k = starts[cell], end = starts[cell + 1]; k < end; ++k) {

@@ -25,6 +25,7 @@ bool keeps_pending(TraversalKind kind) {
     case TraversalKind::HierarchyPqueue: return true;
     case TraversalKind::Brute:
     case TraversalKind::Grid:
+    case TraversalKind::Grid2d:
     case TraversalKind::Unknown: return false;
   }
   return false;

@@ -48,14 +48,15 @@ constexpr ImGuiTableFlags kTable = ImGuiTableFlags_SizingFixedFit | ImGuiTableFl
 
 void grid_vars(const accel::GridDdaVars& v, float closest, ImFont* mono) {
   if (mono) ImGui::PushFont(mono);
-  if (ImGui::BeginTable("dda", 4, kTable)) {
+  const int dims = v.dims == 2 ? 2 : 3;  // the blackboard's 2D DDA: X and Y
+  if (ImGui::BeginTable("dda", dims + 1, kTable)) {
     ImGui::TableNextRow();
-    for (int a = 0; a < 3; ++a) cell(a + 1, std::string(kAxisUpper[a]) + "=" + std::to_string(v.cell[a]));
+    for (int a = 0; a < dims; ++a) cell(a + 1, std::string(kAxisUpper[a]) + "=" + std::to_string(v.cell[a]));
     cell(0, "cell", kDimText);
     auto row = [&](const char* name, auto value_of) {
       ImGui::TableNextRow();
       cell(0, name, kDimText);
-      for (int a = 0; a < 3; ++a) cell(a + 1, value_of(a), a == v.next_axis ? kCurrentText : kWhite);
+      for (int a = 0; a < dims; ++a) cell(a + 1, value_of(a), a == v.next_axis ? kCurrentText : kWhite);
     };
     row("step", [&](int a) { return std::to_string(v.step[a]); });
     row("tMax", [&](int a) { return num(v.t_max[a]); });
@@ -215,7 +216,8 @@ void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel:
     else if (const auto* k = std::get_if<accel::KdSplitVars>(v)) kd_split_vars(*k, mono);
     else if (const auto* x = std::get_if<accel::KdExitVars>(v)) kd_exit_vars(*x, mono);
     else if (const auto* o = std::get_if<accel::OctreeOrderVars>(v)) octree_vars(*o, mono);
-  } else if (kind == TraversalKind::Grid || kind == TraversalKind::KdTree || kind == TraversalKind::Octree) {
+  } else if (kind == TraversalKind::Grid || kind == TraversalKind::Grid2d || kind == TraversalKind::KdTree ||
+             kind == TraversalKind::Octree) {
     ImGui::TextDisabled(h.node == accel::kNoNode ? "before the first node" : "a leaf: testing its triangles");
   }
   ImGui::Separator();
