@@ -45,16 +45,38 @@ Result<Scene> load_scene2d(const std::string& path) {
   return parse_scene2d(text.value(), path);
 }
 
+namespace {
+
+Scene planar_scene(std::vector<Vec3> positions, std::vector<UVec3> triangles, const std::string& name) {
+  Scene out(std::move(positions), std::move(triangles), name);
+  const Status planar = out.mark_planar();
+  ACCEL_CHECK(planar.ok());  // every vertex of a 2D scene's edit has z = 0
+  return out;
+}
+
+}  // namespace
+
 Scene scene2d_with_triangle(const Scene& scene, const std::array<float, 6>& xy) {
   std::vector<Vec3> positions = scene.positions();
   std::vector<UVec3> triangles = scene.triangles();
   const uint32_t first = uint32_t(positions.size());
   for (int k = 0; k < 3; ++k) positions.emplace_back(xy[size_t(2 * k)], xy[size_t(2 * k + 1)], 0.0f);
   triangles.push_back(UVec3(first, first + 1, first + 2));
-  Scene out(std::move(positions), std::move(triangles), scene.name());
-  const Status planar = out.mark_planar();
-  ACCEL_CHECK(planar.ok());  // a 2D scene's vertices and the new ones all have z = 0
-  return out;
+  return planar_scene(std::move(positions), std::move(triangles), scene.name());
+}
+
+Scene scene2d_with_vertex_moved(const Scene& scene, uint32_t vertex, float x, float y) {
+  std::vector<Vec3> positions = scene.positions();
+  ACCEL_CHECK(vertex < positions.size());
+  positions[vertex] = Vec3(x, y, 0.0f);
+  return planar_scene(std::move(positions), scene.triangles(), scene.name());
+}
+
+Scene scene2d_without_triangle(const Scene& scene, uint32_t prim) {
+  std::vector<UVec3> triangles = scene.triangles();
+  ACCEL_CHECK(prim < triangles.size());
+  triangles.erase(triangles.begin() + ptrdiff_t(prim));
+  return planar_scene(scene.positions(), std::move(triangles), scene.name());
 }
 
 std::string format_scene2d(const Scene& scene) {

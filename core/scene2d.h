@@ -25,6 +25,11 @@ Result<Scene> load_scene2d(const std::string& path);
 /// `scene` (a 2D one, or empty) with the triangle (x1, y1), (x2, y2), (x3, y3) appended as
 /// its last: the blackboard's edit. The result is planar and named as `scene`.
 Scene scene2d_with_triangle(const Scene& scene, const std::array<float, 6>& xy);
+/// `scene` (2D) with vertex `vertex` moved to (x, y): the blackboard's drag of a corner.
+Scene scene2d_with_vertex_moved(const Scene& scene, uint32_t vertex, float x, float y);
+/// `scene` (2D) without triangle `prim` (its vertices stay, unused); later triangles move
+/// down one number, as in the file saved afterwards.
+Scene scene2d_without_triangle(const Scene& scene, uint32_t prim);
 
 /// The text of `scene` (a planar one) as a 2D scene file: a comment line, then one `tri`
 /// line per triangle in order, coordinates with %.9g (read back to the same floats).

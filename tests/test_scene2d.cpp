@@ -68,6 +68,23 @@ TEST(Scene2dFile, SavedScenesReadBackToTheSameFloats) {
   EXPECT_EQ(load_scene2d(path).error().message, path + ": cannot open 2D scene for reading");
 }
 
+TEST(Scene2dFile, EditsKeepTheSceneTwoDimensional) {
+  const Scene scene = parse_scene2d("tri 0 0 1 0 0 1\ntri 2 0 3 0 2 1\n", "s").value();
+  const Scene added = scene2d_with_triangle(scene, {5, 5, 6, 5, 5, 6});
+  ASSERT_EQ(added.triangle_count(), 3u);
+  EXPECT_EQ(added.vertex(2, 1), Vec3(6, 5, 0));
+  EXPECT_TRUE(added.planar());
+  const Scene moved = scene2d_with_vertex_moved(added, 1, 4, 4);
+  EXPECT_EQ(moved.vertex(0, 1), Vec3(4, 4, 0));
+  EXPECT_EQ(moved.vertex(1, 0), Vec3(2, 0, 0));
+  const Scene removed = scene2d_without_triangle(moved, 0);
+  ASSERT_EQ(removed.triangle_count(), 2u);
+  EXPECT_EQ(removed.vertex(0, 0), Vec3(2, 0, 0));  // triangle 1 became 0
+  EXPECT_TRUE(removed.planar());
+  EXPECT_EQ(format_scene2d(removed), "# accelviz 2D scene: tri x1 y1 x2 y2 x3 y3 (docs/hits.md, 2D scene files)\n"
+                                     "tri 2 0 3 0 2 1\ntri 5 5 6 5 5 6\n");
+}
+
 TEST(Scene2dFile, A2dSceneKeepsItsVerticesInThePlane) {
   Scene scene = parse_scene2d("tri 0 0 1 0 0 1\n", "s").value();
   const std::vector<Vec3> moved = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0.5f}};

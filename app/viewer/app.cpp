@@ -428,7 +428,9 @@ void App::update_camera_input() {
   // judged from the press and release positions (ClickTracker), never from the deltas.
   const ClickResult r = click_.update(io.MouseDown[ImGuiMouseButton_Left], {io.MousePos.x, io.MousePos.y},
                                       static_cast<double>(ImGui::GetTime()), !io.WantCaptureMouse);
-  if (camera_.top_down()) update_board_input(r);  // 2D: clicks place corners, drags shoot rays
+  const ClickResult right = right_click_.update(io.MouseDown[ImGuiMouseButton_Right], {io.MousePos.x, io.MousePos.y},
+                                                static_cast<double>(ImGui::GetTime()), !io.WantCaptureMouse);
+  if (camera_.top_down()) update_board_input(r, right);  // 2D: corners, moves, rays, deletes
   else if (r.orbit != glm::vec2(0.0f)) camera_.orbit(r.orbit.x, r.orbit.y);
   if (!io.WantCaptureMouse && !click_.held()) {
     if (io.MouseDown[ImGuiMouseButton_Right] || io.MouseDown[ImGuiMouseButton_Middle]) {

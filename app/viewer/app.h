@@ -180,8 +180,9 @@ class App {
   accel::Status add_triangle_2d(const std::array<float, 6>& xy);
   /// The debug ray in the plane.
   accel::Status set_ray_2d(float ox, float oy, float dx, float dy);
-  /// The left button on the blackboard: corners of a new triangle, or a ray dragged.
-  void update_board_input(const ClickResult& r);
+  /// The mouse on the blackboard: the left button's clicks place corners, its drags move a
+  /// corner or shoot the ray; a right click deletes the triangle under the cursor.
+  void update_board_input(const ClickResult& left, const ClickResult& right);
   /// 2D: the grid of world units (`grid`, drawn first), or the corners placed and the ray
   /// being dragged (drawn over the structure).
   void draw_board(bool grid);
@@ -223,6 +224,7 @@ class App {
   bool frame_requested_ = true;
   bool synchronous_ = false;
   ClickTracker click_;
+  ClickTracker right_click_;  // 2D: a right click deletes a triangle (a right drag pans)
   /// The 3D view: the part of the framebuffer between the panels docked left and right
   /// (x, y from the top-left, width, height; framebuffer pixels), so nothing hides the
   /// framed scene. The camera's aspect, picking and the heat map all use it.

@@ -49,7 +49,7 @@ accel::Status App::set_ray_2d(float ox, float oy, float dx, float dy) {
   return {};
 }
 
-void App::update_board_input(const ClickResult& r) {
+void App::update_board_input(const ClickResult& r, const ClickResult& right) {
   const ImGuiIO& io = ImGui::GetIO();
   const float sx = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
   const float sy = io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f;
@@ -59,9 +59,46 @@ void App::update_board_input(const ClickResult& r) {
                                             window.y * sy - static_cast<float>(view_.y), view_.z, view_.w);
     return glm::vec2(p.x, p.y);
   };
-  const BlackboardAction a = board_.update(r, plane(r.press_pos), plane(r.pos), click_.dragging());
-  if (a.kind == BlackboardAction::Kind::AddTriangle) (void)add_triangle_2d(a.triangle);
-  if (a.kind == BlackboardAction::Kind::ShootRay) set_ray(a.ray, "dragged 2D ray");
+  const accel::Scene& scene = session_.scene();
+  // The corner under the press (within 8 pixels), which a drag from there moves.
+  int grabbed = -1;
+  if (click_.held()) {
+    const glm::vec2 press = plane(r.press_pos);
+    float best = 8.0f * camera_.units_per_pixel(static_cast<float>(view_.w));
+    for (size_t v = 0; v < scene.vertex_count(); ++v) {
+      const float d = glm::length(glm::vec2(scene.positions()[v]) - press);
+      if (d <= best) best = d, grabbed = static_cast<int>(v);
+    }
+  }
+  const BlackboardAction a = board_.update(r, plane(r.press_pos), plane(r.pos), click_.dragging(), grabbed);
+  const std::string& spec = session_.scene_info().spec;
+  switch (a.kind) {
+    case BlackboardAction::Kind::AddTriangle: (void)add_triangle_2d(a.triangle); break;
+    case BlackboardAction::Kind::ShootRay: set_ray(a.ray, "dragged 2D ray"); break;
+    case BlackboardAction::Kind::MoveVertex:
+      if (static_cast<size_t>(a.vertex) < scene.vertex_count() &&
+          glm::vec2(scene.positions()[static_cast<size_t>(a.vertex)]) != a.position) {
+        session_.set_scene(accel::scene2d_with_vertex_moved(scene, static_cast<uint32_t>(a.vertex), a.position.x,
+                                                            a.position.y),
+                           spec, true);
+        sync_session();
+      }
+      break;
+    case BlackboardAction::Kind::None: break;
+  }
+  if (!right.click) return;
+  // A right click deletes the triangle under it (the last drawn, on top, when several are).
+  const glm::vec2 p = plane(right.press_pos);
+  for (size_t k = scene.triangle_count(); k-- > 0;) {
+    const glm::vec2 a0(scene.vertex(uint32_t(k), 0)), a1(scene.vertex(uint32_t(k), 1)), a2(scene.vertex(uint32_t(k), 2));
+    auto side = [](glm::vec2 u, glm::vec2 v, glm::vec2 q) { return (v.x - u.x) * (q.y - u.y) - (v.y - u.y) * (q.x - u.x); };
+    const float s0 = side(a0, a1, p), s1 = side(a1, a2, p), s2 = side(a2, a0, p);
+    if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
+      session_.set_scene(accel::scene2d_without_triangle(scene, uint32_t(k)), spec, true);
+      sync_session();
+      return;
+    }
+  }
 }
 
 accel::Aabb App::frame_box() const {

@@ -253,10 +253,11 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
       // axis the ray travels down, orders the children the ray passes as it passes them:
       // along the ray each axis' half can only change from the near to the far one, so the
       // octants it passes have increasing i (Revelles et al. 2000's first-node idea).
+      // A quadtree (2D scene) ignores z: its four quadrants are then the first four tested.
       const unsigned mask = order_ == OctreeOrder::Fixed
                                 ? 0u
                                 : unsigned(std::signbit(ray.dir.x)) | unsigned(std::signbit(ray.dir.y)) << 1 |
-                                      unsigned(std::signbit(ray.dir.z)) << 2;
+                                      unsigned(std::signbit(ray.dir.z) && !data_.planar) << 2;
       while (top > 0) {
         const Entry e = stack[--top];
         sink.pop(e.node, e.depth, e.t_enter);
@@ -333,7 +334,7 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
         }
         if constexpr (Sink::kRecords) {
           order.mask = mask;
-          order.count = 8;
+          order.count = data_.planar ? 4 : 8;  // a quadtree's upper-z octants hold nothing
           sink.vars(order);
         }
         while (hits > 0) {

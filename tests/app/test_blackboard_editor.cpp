@@ -70,6 +70,28 @@ TEST(BlackboardEditor, ADragShootsTheRayAlongIt) {
   EXPECT_TRUE(e.pending().empty());  // a drag places no corner
 }
 
+TEST(BlackboardEditor, ADragFromACornerMovesItFrameByFrame) {
+  BlackboardEditor e;
+  ClickResult held;
+  // The first frame of the drag grabs vertex 7 (found at the press point by App).
+  BlackboardAction a = e.update(held, {1, 1}, {2, 1}, true, 7);
+  ASSERT_EQ(a.kind, BlackboardAction::Kind::MoveVertex);
+  EXPECT_EQ(a.vertex, 7);
+  EXPECT_EQ(a.position, glm::vec2(2, 1));
+  EXPECT_FALSE(e.drag_line().has_value());  // no ray is being dragged
+  // It keeps it, whatever lies under the cursor now, until the release.
+  a = e.update(held, {1, 1}, {3, 2}, true, -1);
+  EXPECT_EQ(a.vertex, 7);
+  ClickResult released;
+  released.drag_end = true;
+  a = e.update(released, {1, 1}, {3, 3}, false, -1);
+  ASSERT_EQ(a.kind, BlackboardAction::Kind::MoveVertex);
+  EXPECT_EQ(a.position, glm::vec2(3, 3));
+  // The next drag from empty space shoots a ray again.
+  e.update(held, {5, 5}, {6, 5}, true, -1);
+  EXPECT_EQ(e.update(released, {5, 5}, {6, 5}, false, -1).kind, BlackboardAction::Kind::ShootRay);
+}
+
 TEST(BlackboardEditor, GridLinesAreOneTwoOrFiveTimesAPowerOfTen) {
   EXPECT_FLOAT_EQ(grid_spacing(0.01f, 24.0f), 0.5f);   // 0.24 wanted
   EXPECT_FLOAT_EQ(grid_spacing(0.05f, 24.0f), 2.0f);   // 1.2

@@ -6,9 +6,17 @@
 namespace viz {
 
 BlackboardAction BlackboardEditor::update(const ClickResult& r, glm::vec2 press_point, glm::vec2 point,
-                                          bool dragging) {
+                                          bool dragging, int vertex_at_press) {
   BlackboardAction action;
   drag_.reset();
+  if (dragging && moving_ < 0 && vertex_at_press >= 0) moving_ = vertex_at_press;  // the drag grabbed a corner
+  if (moving_ >= 0 && (dragging || r.drag_end)) {  // every frame of the drag moves it
+    action.kind = BlackboardAction::Kind::MoveVertex;
+    action.vertex = moving_;
+    action.position = point;
+    if (r.drag_end) moving_ = -1;
+    return action;
+  }
   if (dragging) drag_ = std::make_pair(press_point, point);
   if (r.drag_end && point != press_point) {
     action.kind = BlackboardAction::Kind::ShootRay;
