@@ -42,7 +42,7 @@ def main():
         with cdp.Browser() as browser:
             page = browser.new_page(*SIZE)
             # A slide's link: the lecture at its kd-tree state, tree diagram open.
-            page.navigate(base + '?playlist=lecture&state=8')
+            page.navigate(base + '?playlist=lecture&state=16')
             page.wait_for_console('accelviz: ready', timeout=120)
             wait_until(page, "document.title.includes('state 8/') && !document.title.includes('loading')")
             time.sleep(3)  # the state's title fades in the view

@@ -79,7 +79,7 @@ accel::Result<Playlist> load_playlist(const std::string& path) {
   for (PlaylistState& state : playlist.value().states)
     for (ScriptCommand& c : state.commands) {
       const bool names_file = (c.kind == CommandKind::Scene && !c.name.starts_with("procedural:")) ||
-                              c.kind == CommandKind::LoadBench ||
+                              c.kind == CommandKind::Scene2d || c.kind == CommandKind::LoadBench ||
                               (c.kind == CommandKind::TraceRays && !c.name.starts_with("random:") &&
                                !c.name.starts_with("primary:"));
       if (names_file && fs::path(c.name).is_relative()) c.name = (dir / c.name).lexically_normal().string();
