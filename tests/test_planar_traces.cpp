@@ -100,5 +100,65 @@ TEST(QuadtreeTrace, FixedOrderVisitsQuadrantsZeroToThree) {
   EXPECT_EQ(trace_tokens(rec), expected);
 }
 
+// [SECTION] Grid, kd-tree, BVH and circle tree on the same four triangles and ray Q
+
+// Grid 2 x 2 x 1 (res given): cell id = X + 2 Y, T0 in cell 0, T2 in 1, T3 in 2, T1 in 3. Ray
+// Q starts in cell 1 (X = 1, Y = 0) and would leave it at x = 2 (t = 1.75) before y = 2
+// (t = 2); T2's hit at 0.5 lies inside the cell, so the 2D DDA stops there.
+TEST(PlanarGridTrace, TheDdaStopsInTheFirstCellWhoseHitLiesInside) {
+  const Scene scene = parse_scene2d(kQuadScene, "quad").value();
+  auto s = build(scene, "grid", {"res=2,2,1"});
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->node_prims(1), (std::vector<uint32_t>{2}));
+  TraceRecorder rec;
+  EXPECT_EQ(s->intersect_traced(ray2d(3.75f, 0.0f, -1.0f, 1.0f), rec).prim, 2);
+  EXPECT_EQ(trace_tokens(rec), (std::vector<std::string>{"enter 1", "test 2 hit", "closest 2", "done 2"}));
+}
+
+// kd-tree, split=middle, round robin: the root splits x = 2, its children y = 2. Pre-order:
+// 0 (x = 2), 1 (x <= 2; y = 2) with leaves 2 (T0) and 3 (T3), 4 (x >= 2; y = 2) with leaves 5
+// (T2) and 6 (T1). Ray Q in the root: t in [0, 3.75], t_split = 1.75: case (a), the near
+// child 4 (x >= 2, where it starts) first, the far child 1 pushed. In node 4 the plane y = 2
+// lies at t = 2 > t_max = 1.75: case (b), the near child 5 only (6 is never entered). T2 is
+// hit at 0.5, and node 1, entered at 1.75, is culled when popped.
+TEST(PlanarKdTrace, CasesAAndBOnSplitLines) {
+  const Scene scene = parse_scene2d(kQuadScene, "quad").value();
+  auto s = build(scene, "kdtree", {"split=middle", "axis=round_robin", "leaf_size=1"});
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->node_prims(5), (std::vector<uint32_t>{2}));
+  EXPECT_EQ(s->node_view(4).box.min, Vec3(2.0f, 0.0f, 0.0f));
+  TraceRecorder rec;
+  EXPECT_EQ(s->intersect_traced(ray2d(3.75f, 0.0f, -1.0f, 1.0f), rec).prim, 2);
+  EXPECT_EQ(trace_tokens(rec), (std::vector<std::string>{"visit 0", "push 1", "visit 4", "cull 6 missed", "visit 5",
+                                                         "test 2 hit", "closest 2", "pop 1", "cull 1 beyond",
+                                                         "done 2"}));
+}
+
+// BVH of rectangles (binary, median split, round robin): x first splits the centroids into
+// {T0, T3} (node 1, box [0,1.5] x [0,3.5]) and {T2, T1} (node 4, [2.5,4] x [0.5,4]), then y
+// into leaves 2 (T0), 3 (T3), 5 (T2), 6 (T1). Ray Q enters node 4 at t = 0.5 and node 1 at
+// t = 2.25: the ordered traversal pushes 1, then the nearer 4 on top. In node 4, T1's box
+// [3,4]^2 lies beyond the line x + y = 3.75 (missed); T2 is hit at 0.5; node 1 is culled.
+// The circle tree (the sphere tree in 2D) builds the same nodes and takes the same steps:
+// its circle around T1 misses the line too.
+TEST(PlanarHierarchyTrace, NearerRectangleOrCircleFirst) {
+  const Scene scene = parse_scene2d(kQuadScene, "quad").value();
+  for (const char* name : {"bvh", "spheretree"}) {
+    SCOPED_TRACE(name);
+    std::vector<std::string> params = {"builder=median", "axis=round_robin", "leaf_size=1"};
+    if (std::string(name) == "bvh") params.push_back("width=2");
+    auto s = build(scene, name, params);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->node_view(1).box.max, Vec3(1.5f, 3.5f, 0.0f));
+    EXPECT_EQ(s->node_prims(5), (std::vector<uint32_t>{2}));
+    TraceRecorder rec;
+    EXPECT_EQ(s->intersect_traced(ray2d(3.75f, 0.0f, -1.0f, 1.0f), rec).prim, 2);
+    EXPECT_EQ(trace_tokens(rec),
+              (std::vector<std::string>{"push 0", "pop 0", "visit 0", "push 1", "push 4", "pop 4", "visit 4",
+                                        "cull 6 missed", "push 5", "pop 5", "visit 5", "test 2 hit", "closest 2",
+                                        "pop 1", "cull 1 beyond", "done 2"}));
+  }
+}
+
 }  // namespace
 }  // namespace accel
