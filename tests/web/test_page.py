@@ -18,6 +18,8 @@ Checks (--only takes the short name or the full one; repeatable):
   bad-obj      'bad OBJ dropped'     a dropped bad OBJ gives one 'file:3:' line, page lives on
   bad-script   'bad script'          an unknown command on line 2 gives 'script failed: ...:2:'
   f12          'F12 downloads a screenshot'  F12 saves accelviz_0001.png, the canvas's size
+  blackboard   'blackboard'          the 2D mode: ray2d + print-hit per structure on the bundled
+                                     scenes/blackboard.scene2d give its hit (triangle 7 at 13.238)
 Standard library only.
 """
 
@@ -531,6 +533,20 @@ class Tester:
         finally:
             shutil.rmtree(downloads, ignore_errors=True)
 
+    def check_blackboard(self):
+        # The lecture's ten triangles and its ray (scenes/lecture.playlist): every structure,
+        # traversed in the plane, finds triangle 7 at t = 13.238 as the native viewer does.
+        lines = ['# written by tests/web/test_page.py', 'size 640 480', 'mode 2d', 'scene2d scenes/blackboard.scene2d']
+        for name in STRUCTURES:
+            lines += ['structure ' + name, 'ray2d 0.5 4.2 1 0.1', 'print-hit']
+        run = self.run_script('blackboard.txt', lines, timeout=120)
+        if run.end is None or not run.end.startswith(PREFIX + 'script done'):
+            raise CheckFailed('%s\n%s' % (run.end or 'the script did not end', run.details))
+        hits = [t for t in run.lines if HIT_RE.match(t) or t == 'miss']
+        expected = ['hit 7 13.2380953'] * len(STRUCTURES)
+        if hits != expected:
+            raise CheckFailed('print-hit gave %s, expected %s' % (hits, expected))
+
     CHECKS = [
         ('loads', 'loads', check_loads),
         ('hits', 'hits match the CLI', check_hits),
@@ -539,6 +555,7 @@ class Tester:
         ('bad-obj', 'bad OBJ dropped', check_bad_obj),
         ('bad-script', 'bad script', check_bad_script),
         ('f12', 'F12 downloads a screenshot', check_f12),
+        ('blackboard', 'blackboard', check_blackboard),
     ]
 
     def run_checks(self, only):

@@ -51,6 +51,7 @@
     if (name.startsWith('procedural:')) return name;
     for (const [dir, arg] of [['/shared/scenes/', '../shared/scenes/'], ['/app/scenes/', 'scenes/']]) {
       if (exists(dir + name + '.obj')) return arg + name + '.obj';
+      if (exists(dir + name + '.scene2d')) return arg + name + '.scene2d';  // the blackboard's
       if (exists(dir + name)) return arg + name;
     }
     if (!name.includes('.') && !name.includes('/')) return 'procedural:' + name;
