@@ -108,6 +108,10 @@ accel::PinholeCamera Camera::pinhole() const {
   cam.target = target_;
   cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
   cam.fovy_deg = glm::degrees(fov_y_);
+  // Top-down: the pinhole above the target whose view of the plane z = 0 is exactly the
+  // orthographic one (the same half height at the plane's distance), so the heat map's rays
+  // land on the points drawn under their pixels: each costs what locating that point does.
+  if (top_down_) cam.fovy_deg = glm::degrees(2.0f * std::atan(half_height_ / distance_));
   return cam;
 }
 

@@ -47,7 +47,8 @@ class Camera {
   /// The camera as the core's pinhole model (eye, target, up = +Y, vertical field of view).
   /// accel::camera_ray(pinhole(), px, py, width, height) is the ray through framebuffer pixel
   /// (px, py) from the top-left of exactly what view() and projection() draw, so picking,
-  /// the heat map and the rendered image agree.
+  /// the heat map and the rendered image agree. Top-down: the pinhole that sees the plane
+  /// z = 0 as the orthographic view draws it (rays onto the plane, for the heat map).
   accel::PinholeCamera pinhole() const;
 
   /// Framebuffer position (from the top-left, pixels) of world point `p` in a viewport of

@@ -26,6 +26,14 @@ TEST(BlackboardCamera, PlanePointsAndProjectionAgree) {
     EXPECT_NEAR(back.x, px.x, 1e-3f);
     EXPECT_NEAR(back.y, px.y, 1e-3f);
   }
+  // The pinhole camera (the heat map's rays) meets the plane where the view draws it.
+  for (glm::vec2 px : {glm::vec2(10.5f, 20.5f), glm::vec2(600.5f, 470.5f)}) {
+    const accel::Ray ray = accel::camera_ray(cam.pinhole(), px.x, px.y, 640, 480);
+    const float t = -ray.org.z / ray.dir.z;
+    const glm::vec3 hit = ray.org + t * ray.dir, drawn = cam.plane_point(px.x, px.y, 640, 480);
+    EXPECT_NEAR(hit.x, drawn.x, 1e-3f);
+    EXPECT_NEAR(hit.y, drawn.y, 1e-3f);
+  }
   // Orbiting does nothing; zooming in shrinks the world per pixel.
   const float before = cam.units_per_pixel(480.0f);
   cam.orbit(100.0f, 50.0f);
