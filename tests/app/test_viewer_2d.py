@@ -12,16 +12,14 @@ structure and option below:
 Then `mode 3d` / `mode 2d`, `add2d` and script errors of the 2D commands.
 Exit 77 (ctest: skipped) when xvfb-run is missing.
 """
-import argparse
 import csv
 import os
 import random
 import re
-import shutil
-import subprocess
 import sys
 
-FAILURES = []
+from viewer_harness import FAILURES, check, parse_args, run, viewer
+
 W, H = 480, 360
 STRUCTURES = [
     ("brute", "brute"),
@@ -34,28 +32,6 @@ STRUCTURES = [
     ("circletree", "spheretree"),
 ]
 RAYS = 1000
-
-
-def check(cond, what):
-    if not cond:
-        FAILURES.append(what)
-        print("FAIL:", what)
-    return cond
-
-
-def run(cmd, timeout=600, env=None):
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
-    return p.returncode, p.stdout, p.stderr
-
-
-def viewer(args, script_path):
-    # An X authority file of our own, as test_viewer_scripts.py explains.
-    tmp = os.path.join(os.path.dirname(script_path), "xvfb-tmp")
-    os.makedirs(tmp, exist_ok=True)
-    auth = os.path.join(tmp, os.path.basename(script_path) + ".Xauthority")
-    open(auth, "w").close()
-    xvfb = [args.xvfb, "-a", "-f", auth, "-s", "-screen 0 1280x1024x24"]
-    return run(xvfb + [args.viewer, "--script", script_path], env=dict(os.environ, TMPDIR=tmp))
 
 
 def planar_t(tri, ray):
@@ -116,16 +92,9 @@ def write_scene_and_rays(work):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--viewer", required=True)
-    ap.add_argument("--cli", required=True)
-    ap.add_argument("--xvfb", default=shutil.which("xvfb-run") or "")
-    ap.add_argument("--work", required=True)
-    args = ap.parse_args()
-    if not args.xvfb:
-        print("skipped: xvfb-run not found (Debian package xvfb)")
+    args = parse_args()
+    if args is None:
         return 77
-    os.makedirs(args.work, exist_ok=True)
     work = args.work
     scene, rays, rays_file = write_scene_and_rays(work)
     triangles = read_scene(scene)

@@ -22,15 +22,13 @@ pixel known to hit, step from the first to the last step, take a screenshot of e
   * script errors exit 2 with "accelviz: SCRIPT:LINE: message".
 Exit 77 (ctest: skipped) when xvfb-run is missing.
 """
-import argparse
 import csv
 import os
 import re
-import shutil
-import subprocess
 import sys
 
-FAILURES = []
+from viewer_harness import FAILURES, check, parse_args, run, viewer
+
 W, H = 480, 320
 SCENE = "procedural:cornell"
 # Name in the files, registry name, parameters (as accelviz-cli --param takes them).
@@ -47,31 +45,6 @@ STRUCTURES = [
 PIXEL = (W // 2, H // 2 + 20)
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH_JSON = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "bench_chart.json")
-
-
-def check(cond, what):
-    if not cond:
-        FAILURES.append(what)
-        print("FAIL:", what)
-    return cond
-
-
-def run(cmd, timeout=300, env=None):
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
-    return p.returncode, p.stdout, p.stderr
-
-
-def viewer(args, script_path):
-    # xvfb-run keeps its X authority file in a temporary directory it removes at the end, and
-    # exits 5 whatever the viewer returned when that clean-up fails (it did, on a busy
-    # machine, even in a TMPDIR of our own). With an authority file of our own (-f) it makes
-    # no directory and has none to remove.
-    tmp = os.path.join(os.path.dirname(script_path), "xvfb-tmp")
-    os.makedirs(tmp, exist_ok=True)
-    auth = os.path.join(tmp, os.path.basename(script_path) + ".Xauthority")
-    open(auth, "w").close()
-    xvfb = [args.xvfb, "-a", "-f", auth, "-s", "-screen 0 1280x1024x24"]
-    return run(xvfb + [args.viewer, "--script", script_path], env=dict(os.environ, TMPDIR=tmp))
 
 
 def run_script(args, work, name, lines):
@@ -129,17 +102,9 @@ def write_pyramids(work):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--viewer", required=True)
-    ap.add_argument("--cli", required=True)
-    ap.add_argument("--png-check", required=True)
-    ap.add_argument("--xvfb", default=shutil.which("xvfb-run") or "")
-    ap.add_argument("--work", required=True)
-    args = ap.parse_args()
-    if not args.xvfb:
-        print("skipped: xvfb-run not found (Debian package xvfb)")
+    args = parse_args("--png-check")
+    if args is None:
         return 77
-    os.makedirs(args.work, exist_ok=True)
     work = args.work
 
     # ---- One viewer run for all structures (one X server start).
