@@ -10,6 +10,7 @@
 
 #include "bench_chart_panel.h"
 #include "registry.h"
+#include "scene2d.h"
 
 namespace viz {
 namespace {
@@ -132,7 +133,9 @@ void App::sync_session() {
     heatmap_.invalidate();
     board_.clear();
     camera_.set_top_down(session_.scene().planar());  // a 2D scene: the blackboard's view
-    if (!session_.scene().planar()) last_3d_scene_ = session_.scene_info().spec;
+    const std::string& spec = session_.scene_info().spec;
+    if (!session_.scene().planar()) last_3d_scene_ = spec;
+    else if (spec.ends_with(accel::kScene2dExtension)) board_path_ = spec;  // saved back where it came from
     frame_scene();
   }
   if (e.scene_edited) {  // the blackboard changed: the ray stays and replays on the new structure

@@ -180,6 +180,10 @@ class App {
   accel::Status add_triangle_2d(const std::array<float, 6>& xy);
   /// The debug ray in the plane.
   accel::Status set_ray_2d(float ox, float oy, float dx, float dy);
+  /// Writes the blackboard's scene to `path` as a 2D scene file (never half written).
+  accel::Status save_scene2d(const std::string& path);
+  /// The Scene section's blackboard lines: the 2D switch, and in 2D the file to save to.
+  void board_section();
   /// The mouse on the blackboard: the left button's clicks place corners, its drags move a
   /// corner or shoot the ray; a right click deletes the triangle under the cursor.
   void update_board_input(const ClickResult& left, const ClickResult& right);
@@ -218,6 +222,8 @@ class App {
   BenchChartState chart_;  // the "Speed vs error" window (bench_chart_panel.cpp)
   BlackboardEditor board_;  // the 2D mode's mouse editing
   std::string last_3d_scene_ = "procedural:cornell";  // what `mode 3d` goes back to
+  std::string board_path_ = "blackboard.scene2d";     // the Scene section's save field
+  std::string board_status_;                          // what the last save said
 
   // ---- Camera, input and the 3D view
   Camera camera_;

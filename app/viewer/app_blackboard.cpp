@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include "app.h"
 #include "planar_geometry.h"
@@ -47,6 +48,28 @@ accel::Status App::set_ray_2d(float ox, float oy, float dx, float dy) {
   r.dir = {dx, dy, 0.0f};
   set_ray(r, "2D ray");
   return {};
+}
+
+accel::Status App::save_scene2d(const std::string& path) {
+  if (!mode_2d()) return accel::make_error("save2d: not in 2D mode (mode 2d first)");
+  return accel::save_scene2d(path, session_.scene());
+}
+
+void App::board_section() {
+  bool board = mode_2d();
+  if (ImGui::Checkbox("blackboard: 2D mode (D)", &board)) (void)set_mode_2d(board);  // errors show below
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("triangles in a plane seen from above: click three corners to add a triangle, drag a\n"
+                      "corner to move it, right-click one to delete it, drag elsewhere to shoot the debug ray");
+  if (!board) return;
+  ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
+  ImGui::InputText("##board_path", &board_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Save 2D scene")) {
+    const accel::Status saved = save_scene2d(board_path_);
+    board_status_ = saved ? "saved " + board_path_ : saved.error().message;
+  }
+  if (!board_status_.empty()) ImGui::TextWrapped("%s", board_status_.c_str());
 }
 
 void App::update_board_input(const ClickResult& r, const ClickResult& right) {

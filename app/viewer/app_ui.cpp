@@ -68,11 +68,7 @@ void App::main_panel() {
   ImGui::Checkbox("lecture (L)", &lecture_mode_);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("large fonts, high contrast, controls collapsed");
   if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
-    bool board = mode_2d();
-    if (ImGui::Checkbox("blackboard: 2D mode (D)", &board)) (void)set_mode_2d(board);  // errors show below
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("triangles in a plane seen from above: click three corners to add a triangle,\n"
-                        "drag to shoot the debug ray; the same structures as in 3D");
+    board_section();
     const SceneActions a = session_.scene_section(ray_.saved_view().has_value());
     if (a.load_preset >= 0) (void)apply_preset(session_.presets()[static_cast<size_t>(a.load_preset)]);  // shown in the panel
     if (a.frame) frame_scene();

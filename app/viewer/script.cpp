@@ -135,6 +135,12 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (n != 7 || args[0] != "tri") return count_error(usage);
     return floats(1, 6, usage);
   }
+  if (verb == "save2d") {
+    c.kind = CommandKind::Save2d;
+    if (n != 1) return count_error("save2d FILE");
+    c.name = args[0];
+    return "";
+  }
   if (verb == "ray2d") {
     c.kind = CommandKind::Ray2d;
     if (n != 4) return count_error("ray2d OX OY DX DY");

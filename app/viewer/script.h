@@ -20,6 +20,7 @@
 //   scene2d FILE                      load a 2D scene file (docs/hits.md) into the blackboard
 //   add2d tri X1 Y1 X2 Y2 X3 Y3       add a triangle to the blackboard (2D mode)
 //   ray2d OX OY DX DY                 the debug ray in the plane (2D mode)
+//   save2d FILE                       write the blackboard's scene as a 2D scene file
 //   step N | step end | step back N | step hit | step start
 //   show depth=A..B | show depth=A | show leaves | show all
 //   heatmap off|nodes|prims
@@ -95,7 +96,7 @@ enum class CommandKind {
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
   Playlist, Next, Prev, PrintState, Record, RecordStop, Colors, HeatmapScale, PrintHeatmap, HeatmapDiff,
-  MemoryLimit, TraceRays, Mode, Scene2d, Add2d, Ray2d,
+  MemoryLimit, TraceRays, Mode, Scene2d, Add2d, Ray2d, Save2d,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };

@@ -228,11 +228,13 @@ TEST(Script, LectureCommands) {
 }
 
 TEST(Script, BlackboardCommands) {
-  auto parsed = parse_script("mode 2d\nscene2d board.scene2d\nadd2d tri 0 0 1 0 0x1p-1 1\nray2d -1 0.5 1 0\nmode 3d\n",
-                             "b.txt");
+  auto parsed = parse_script(
+      "mode 2d\nscene2d board.scene2d\nadd2d tri 0 0 1 0 0x1p-1 1\nray2d -1 0.5 1 0\nmode 3d\nsave2d b.scene2d\n", "b.txt");
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
-  ASSERT_EQ(c.size(), 5u);
+  ASSERT_EQ(c.size(), 6u);
+  EXPECT_EQ(c[5].kind, CommandKind::Save2d);
+  EXPECT_EQ(c[5].name, "b.scene2d");
   EXPECT_EQ(c[0].kind, CommandKind::Mode);
   EXPECT_TRUE(c[0].on);
   EXPECT_EQ(c[1].kind, CommandKind::Scene2d);
@@ -252,6 +254,7 @@ TEST(Script, BlackboardCommands) {
       {"add2d tri 0 0 1 0 0 nan\n", "'nan' is not a finite number (add2d tri X1 Y1 X2 Y2 X3 Y3)"},
       {"ray2d 0 0 1\n", "usage: ray2d OX OY DX DY"},
       {"ray2d 0 0 0 0\n", "ray2d: the direction is zero"},
+      {"save2d\n", "usage: save2d FILE"},
   };
   for (const auto& [text, expected] : errors) {
     auto bad = parse_script(text, "b.txt");
