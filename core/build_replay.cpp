@@ -110,7 +110,7 @@ void BuildReplay::apply(const BuildEvent& e) {
         references_ += e.list_count;
       }
       break;
-    case BuildEventKind::Subdivide: break;  // the eight children follow as Node events
+    case BuildEventKind::Subdivide: break;  // the eight (quadtree: four) children follow as Node events
     case BuildEventKind::Merge: {
       const uint32_t a = slot(e.a), b = slot(e.b);
       const uint32_t n = create(e.node);

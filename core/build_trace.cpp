@@ -166,11 +166,11 @@ void BuildRecorder::leaf(uint32_t id, LeafReason reason, const uint32_t* prims, 
   }
 }
 
-void BuildRecorder::subdivide(uint32_t id, const uint32_t* children) {
+void BuildRecorder::subdivide(uint32_t id, const uint32_t* children, uint32_t count) {
   if (!within_limit(id)) return;
   if (BuildEvent* e = add(BuildEventKind::Subdivide, id)) {
-    e->first = add_list(children, 8);
-    e->list_count = 8;
+    e->first = add_list(children, count);
+    e->list_count = count;
   }
 }
 
@@ -294,7 +294,8 @@ std::string describe_build_event(const BuildTrace& trace, const BuildEvent& e) {
              (std::isnan(e.cost) ? std::string() : ", C(B) = " + num(e.cost) + " (leaf " + num(e.values[0]) + ")");
     case BuildEventKind::Leaf:
       return "leaf " + node + " with " + std::to_string(e.count) + " triangles (" + leaf_reason_name(e.reason) + ")";
-    case BuildEventKind::Subdivide: return "subdivide " + node + " into 8 octants";
+    case BuildEventKind::Subdivide:
+      return "subdivide " + node + (e.list_count == 4 ? " into 4 quadrants" : " into 8 octants");
     case BuildEventKind::Merge:
       return "merge clusters " + std::to_string(e.a) + " and " + std::to_string(e.b) + " into " + node;
     case BuildEventKind::InsertStep: {

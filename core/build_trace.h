@@ -47,7 +47,7 @@ enum class BuildEventKind : uint8_t {
   Split,           ///< node split: axis, pos, cost = C(B), values[0] = leaf cost; a,b = left,right counts; count = straddling
                    ///< (kd; sbvh: references on both sides); values[1] = 1 for a BVH spatial split (sbvh), else 0
   Leaf,            ///< node becomes a leaf: reason, list = its triangles
-  Subdivide,       ///< octree: node split into 8; list = child ids in octant order (children follow as Node)
+  Subdivide,       ///< octree: node split into 8 (quadtree: 4); list = child ids in octant order (children follow as Node)
   Merge,           ///< bottom-up: node = new cluster of a and b, box, cost = its area
   InsertStep,      ///< insertion: prim sifting at node, box = node's grown box: values = {cost here, cost left, cost right}; a = choice (0 here, 1 left, 2 right)
   Collapse,        ///< wide BVH: node adopts the children of its child a (a disappears)
@@ -128,7 +128,7 @@ struct NullBuildSink {
   void candidates(uint32_t, int, const SplitCandidate*, size_t) {}
   void split(uint32_t, int, float, float, float, uint32_t, uint32_t, uint32_t, bool = false) {}
   void leaf(uint32_t, LeafReason, const uint32_t*, size_t) {}
-  void subdivide(uint32_t, const uint32_t*) {}
+  void subdivide(uint32_t, const uint32_t*, uint32_t = 8) {}
   void merge(uint32_t, uint32_t, uint32_t, const Aabb&, float) {}
   void insert_step(uint32_t, uint32_t, int, const Aabb&, const float*, int) {}
   void collapse(uint32_t, uint32_t) {}
@@ -172,8 +172,9 @@ class BuildRecorder {
   void split(uint32_t id, int axis, float pos, float cost, float leaf_cost, uint32_t left, uint32_t right,
              uint32_t straddling, bool spatial = false);
   void leaf(uint32_t id, LeafReason reason, const uint32_t* prims, size_t n);
-  /// Octree: `id` subdivided into the 8 nodes `children` (octant order).
-  void subdivide(uint32_t id, const uint32_t* children);
+  /// Octree: `id` subdivided into the `count` nodes `children` (octant order): 8, or the
+  /// 4 quadrants of a quadtree (a 2D scene; its other octants stay empty and unrecorded).
+  void subdivide(uint32_t id, const uint32_t* children, uint32_t count = 8);
   /// Bottom-up: `id` is the new cluster of `a` and `b` (whose depths are unknown until the end).
   void merge(uint32_t id, uint32_t a, uint32_t b, const Aabb& box, float cost);
   /// Insertion: `prim` sifting through node `at` (depth), whose box grows to `grown`;

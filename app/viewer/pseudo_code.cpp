@@ -430,7 +430,7 @@ const PseudoCode& build_octree_code() {
       {"leaf", "    if few objects or max depth: leaf"},
       {"", "    if the sub-cells save less than their visits:"},
       {"", "        leaf   (added: 3 ct + refs/4 >= objects)"},
-      {"subdivide", "    subdivide the cell into 8 equal sub-cells"},
+      {"subdivide", "    subdivide the cell into 8 equal sub-cells (2D: 4)"},
       {"", "    for each sub-cell:"},
       {"", "        build(sub-cell, objects overlapping it)"},
       {"unrecorded", "    (below the recorded depth: built, not shown)"},

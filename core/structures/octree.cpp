@@ -220,7 +220,8 @@ class OctreeBuilder {
     data.parents = std::move(main.parents);
     data.depths = std::move(main.depths);
     data.reasons = main.reasons;
-    sink_.done(data.nodes.size());
+    // A quadtree's count is its recorded nodes: the root and four per inner node.
+    sink_.done(planar_ ? 1 + (data.nodes.size() - 1) / 2 : data.nodes.size());
     return data;
   }
 
@@ -436,7 +437,7 @@ class OctreeBuilder {
     if constexpr (Sink::kRecords) {
       uint32_t children[8];
       for (uint32_t k = 0; k < 8; ++k) children[k] = first + k;
-      sink_.subdivide(self, children);
+      sink_.subdivide(self, children, planar_ ? 4u : 8u);  // a quadtree's four
     }
     // A child that keeps all n triangles is split again only while that can still separate
     // them: not after a poor split (references at least doubled: the triangles spread over
@@ -462,6 +463,9 @@ class OctreeBuilder {
       // No child took a triangle (exact insertion over triangles that touch no child's box
       // interior, clang's UBSan caught the 0/0): the eight share the node's part evenly.
       const double child_share = refs > 0 ? share * double(size) / double(refs) : share / 8.0;
+      // A quadtree's upper-z octants hold nothing and are no part of the lecture's figure:
+      // empty leaves as the build would make them, without construction steps.
+      if (planar_ && octant >= 4) return make_leaf(into, child, 0, &into.reasons.few_prims, child_share, value);
       record_node(id, self, depth + 1, child_box, child, size);
       return stuck ? leaf(into, id, LeafReason::NoProgress, child, size, &into.reasons.inseparable, child_share, value)
                    : build_node(into, id, child_box, depth + 1, child, size, child_share, scr, value);
@@ -564,7 +568,10 @@ Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildContr
   // that a random ray through the root also passes the node.
   BuildStats s;
   s.prims = scene.valid_prims().size();
-  s.nodes = data_.nodes.size();
+  // A quadtree counts its four children per node, as node_children() lists them.
+  auto unused_octant = [&](size_t id) { return data_.planar && id > 0 && ((id - 1) & 4u); };
+  s.nodes = 0;
+  for (size_t id = 0; id < data_.nodes.size(); ++id) s.nodes += unused_octant(id) ? 0 : 1;
   s.prim_references = data_.prim_ids.size();
   s.memory_bytes = data_.nodes.size() * sizeof(OctreeNode) + data_.prim_ids.size() * sizeof(uint32_t);
   s.sah_ct = 1.0;
@@ -572,6 +579,7 @@ Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildContr
   double cost = 0.0;
   size_t inner = 0;
   for (size_t id = 0; id < data_.nodes.size(); ++id) {
+    if (unused_octant(id)) continue;  // empty: no cost either
     const OctreeNode& n = data_.nodes[id];
     // Children have 1/4 of the area (a quadtree's 1/2 of the perimeter).
     const double area = std::ldexp(1.0, -(data_.planar ? 1 : 2) * data_.depths[id]);
