@@ -35,6 +35,10 @@ bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
                                TriangleHit* out) const {
   double t, u, v;
   if (!intersect_triangle_double(ray_, p0, p1, p2, tmax, &t, &u, &v)) return false;
+  return float_answer(t, u, v, tmax, out);
+}
+
+bool TriangleTester::float_answer(double t, double u, double v, float tmax, TriangleHit* out) const {
   *out = {float(t), float(u), float(v)};
   // A t beyond FLT_MAX (a subnormal direction: t in units of a tiny d) has no float answer.
   if (std::isinf(out->t)) return false;
@@ -49,10 +53,7 @@ bool TriangleTester::planar(const Vec3& p0, const Vec3& p1, const Vec3& p2, floa
   if (!is_planar_ray(ray_)) return reference(p0, p1, p2, tmax, out);
   double t, u, v;
   if (!PlanarRayTester(ray_).intersect(p0, p1, p2, tmax, &t, &u, &v)) return false;
-  *out = {float(t), float(u), float(v)};
-  if (std::isinf(out->t)) return false;  // as reference(): no float answer
-  out->t = std::clamp(out->t, ray_.tmin, tmax);
-  return true;
+  return float_answer(t, u, v, tmax, out);
 }
 
 DoubleRayTester::DoubleRayTester(const Ray& ray) : tmin_(ray.tmin) {

@@ -87,6 +87,8 @@ class TriangleTester {
   inline bool moller(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   bool reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   bool planar(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
+  /// A double kernel's hit (t, u, v) as the float answer in [tmin, tmax], or none.
+  bool float_answer(double t, double u, double v, float tmax, TriangleHit* out) const;
 
   Ray ray_;
   Kernel kernel_;

@@ -110,13 +110,18 @@ void App::update_board_input(const ClickResult& r, const ClickResult& right) {
     case BlackboardAction::Kind::None: break;
   }
   if (!right.click) return;
-  // A right click deletes the triangle under it (the last drawn, on top, when several are).
-  const glm::vec2 p = plane(right.press_pos);
+  // A right click deletes the triangle under it (the last drawn, on top, when several are):
+  // the one a 2D ray of length 0 from that point hits (docs/hits.md: the closed triangle).
+  accel::Ray at;
+  at.org = accel::Vec3(plane(right.press_pos), 0.0f);
+  at.dir = accel::Vec3(1.0f, 0.0f, 0.0f);
+  at.tmax = 0.0f;
+  const accel::PlanarRayTester under(at);
   for (size_t k = scene.triangle_count(); k-- > 0;) {
-    const glm::vec2 a0(scene.vertex(uint32_t(k), 0)), a1(scene.vertex(uint32_t(k), 1)), a2(scene.vertex(uint32_t(k), 2));
-    auto side = [](glm::vec2 u, glm::vec2 v, glm::vec2 q) { return (v.x - u.x) * (q.y - u.y) - (v.y - u.y) * (q.x - u.x); };
-    const float s0 = side(a0, a1, p), s1 = side(a1, a2, p), s2 = side(a2, a0, p);
-    if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
+    double t, u, v;
+    if (!scene.degenerate(uint32_t(k)) &&
+        under.intersect(scene.vertex(uint32_t(k), 0), scene.vertex(uint32_t(k), 1), scene.vertex(uint32_t(k), 2), 0.0,
+                        &t, &u, &v)) {
       session_.set_scene(accel::scene2d_without_triangle(scene, uint32_t(k)), spec, true);
       sync_session();
       return;

@@ -220,8 +220,7 @@ class OctreeBuilder {
     data.parents = std::move(main.parents);
     data.depths = std::move(main.depths);
     data.reasons = main.reasons;
-    // A quadtree's count is its recorded nodes: the root and four per inner node.
-    sink_.done(planar_ ? 1 + (data.nodes.size() - 1) / 2 : data.nodes.size());
+    sink_.done(octree_node_count(data));  // a quadtree's: the nodes its steps recorded
     return data;
   }
 
@@ -437,7 +436,7 @@ class OctreeBuilder {
     if constexpr (Sink::kRecords) {
       uint32_t children[8];
       for (uint32_t k = 0; k < 8; ++k) children[k] = first + k;
-      sink_.subdivide(self, children, planar_ ? 4u : 8u);  // a quadtree's four
+      sink_.subdivide(self, children, planar_ ? 4u : 8u);  // a quadtree's four (octree_child_count)
     }
     // A child that keeps all n triangles is split again only while that can still separate
     // them: not after a poor split (references at least doubled: the triangles spread over
@@ -569,9 +568,7 @@ Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildContr
   BuildStats s;
   s.prims = scene.valid_prims().size();
   // A quadtree counts its four children per node, as node_children() lists them.
-  auto unused_octant = [&](size_t id) { return data_.planar && id > 0 && ((id - 1) & 4u); };
-  s.nodes = 0;
-  for (size_t id = 0; id < data_.nodes.size(); ++id) s.nodes += unused_octant(id) ? 0 : 1;
+  s.nodes = octree_node_count(data_);
   s.prim_references = data_.prim_ids.size();
   s.memory_bytes = data_.nodes.size() * sizeof(OctreeNode) + data_.prim_ids.size() * sizeof(uint32_t);
   s.sah_ct = 1.0;
@@ -579,7 +576,7 @@ Status Octree::build_impl(const Scene& scene, const ParamSet& params, BuildContr
   double cost = 0.0;
   size_t inner = 0;
   for (size_t id = 0; id < data_.nodes.size(); ++id) {
-    if (unused_octant(id)) continue;  // empty: no cost either
+    if (octree_unused_octant(data_, id)) continue;  // empty: no cost either
     const OctreeNode& n = data_.nodes[id];
     // Children have 1/4 of the area (a quadtree's 1/2 of the perimeter).
     const double area = std::ldexp(1.0, -(data_.planar ? 1 : 2) * data_.depths[id]);
@@ -625,7 +622,7 @@ void Octree::for_each_node(const std::function<void(const NodeView&)>& fn) const
     v.box = boxes[id];
     if (!n.leaf())
       for (unsigned octant = 0; octant < 8; ++octant) boxes[n.first + octant] = octree_child_box(boxes[id], octant);
-    if (data_.planar && id > 0 && ((id - 1u) & 4u)) continue;  // a quadtree's unused octants
+    if (octree_unused_octant(data_, id)) continue;
     fn(v);
   }
 }
@@ -657,7 +654,7 @@ std::vector<uint32_t> Octree::node_prims(NodeId id) const {
 std::vector<NodeId> Octree::node_children(NodeId id) const {
   if (id >= data_.nodes.size() || data_.nodes[id].leaf()) return {};
   std::vector<NodeId> children;
-  for (uint32_t octant = 0; octant < (data_.planar ? 4u : 8u); ++octant) children.push_back(data_.nodes[id].first + octant);
+  for (uint32_t octant = 0; octant < octree_child_count(data_); ++octant) children.push_back(data_.nodes[id].first + octant);
   return children;
 }
 

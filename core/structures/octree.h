@@ -133,6 +133,16 @@ struct OctreeData {
   bool planar = false;
 };
 
+/// Children per inner node as the lecture draws them: 8, or the quadtree's 4 (a 2D scene,
+/// whose upper-z octants, ids first + 4..7, stay empty leaves).
+inline unsigned octree_child_count(const OctreeData& data) { return data.planar ? 4u : 8u; }
+/// Whether node `id` is one of a quadtree's unused upper-z octants (never drawn or counted).
+inline bool octree_unused_octant(const OctreeData& data, size_t id) { return data.planar && id > 0 && ((id - 1) & 4u); }
+/// The nodes of the tree the lecture draws: all, or a quadtree's root and four per inner node.
+inline size_t octree_node_count(const OctreeData& data) {
+  return data.planar && !data.nodes.empty() ? 1 + (data.nodes.size() - 1) / 2 : data.nodes.size();
+}
+
 /// Builds an octree over `scene.valid_prims()`. Over a 2D scene (Scene::planar()) it is the
 /// lecture's quadtree, by the same code: the root is a square, cells split in x and y only,
 /// and triangles go to the four lower-z octants of each block of 8 alone (the upper four stay
@@ -334,7 +344,7 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
         }
         if constexpr (Sink::kRecords) {
           order.mask = mask;
-          order.count = data_.planar ? 4 : 8;  // a quadtree's upper-z octants hold nothing
+          order.count = int(octree_child_count(data_));  // a quadtree's upper-z octants hold nothing
           sink.vars(order);
         }
         while (hits > 0) {
