@@ -8,13 +8,28 @@
 #include "structures/octree.h"
 #include "structures/sphere_tree.h"
 #include "structures/uniform_grid.h"
+#include "student/kit_registry.h"
 
 namespace accel {
+
+namespace {
+
+/// A built-in entry: the StructureInfo fields every structure has (the rest are students').
+struct BuiltinEntry {
+  std::string name, label, description, node_noun;
+  TraversalFamily traversal;
+  ConstructionFamily construction;
+  bool cells, reference;
+  std::vector<ParamSpec> params;
+  std::function<std::unique_ptr<Structure>(const ParamSet&)> create;
+};
+
+}  // namespace
 
 const std::vector<StructureInfo>& structure_registry() {
   using TF = TraversalFamily;
   using CF = ConstructionFamily;
-  static const std::vector<StructureInfo> registry = {
+  static const std::vector<BuiltinEntry> builtins = {
       {"brute", "brute force", "brute force: test every triangle (the reference)", "nodes", TF::Linear, CF::Linear,
        false, true, BruteForce::param_specs(), [](const ParamSet&) { return std::make_unique<BruteForce>(); }},
       {"grid", "uniform grid", "uniform grid: cells of equal size, 3D-DDA traversal (Amanatides & Woo 1987)",
@@ -30,6 +45,19 @@ const std::vector<StructureInfo>& structure_registry() {
        TF::Hierarchy, CF::Hierarchy, false, false, SphereTree::param_specs(),
        [](const ParamSet&) { return std::make_unique<SphereTree>(); }},
   };
+  static const std::vector<StructureInfo> registry = [] {
+    std::vector<StructureInfo> all;
+    for (const BuiltinEntry& b : builtins) {
+      StructureInfo info;
+      info.name = b.name, info.label = b.label, info.description = b.description, info.node_noun = b.node_noun;
+      info.traversal = b.traversal, info.construction = b.construction;
+      info.cells = b.cells, info.reference = b.reference;
+      info.params = b.params, info.create = b.create;
+      all.push_back(std::move(info));
+    }
+    for (StructureInfo& s : student_structure_infos(all)) all.push_back(std::move(s));
+    return all;
+  }();
   return registry;
 }
 
@@ -37,6 +65,13 @@ std::vector<std::string> structure_names() {
   std::vector<std::string> names;
   for (const auto& info : structure_registry()) names.push_back(info.name);
   return names;
+}
+
+std::vector<const StructureInfo*> student_structures() {
+  std::vector<const StructureInfo*> out;
+  for (const auto& info : structure_registry())
+    if (info.student) out.push_back(&info);
+  return out;
 }
 
 Result<const StructureInfo*> find_structure(const std::string& name) {

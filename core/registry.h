@@ -45,12 +45,25 @@ struct StructureInfo {
   /// A new, unbuilt structure for these (validated) parameters: a parameter may choose the
   /// class, e.g. the BVH's `width` picks the binary or the wide layout.
   std::function<std::unique_ptr<Structure>(const ParamSet&)> create;
+  /// The pseudo code's traversal / construction variant for a structure without a
+  /// `traversal` / `builder` parameter (a student's): "ordered", "median", ...
+  std::string listing_traversal, listing_builder;
+  /// A student's structure (student/accelviz_student.h, core/student/): built in from
+  /// ACCEL_STUDENT_DIR, checked by `accelviz-cli check`.
+  bool student = false;
+  /// A student's: the built-in structure of the same lecture kind ("kdtree"), which the
+  /// checks compare and time it against and the viewer's "compare with the built-in" runs.
+  std::string builtin_peer;
+  std::string source_file;  ///< a student's: the file that registered it
+  bool optimized = true;    ///< a student's: that file was compiled with optimisation
 };
 
-/// All structures, in lecture order.
+/// All structures, in lecture order, then the students' (in the order their names sort).
 const std::vector<StructureInfo>& structure_registry();
 /// Names of all structures, in lecture order.
 std::vector<std::string> structure_names();
+/// The student structures built in (empty without ACCEL_STUDENT_DIR).
+std::vector<const StructureInfo*> student_structures();
 /// The entry for `name`, or an Error listing the valid names.
 Result<const StructureInfo*> find_structure(const std::string& name);
 

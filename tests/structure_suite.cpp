@@ -1,33 +1,12 @@
 #include "structure_suite.h"
 
 #include "batch.h"
+#include "check_suites.h"
 #include "registry.h"
 #include "test_support.h"
 
 namespace accel::testing {
 namespace {
-
-/// Scenes that stress builders: one triangle, all in one plane, all identical, empty.
-Scene edge_scene(const std::string& name) {
-  std::vector<Vec3> p;
-  std::vector<UVec3> t;
-  if (name == "one_triangle") {
-    p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    t = {{0, 1, 2}};
-  } else if (name == "coplanar") {
-    // 2000 random triangles in the plane z = 0.5: a flat scene box, split planes in it.
-    Rng rng(4);
-    for (uint32_t i = 0; i < 2000; ++i) {
-      const Vec3 c(rng.uniform(), rng.uniform(), 0.5f);
-      for (int k = 0; k < 3; ++k) p.push_back(c + Vec3(rng.uniform(-0.05f, 0.05f), rng.uniform(-0.05f, 0.05f), 0.0f));
-      t.emplace_back(3 * i, 3 * i + 1, 3 * i + 2);
-    }
-  } else if (name == "identical") {
-    p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 1}};
-    for (int i = 0; i < 500; ++i) t.emplace_back(0, 1, 2);
-  }
-  return Scene(std::move(p), std::move(t), name);
-}
 
 struct SuiteScene {
   std::string key;

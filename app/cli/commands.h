@@ -51,7 +51,22 @@ struct BenchOptions {
   double time_limit = 0.0;   ///< as StructureOptions, per build
 };
 
+/// accelviz-cli check: the assignment kit's grader (check_command.cpp, docs/student.md).
+struct CheckOptions {
+  std::string structure;      ///< one student structure; empty: every one built in
+  bool json = false;
+  std::string out_dir = "accelviz-check";  ///< replay files of the wrong rays
+  std::string shared;         ///< ../shared/scenes for the meshes category
+  double ray_scale = 1.0;
+  bool time = true;
+  double timeout = 300.0;     ///< seconds per structure before its child is stopped
+  std::string memory_limit;   ///< per structure's child (default: 4 GiB or half the memory)
+  size_t memory_bytes = 0;
+  std::string worker_progress, worker_report;  ///< set in the child process only
+};
+
 int run_trace(const TraceOptions& options);
+int run_check(const CheckOptions& options);
 int run_bench(const BenchOptions& options);
 int run_stats(const StatsOptions& options);
 

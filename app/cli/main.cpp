@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -125,6 +126,29 @@ int main(int argc, char** argv) {
 
   CLI::App* params_cmd = app.add_subcommand("params", "list the structures and their parameters");
 
+  cli::CheckOptions check;
+  check.shared = ACCEL_DEFAULT_SHARED_SCENES;
+  check.memory_bytes = std::min<size_t>(size_t(4) << 30, accel::default_memory_limit());
+  CLI::App* check_cmd = app.add_subcommand(
+      "check", "grade student structures (docs/student.md): answers against the reference, the lecture's traps, "
+               "invariants of the logs, speed against the built-in structure; exit 0 only when all is correct");
+  check_cmd->add_option("--structure", check.structure, "one student structure (default: every one built in)");
+  check_cmd->add_flag("--json", check.json, "print the report as JSON (for course autograders)");
+  check_cmd->add_option("--out-dir", check.out_dir, "folder for the wrong rays' viewer state files")
+      ->capture_default_str();
+  check_cmd->add_option("--shared", check.shared, "folder of the shared meshes (skipped when absent)")
+      ->capture_default_str();
+  check_cmd->add_option("--ray-scale", check.ray_scale, "multiply every case's ray count (0 < F <= 10)")
+      ->capture_default_str();
+  check_cmd->add_flag("!--no-time", check.time, "skip the speed measurement");
+  check_cmd->add_option("--timeout", check.timeout, "seconds one structure's check may take (an endless loop)")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  check_cmd->add_option("--memory-limit", check.memory_limit,
+                        "memory one structure's check may use, e.g. 2G (default: 4G or half the memory)");
+  check_cmd->add_option("--worker-progress", check.worker_progress)->group("");  // the child process's
+  check_cmd->add_option("--worker-report", check.worker_report)->group("");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -140,5 +164,6 @@ int main(int argc, char** argv) {
   if (stats_cmd->parsed()) return check_stdout(cli::run_stats(stats));
   if (bench_cmd->parsed()) return check_stdout(cli::run_bench(bench));
   if (params_cmd->parsed()) return check_stdout(print_params());
+  if (check_cmd->parsed()) return check_stdout(cli::run_check(check));
   return cli::kExitBadInput;
 }

@@ -1,0 +1,473 @@
+#include "student/grader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <limits>
+
+#include "batch.h"
+#include "check_suites.h"
+#include "parallel.h"
+#include "ray_gen.h"
+#include "student/kit_structure.h"
+#include "traps.h"
+
+namespace accel {
+namespace {
+
+/// One case of the suites: made on demand (the meshes are loaded only when reached).
+struct CaseSpec {
+  std::string category, name;
+  std::function<Result<HardCase>()> make;
+};
+
+size_t scaled(size_t n, double scale) { return std::max<size_t>(1, size_t(double(n) * scale)); }
+
+/// Random rays through the scene box and primary rays of its default camera.
+std::vector<Ray> scene_rays(const Scene& scene, size_t random, int side, uint64_t seed) {
+  std::vector<Ray> rays = random_rays(scene.bounds(), random, seed, scene.planar());
+  if (!scene.planar() && !scene.bounds().empty()) {
+    const auto primary = primary_rays(default_camera(scene.bounds()), side, side * 3 / 4);
+    rays.insert(rays.end(), primary.begin(), primary.end());
+  }
+  return rays;
+}
+
+std::vector<CaseSpec> case_specs(const CheckOptions& o) {
+  std::vector<CaseSpec> specs;
+  const double k = o.ray_scale;
+  const int side = std::max(8, int(120.0 * std::sqrt(k)));
+  for (const std::string& name : procedural_scene_names(false))
+    specs.push_back({"procedural", name, [name, k, side]() -> Result<HardCase> {
+                       auto scene = make_procedural_scene(name);
+                       if (!scene) return scene.error();
+                       auto rays = scene_rays(scene.value(), scaled(20000, k), side, 1);
+                       return HardCase{name, std::move(scene.value()), std::move(rays)};
+                     }});
+  for (const std::string& name : edge_scene_names())
+    specs.push_back({"edge", name, [name, k]() -> Result<HardCase> {
+                       Scene s = edge_scene(name);
+                       auto rays = scene_rays(s, scaled(5000, k), 40, 2);
+                       return HardCase{name, std::move(s), std::move(rays)};
+                     }});
+  specs.push_back({"edge", "empty", [k]() -> Result<HardCase> {
+                     return HardCase{"empty", Scene{}, random_rays(Aabb{Vec3(-1), Vec3(1)}, scaled(200, k), 3)};
+                   }});
+  specs.push_back({"edge", "all_degenerate", [k]() -> Result<HardCase> {
+                     Scene flat({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1, 2}, {0, 0, 1}}, "all_degenerate");
+                     return HardCase{"all_degenerate", std::move(flat),
+                                     random_rays(Aabb{Vec3(-1), Vec3(3)}, scaled(200, k), 4)};
+                   }});
+  // The hard cases: generated together, handed out one by one.
+  auto hard = std::make_shared<std::vector<HardCase>>();
+  for (const char* name : {"closed_mesh_edges_vertices", "axis_parallel_on_planes", "origins_inside_scene",
+                           "offset_1e5", "scale_1e-3", "scale_1e3", "flat_scene", "slivers_zero_area_duplicates",
+                           "teapot_in_stadium", "coplanar_overlapping", "hits_at_tmin_tmax", "cube_diagonals"}) {
+    const std::string n = name;
+    specs.push_back({"hard", n, [hard, n, k]() -> Result<HardCase> {
+                       if (hard->empty()) *hard = hard_cases();
+                       for (const HardCase& h : *hard)
+                         if (h.name == n) {
+                           HardCase c = h;
+                           if (k < 1.0) {  // keep every step-th ray, in order
+                             const size_t step = std::max<size_t>(1, size_t(1.0 / k));
+                             std::vector<Ray> kept;
+                             for (size_t i = 0; i < c.rays.size(); i += step) kept.push_back(c.rays[i]);
+                             c.rays = std::move(kept);
+                           }
+                           return c;
+                         }
+                       return make_error("hard case " + n + " is gone");
+                     }});
+  }
+  if (!o.shared_scenes.empty() && std::filesystem::is_directory(o.shared_scenes))
+    for (const char* file : {"cornell_box.obj", "teapot.obj", "bunny_lowres.obj"}) {
+      const std::string path = o.shared_scenes + "/" + file;
+      if (!std::filesystem::exists(path)) continue;
+      specs.push_back({"meshes", file, [path, file, k, side]() -> Result<HardCase> {
+                         auto scene = load_obj(path);
+                         if (!scene) return scene.error();
+                         auto rays = scene_rays(scene.value(), scaled(20000, k), side, 5);
+                         return HardCase{file, std::move(scene.value()), std::move(rays)};
+                       }});
+    }
+  return specs;
+}
+
+// --- the lecture's traps, recognised in a wrong answer ----------------------------------
+
+/// The answer is a real hit farther than the reference's (or a miss where it hits): the
+/// traversal stopped too early or never looked where the nearer triangle is.
+bool answered_too_far(const Hit& got, const ReferenceHit& ref) {
+  return ref.prim >= 0 && (!got.valid() || double(got.t) > ref.t);
+}
+
+/// kd-tree: the final closest hit lies beyond the t_split of a node whose far child the ray
+/// never visited: a near-child hit accepted beyond t_split ("if t_hit < t_split return").
+bool kd_hit_beyond_t_split(const TraceRecorder& rec, const Hit& got) {
+  if (!got.valid()) return false;
+  const auto& events = rec.events();
+  for (const RecordedVars& rv : rec.recorded_vars()) {
+    const auto* kd = std::get_if<KdSplitVars>(&rv.vars);
+    if (!kd || kd->kase != KdCase::Both || !(kd->t_split < got.t)) continue;
+    const bool far_visited = std::any_of(events.begin(), events.end(), [&](const TraceEvent& e) {
+      return e.kind == TraceEventKind::Visit && e.node == kd->far_child;
+    });
+    if (!far_visited) return true;
+  }
+  return false;
+}
+
+/// Grid: the final closest hit was taken in a cell it lies beyond, and the walk stopped there.
+bool grid_hit_outside_cell(const TraceRecorder& rec, const Hit& got) {
+  if (!got.valid()) return false;
+  const auto& events = rec.events();
+  const TraceEvent* cell = nullptr;
+  bool found = false;
+  for (const TraceEvent& e : events) {
+    if (e.kind == TraceEventKind::EnterCell) {
+      if (found) return false;  // the walk went on after the hit: not this trap
+      cell = &e;
+    }
+    if (e.kind == TraceEventKind::NewClosest && e.prim == got.prim) found = true;
+  }
+  return found && cell && double(got.t) > double(cell->t1) * (1.0 + 1e-6) + 1e-30;
+}
+
+/// Octree / kd-tree / grid: the reference triangle is missing from every leaf or cell that
+/// holds the reference hit point although it touches it there: lost at a split or a cell
+/// boundary.
+bool triangle_lost_at_split(const KitStructure& s, const Scene& scene, const Ray& ray, const ReferenceHit& ref) {
+  if (ref.prim < 0) return false;
+  const Vec3 p = ray.org + float(ref.t) * ray.dir;
+  const KitTree& tree = s.tree();
+  const Aabb tri = scene.triangle_bounds(uint32_t(ref.prim));
+  auto holds_point = [&](const Aabb& box) {
+    const Vec3 pad = 1e-5f * (glm::abs(box.max - box.min) + Vec3(1e-30f));
+    return glm::all(glm::greaterThanEqual(p, box.min - pad)) && glm::all(glm::lessThanEqual(p, box.max + pad));
+  };
+  bool some_leaf = false;
+  auto check = [&](const Aabb& box, const std::vector<uint32_t>& prims) {
+    if (!holds_point(box) || !glm::all(glm::lessThanEqual(tri.min, box.max)) ||
+        !glm::all(glm::greaterThanEqual(tri.max, box.min)))
+      return false;
+    some_leaf = true;
+    return std::find(prims.begin(), prims.end(), uint32_t(ref.prim)) != prims.end();
+  };
+  if (tree.grid) {
+    for (NodeId c = 0; c < tree.cells.size(); ++c)
+      if (check(tree.cell_box(c), tree.cells[c])) return false;
+  } else {
+    for (const KitNode& k : tree.nodes)
+      if ((k.leaf || k.children.empty()) && check(k.box, k.prims)) return false;
+  }
+  return some_leaf;
+}
+
+std::string name_trap(accelviz::Kind kind, const KitStructure& s, const Scene& scene, const Ray& ray,
+                      const TraceRecorder& rec, const Hit& got, const ReferenceHit& ref) {
+  using K = accelviz::Kind;
+  if (!answered_too_far(got, ref)) return "";
+  if ((kind == K::octree || kind == K::kdtree || kind == K::grid) && triangle_lost_at_split(s, scene, ray, ref))
+    return kind == K::grid ? "a triangle missing from a cell it overlaps (the insertion lost it)"
+                           : "a triangle that straddles a split is missing from a child it overlaps";
+  if (kind == K::kdtree && kd_hit_beyond_t_split(rec, got))
+    return "a near-child hit beyond t_split was returned (check t_hit <= t_split before stopping)";
+  if (kind == K::grid && grid_hit_outside_cell(rec, got))
+    return "a hit outside the current cell was accepted (it must lie inside the cell to stop the walk)";
+  if (kind == K::bvh || kind == K::spheretree || kind == K::octree) {
+    const NaiveAnswer naive = naive_first_leaf_hit(rec.events());
+    if (naive.hit && got.valid() && naive.prim == got.prim && naive.t == got.t)
+      return "stopped at the first leaf with a hit (a farther bounding volume can hold a nearer triangle)";
+  }
+  return "";
+}
+
+// --- invariants of the logs ----------------------------------------------------------------
+
+enum Inv { kReferenced, kNested, kContains, kReported, kListening, kLogSane, kInvCount };
+
+std::vector<CheckInvariant> invariant_rows(accelviz::Kind kind) {
+  using K = accelviz::Kind;
+  std::vector<CheckInvariant> rows(kInvCount);
+  rows[kReferenced].name = "every triangle is referenced";
+  rows[kNested].name = "children lie within their parents";
+  rows[kNested].applies = kind == K::octree || kind == K::kdtree || kind == K::bvh;
+  rows[kContains].name = "every box or sphere contains its triangles";
+  rows[kContains].applies = kind == K::bvh || kind == K::spheretree;
+  rows[kReported].name = "the returned hit was logged by triangle_tested";
+  rows[kListening].name = "the answers with and without a log listening are equal";
+  rows[kLogSane].name = "the build log names only nodes it made";
+  return rows;
+}
+
+void fail(CheckInvariant& inv, const std::string& where, const std::string& what) {
+  if (inv.failed++ == 0) inv.first_failure = where + ": " + what;
+}
+
+void check_tree(std::vector<CheckInvariant>& inv, const KitStructure& s, const Scene& scene, const std::string& where) {
+  const KitTree& tree = s.tree();
+  // Every non-degenerate triangle in some leaf or cell.
+  std::vector<uint8_t> seen(scene.triangle_count(), 0);
+  if (tree.grid) {
+    for (const auto& cell : tree.cells)
+      for (uint32_t p : cell)
+        if (p < seen.size()) seen[p] = 1;
+  } else {
+    for (const KitNode& k : tree.nodes)
+      for (uint32_t p : k.prims)
+        if (p < seen.size()) seen[p] = 1;
+  }
+  ++inv[kReferenced].checked;
+  size_t missing = 0;
+  uint32_t first_missing = 0;
+  for (uint32_t p : scene.valid_prims())
+    if (!seen[p] && missing++ == 0) first_missing = p;
+  if (missing)
+    fail(inv[kReferenced], where,
+         std::to_string(missing) + " triangles in no leaf or cell, the first: triangle " + std::to_string(first_missing));
+
+  ++inv[kLogSane].checked;
+  if (tree.problem_count) fail(inv[kLogSane], where, tree.problems[0]);
+
+  if (tree.grid) return;
+  for (uint32_t id = 0; id < tree.nodes.size(); ++id) {
+    const KitNode& k = tree.nodes[id];
+    const std::string node = "node " + std::to_string(k.student_id);
+    if (inv[kNested].applies && k.parent != kNoBuildNode) {
+      ++inv[kNested].checked;
+      const Aabb& pb = tree.nodes[k.parent].box;
+      const Vec3 pad = 1e-6f * (pb.max - pb.min);
+      if (!k.box.empty() && (glm::any(glm::lessThan(k.box.min, pb.min - pad)) || glm::any(glm::greaterThan(k.box.max, pb.max + pad))))
+        fail(inv[kNested], where, node + "'s box is not inside its parent's (node " +
+                                      std::to_string(tree.nodes[k.parent].student_id) + ")");
+    }
+    if (inv[kContains].applies) {
+      ++inv[kContains].checked;
+      const bool sphere = s.kind() == accelviz::Kind::spheretree;
+      for (uint32_t p : k.made_over) {
+        if (p >= scene.triangle_count() || scene.degenerate(p)) continue;
+        bool inside = true;
+        for (int v = 0; v < 3 && inside; ++v) {
+          const Vec3 x = scene.vertex(p, v);
+          if (sphere) {
+            const double d = glm::length(DVec3(x) - DVec3(k.sphere.center));
+            inside = k.sphere.radius >= 0.0f && d <= double(k.sphere.radius) * (1.0 + 1e-5) + 1e-6;
+          } else {
+            inside = glm::all(glm::greaterThanEqual(x, k.box.min)) && glm::all(glm::lessThanEqual(x, k.box.max));
+          }
+        }
+        if (!inside) {
+          fail(inv[kContains], where,
+               node + "'s " + (sphere ? "sphere" : "box") + " does not contain triangle " + std::to_string(p));
+          break;
+        }
+      }
+    }
+  }
+}
+
+/// The returned hit appears as a hitting triangle test at the same t.
+bool hit_was_reported(const TraceRecorder& rec, const Hit& h) {
+  if (!h.valid()) return true;
+  for (const TraceEvent& e : rec.events())
+    if (e.kind == TraceEventKind::TestPrim && e.hit && e.prim == h.prim && e.t0 == h.t) return true;
+  return false;
+}
+
+std::string describe_exception(const std::exception& e) {
+  return dynamic_cast<const KitError*>(&e) ? std::string(e.what()) : std::string("threw: ") + e.what();
+}
+
+// --- speed ----------------------------------------------------------------------------------
+
+double best_seconds(const Structure& s, const std::vector<Ray>& rays) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int run = 0; run < 3; ++run) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto hits = trace_all(s, rays);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    best = std::min(best, dt);
+    (void)hits;
+  }
+  return best;
+}
+
+CheckSpeed time_structure(const StructureInfo& info, const CheckOptions& o, const CheckProgress& progress) {
+  CheckSpeed sp;
+#if !defined(__OPTIMIZE__)
+  sp.why_not = "accelviz itself was compiled without optimisation: build it in Release (scripts/build.sh)";
+  return sp;
+#endif
+  if (!info.optimized) {
+    sp.why_not = info.source_file +
+                 " was compiled without optimisation (or with a sanitizer): its time would say nothing of the "
+                 "algorithm. Build with scripts/run.sh --student DIR (a Release build) to be timed";
+    return sp;
+  }
+  progress("speed/stadium", 0);
+  auto scene = make_procedural_scene("stadium");
+  auto peer_info = find_structure(info.builtin_peer);
+  if (!scene || !peer_info) {
+    sp.why_not = "no timing scene";
+    return sp;
+  }
+  const std::vector<Ray> rays = random_rays(scene.value().bounds(), scaled(200000, o.ray_scale), 21);
+  sp.workload = "procedural:stadium, " + std::to_string(rays.size()) + " random rays, every core";
+  auto mine = build_structure(info, scene.value(), ParamSet(info.params, info.name));
+  auto peer = build_structure(*peer_info.value(), scene.value(), ParamSet(peer_info.value()->params, info.builtin_peer));
+  if (!mine || !peer) {
+    sp.why_not = !mine ? mine.error().message : peer.error().message;
+    return sp;
+  }
+  const double n = double(rays.size());
+  sp.mrays = n / best_seconds(*mine.value(), rays) * 1e-6;
+  sp.peer_mrays = n / best_seconds(*peer.value(), rays) * 1e-6;
+  QueryStats q_mine, q_peer;
+  trace_all(*mine.value(), rays, 0, &q_mine);
+  trace_all(*peer.value(), rays, 0, &q_peer);
+  sp.nodes = double(q_mine.nodes_visited) / n, sp.peer_nodes = double(q_peer.nodes_visited) / n;
+  sp.tris = double(q_mine.prims_tested) / n, sp.peer_tris = double(q_peer.prims_tested) / n;
+  sp.timed = true;
+  return sp;
+}
+
+}  // namespace
+
+size_t CheckReport::rays() const {
+  size_t n = 0;
+  for (const auto& c : categories) n += c.rays;
+  return n;
+}
+size_t CheckReport::wrong() const {
+  size_t n = 0;
+  for (const auto& c : categories) n += c.wrong_total();
+  return n;
+}
+size_t CheckReport::invariant_failures() const {
+  size_t n = 0;
+  for (const auto& i : invariants) n += i.applies ? i.failed : 0;
+  return n;
+}
+
+std::vector<std::string> check_case_names(const CheckOptions& options) {
+  std::vector<std::string> names;
+  for (const CaseSpec& c : case_specs(options)) names.push_back(c.category + "/" + c.name);
+  return names;
+}
+
+CheckReport check_structure(const StructureInfo& info, const CheckOptions& options, const CheckProgress& progress) {
+  CheckReport report;
+  report.structure = info.name;
+  report.peer = info.builtin_peer;
+  report.source_file = info.source_file;
+  auto probe = info.create(ParamSet(info.params, info.name));
+  auto* kit_probe = dynamic_cast<KitStructure*>(probe.get());
+  const accelviz::Kind kind = kit_probe ? kit_probe->kind() : accelviz::Kind::bvh;
+  report.kind = info.builtin_peer.empty() ? info.name : info.builtin_peer;
+  report.invariants = invariant_rows(kind);
+
+  for (const CaseSpec& spec : case_specs(options)) {
+    const std::string where = spec.category + "/" + spec.name;
+    progress(where, 0);
+    auto made = spec.make();
+    if (!made) {
+      report.faults.push_back(where + ": " + made.error().message);
+      continue;
+    }
+    auto scene = std::make_shared<const Scene>(std::move(made.value().scene));
+    const std::vector<Ray>& rays = made.value().rays;
+    auto cat = std::find_if(report.categories.begin(), report.categories.end(),
+                            [&](const CheckCategory& c) { return c.name == spec.category; });
+    if (cat == report.categories.end()) {
+      report.categories.push_back({spec.category});
+      cat = report.categories.end() - 1;
+    }
+    ++cat->cases;
+
+    std::vector<ReferenceHit> ref(rays.size());
+    par::parallel_for(size_t(0), rays.size(), [&](size_t i) { ref[i] = reference_closest(*scene, rays[i]); });
+
+    auto created = info.create(ParamSet(info.params, info.name));
+    auto* kit = dynamic_cast<KitStructure*>(created.get());
+    if (!kit) {
+      report.faults.push_back(where + ": not a student structure");
+      return report;
+    }
+    kit->set_strict(true);
+    try {
+      auto built = kit->build(*scene, ParamSet(info.params, info.name));
+      if (!built) {
+        report.faults.push_back(where + ": build: " + built.error().message);
+        continue;
+      }
+    } catch (const std::exception& e) {
+      report.faults.push_back(where + ": build " + describe_exception(e));
+      continue;
+    } catch (...) {
+      report.faults.push_back(where + ": build threw a non-standard exception");
+      continue;
+    }
+    check_tree(report.invariants, *kit, *scene, where);
+
+    cat->rays += rays.size();
+    size_t faults_here = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      progress(where, i);
+      Hit fast, traced;
+      TraceRecorder rec(size_t(64) << 20);
+      try {
+        fast = kit->intersect(rays[i]);
+        traced = kit->intersect_traced(rays[i], rec);
+      } catch (const std::exception& e) {
+        if (faults_here++ < 3) report.faults.push_back(where + " ray " + std::to_string(i) + ": " + describe_exception(e));
+        ++cat->wrong[int(HitVerdict::FalseMiss)];
+        continue;
+      } catch (...) {
+        if (faults_here++ < 3) report.faults.push_back(where + " ray " + std::to_string(i) + ": threw a non-standard exception");
+        ++cat->wrong[int(HitVerdict::FalseMiss)];
+        continue;
+      }
+      CheckInvariant& listening = report.invariants[kListening];
+      ++listening.checked;
+      if (fast.prim != traced.prim || !(fast.t == traced.t || (std::isnan(fast.t) && std::isnan(traced.t))))
+        fail(listening, where + " ray " + std::to_string(i),
+             "without a listener prim " + std::to_string(fast.prim) + ", with one prim " + std::to_string(traced.prim));
+      CheckInvariant& reported = report.invariants[kReported];
+      ++reported.checked;
+      if (!rec.truncated() && !hit_was_reported(rec, traced))
+        fail(reported, where + " ray " + std::to_string(i),
+             "triangle " + std::to_string(traced.prim) + " returned without a triangle_tested(hit) at its t");
+      const HitVerdict v = judge_hit(*scene, rays[i], fast, ref[i]);
+      if (v == HitVerdict::Correct) continue;
+      ++cat->wrong[int(v)];
+      if (report.wrong_rays.size() < options.keep_wrong) {
+        WrongRay w{spec.category, spec.name, scene, i, rays[i], v, fast, ref[i], ""};
+        w.trap = name_trap(kind, *kit, *scene, rays[i], rec, traced, ref[i]);
+        report.wrong_rays.push_back(std::move(w));
+      }
+    }
+  }
+  if (options.time && report.faults.empty()) report.speed = time_structure(info, options, progress);
+  else if (options.time) report.speed.why_not = "not timed: the structure threw or failed (see above)";
+  else report.speed.why_not = "not timed (--no-time)";
+  return report;
+}
+
+Status write_scene_obj(const Scene& scene, const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) return make_error(path + ": cannot open for writing");
+  std::fprintf(f, "# written by accelviz-cli check: %zu triangles, numbered as in the checked scene\n",
+               scene.triangle_count());
+  for (const Vec3& p : scene.positions()) std::fprintf(f, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
+  for (const UVec3& t : scene.triangles()) std::fprintf(f, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  const bool ok = std::fflush(f) == 0;
+  if (std::fclose(f) != 0 || !ok) return make_error(path + ": write failed");
+  return {};
+}
+
+}  // namespace accel

@@ -1,0 +1,91 @@
+#pragma once
+// The assignment kit's grader (`accelviz-cli check`): runs a student structure over the
+// correctness suites, judges every answer against the double-precision reference by the
+// docs/hits.md rule, names the lecture's traps behind wrong answers, checks invariants from
+// the build and traversal logs, and times the structure against the built-in one of its
+// kind. GL-free; the CLI runs it in a child process so a crash or an endless loop in the
+// student's code is reported, not suffered (app/cli/check_command.cpp).
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "accuracy.h"
+#include "registry.h"
+
+namespace accel {
+
+struct CheckOptions {
+  std::string shared_scenes;  ///< ../shared/scenes ("" or missing: the meshes category is skipped)
+  double ray_scale = 1.0;     ///< ray counts multiplied by this (tests use less)
+  size_t keep_wrong = 5;      ///< wrong rays kept with the details and replay files
+  bool time = true;           ///< measure speed against the built-in structure
+};
+
+/// Rays tried and wrong answers by kind, per suite category.
+struct CheckCategory {
+  std::string name;  ///< "procedural", "edge", "hard", "meshes"
+  size_t cases = 0, rays = 0;
+  size_t wrong[5] = {0, 0, 0, 0, 0};  ///< by HitVerdict (Correct unused)
+  size_t wrong_total() const { return wrong[1] + wrong[2] + wrong[3] + wrong[4]; }
+};
+
+/// One wrong answer, kept for its report and replay.
+struct WrongRay {
+  std::string category, case_name;
+  std::shared_ptr<const Scene> scene;
+  size_t index = 0;  ///< the ray's index within its case
+  Ray ray;
+  HitVerdict verdict = HitVerdict::Correct;
+  Hit got;
+  ReferenceHit ref;
+  std::string trap;  ///< the lecture's trap it matches, "" if none
+};
+
+/// One invariant of the logs, over every case.
+struct CheckInvariant {
+  std::string name;
+  bool applies = true;  ///< false: the structure's kind does not promise it
+  size_t checked = 0, failed = 0;
+  std::string first_failure;
+};
+
+struct CheckSpeed {
+  bool timed = false;
+  std::string why_not;  ///< why there is no timing
+  std::string workload;
+  double mrays = 0, peer_mrays = 0;
+  double nodes = 0, peer_nodes = 0;  ///< per ray
+  double tris = 0, peer_tris = 0;    ///< per ray
+};
+
+struct CheckReport {
+  std::string structure, kind, peer, source_file;
+  std::vector<CheckCategory> categories;
+  std::vector<WrongRay> wrong_rays;
+  std::vector<CheckInvariant> invariants;
+  CheckSpeed speed;
+  std::vector<std::string> faults;  ///< exceptions and kit errors, "where: what"
+  size_t rays() const;
+  size_t wrong() const;
+  size_t invariant_failures() const;
+  /// Every answer right, every invariant kept, nothing thrown.
+  bool passed() const { return wrong() == 0 && invariant_failures() == 0 && faults.empty(); }
+};
+
+/// Called before each case ("hard/slivers") and every ray (its index): where the child
+/// process is, for the report when it crashes or hangs.
+using CheckProgress = std::function<void(const std::string& where, size_t ray)>;
+
+/// Checks `info` (a student structure). Exceptions escape only from what the grader cannot
+/// attribute (none in practice); the student's exceptions become faults.
+CheckReport check_structure(const StructureInfo& info, const CheckOptions& options, const CheckProgress& progress);
+
+/// The case names in order, "category/case", for the report of a child that died.
+std::vector<std::string> check_case_names(const CheckOptions& options);
+
+/// Writes `scene` as an OBJ whose floats read back exactly (%.9g): the replay's scene.
+Status write_scene_obj(const Scene& scene, const std::string& path);
+
+}  // namespace accel
