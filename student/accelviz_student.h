@@ -373,7 +373,16 @@ bool register_student_structure(const Registration& r);
 
 }  // namespace accelviz
 
-#if defined(__OPTIMIZE__) && !defined(__SANITIZE_ADDRESS__)
+// Timings mean something only for optimised code without sanitizers (check refuses others).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+#define ACCELVIZ_STUDENT_SANITIZED_ 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define ACCELVIZ_STUDENT_SANITIZED_ 1
+#endif
+#if defined(__OPTIMIZE__) && !defined(ACCELVIZ_STUDENT_SANITIZED_)
 #define ACCELVIZ_STUDENT_OPTIMIZED_ true
 #else
 #define ACCELVIZ_STUDENT_OPTIMIZED_ false

@@ -66,7 +66,10 @@ std::string safe_name(std::string s) {
 std::string viewer_command() {
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  fs::path viewer = ec ? fs::path("accelviz") : exe.parent_path() / "accelviz";
+  // accelviz-cli -> accelviz; the kit tests' accelviz-cli-kit -> accelviz-kit.
+  std::string name = ec ? std::string("accelviz-cli") : exe.filename().native();
+  if (const size_t at = name.find("-cli"); at != std::string::npos) name.erase(at, 4);
+  fs::path viewer = ec ? fs::path(name) : exe.parent_path() / name;
   const fs::path rel = fs::relative(viewer, fs::current_path(), ec);
   if (!ec && !rel.empty() && rel.native().rfind("..", 0) != 0) viewer = rel;
   return viewer.native();
@@ -186,7 +189,13 @@ int run_worker(const CheckOptions& o) {
       ::close(fd);
     }
   }
-#if !defined(__SANITIZE_ADDRESS__)
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ACCEL_CHECK_UNDER_ASAN 1
+#endif
+#endif
+#if !defined(__SANITIZE_ADDRESS__) && !defined(ACCEL_CHECK_UNDER_ASAN)
+  // ASan reserves terabytes of address space: no limit under it (the sanitizer build).
   if (o.memory_bytes > 0) {  // a runaway allocation ends in std::bad_alloc, reported as a fault
     rlimit lim{rlim_t(o.memory_bytes), rlim_t(o.memory_bytes)};
     setrlimit(RLIMIT_AS, &lim);

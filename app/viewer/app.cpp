@@ -389,6 +389,7 @@ void App::update(float dt) {
     }
     if (compare_.open()) {
       if (auto choice = compare_.panel(place(layout_.bottom, false), shown, ray_.ray().ray)) switch_structure(*choice);
+      if (auto step = compare_.take_seek(); step && ray_.ray().active) ray_.player().seek(*step);
     }
     if (sweep_.open()) {
       WindowRect rect = layout_.bottom;

@@ -131,6 +131,12 @@ class App {
   /// --state). Error when no playlist is loaded or it has no such state.
   accel::Status go_to_state_number(size_t number);
 
+  /// The state as script commands (scene, structure, kernel, camera, ray, step): what
+  /// --restore reopens (app_state.cpp).
+  std::string state_script() const;
+  /// Writes state_script() to `path` (its folder made; never half written).
+  accel::Status save_state(const std::string& path) const;
+
   /// Recording and screenshots read the frame back: main() calls this after the 3D view is
   /// drawn (with_ui = false) and again after the panels (true), before the buffer swap.
   void capture(bool with_ui) { recorder_.capture(with_ui, view_, framebuffer_); }

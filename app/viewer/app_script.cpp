@@ -99,6 +99,8 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       accel::Ray r;
       r.org = {c.values[0], c.values[1], c.values[2]};
       r.dir = {c.values[3], c.values[4], c.values[5]};
+      r.tmin = c.values[6];
+      r.tmax = c.values[7];
       set_ray(r, "script");
       return {};
     }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -49,6 +50,7 @@ struct Options {
   bool no_ui = false;           ///< start with the panels hidden
   int msaa = 4;                 ///< multisample anti-aliasing samples (0 = off)
   size_t memory_limit = 0;      ///< the builds' memory budget in bytes (0 = the default)
+  std::string restore;          ///< a state file to reopen (--restore); empty = none
 };
 
 constexpr int kMinSize = 64;
@@ -140,6 +142,12 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   cli.add_option("--size", size_text, "window size WxH, W and H in 64..8192")->capture_default_str();
+  std::string restore_file;
+  CLI::Option* restore = cli.add_option(
+      "--restore", restore_file,
+      "reopen a saved state: FILE (accelviz-cli check writes one per wrong ray), or without FILE the state the "
+      "viewer had when its window last closed (" + viz::last_state_path() + ")");
+  restore->expected(0, 1);
   std::string memory_limit_text;
   cli.add_option("--memory-limit", memory_limit_text,
                  "memory a structure build may use, e.g. 4G, 512M or 25% (default: 50% of physical memory); "
@@ -149,6 +157,14 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
   } catch (const CLI::ParseError& e) {
     const int code = cli.exit(e);  // prints help, or the error naming the option
     return code == 0 ? 0 : 2;
+  }
+  if (restore->count() > 0) {
+    options.restore = restore_file.empty() ? viz::last_state_path() : restore_file;
+    if (restore_file.empty() && !std::filesystem::exists(options.restore)) {
+      std::fprintf(stderr, "accelviz: --restore: no saved state at %s (the viewer saves one when its window closes)\n",
+                   options.restore.c_str());
+      return 2;
+    }
   }
   const auto size = parse_size(size_text);
   if (!size) {
@@ -341,6 +357,18 @@ int main(int argc, char** argv) {
     }
   }
 
+  // A state to reopen: parsed now (a stale or broken file is reported before any window),
+  // run once the window is up.
+  std::vector<viz::ScriptCommand> restore_commands;
+  if (!options.restore.empty()) {
+    auto parsed = viz::load_script(options.restore);
+    if (!parsed) {
+      std::fprintf(stderr, "accelviz: --restore: %s\n", parsed.error().message.c_str());
+      return 2;
+    }
+    restore_commands = std::move(parsed.value());
+  }
+
   // The scene next: a bad path is the user's mistake (exit 2) whether or not there is a
   // display, and scripts get the same answer everywhere. Its structure starts building in
   // the background while the window opens (synchronously for a script).
@@ -451,6 +479,12 @@ int main(int argc, char** argv) {
   }
 
   if (exit_code == 0) viz::browser::log_line("ready");  // the page is up (a test waits for this)
+  if (exit_code == 0 && !restore_commands.empty()) {
+    app.set_synchronous(true);  // the ray is traced on the structure the file names
+    exit_code = run_script(options.restore, restore_commands, window, app);
+    app.set_synchronous(script_mode);
+    if (exit_code != 0) glfwSetWindowShouldClose(window, GLFW_TRUE);
+  }
   if (exit_code == 0 && script_mode) {
     exit_code = run_script(options.script, script, window, app);
     // The page stays open on the script's last state (the window has nowhere to go).
@@ -497,6 +531,10 @@ int main(int argc, char** argv) {
     viz::browser::wait_for_next_frame();
   }
 
+  // A session used by hand leaves its state for --restore (scripts and screenshots do not).
+  if (exit_code == 0 && !headless && !viz::browser::kInBrowser && !viz::last_state_path().empty())
+    if (const accel::Status st = app.save_state(viz::last_state_path()); !st)
+      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
   app.shutdown();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

@@ -1,5 +1,7 @@
 #include "paths.h"
 
+#include <cstdlib>
+
 #include <filesystem>
 #include <system_error>
 
@@ -49,6 +51,14 @@ accel::Result<std::string> find_shader_dir(const std::vector<std::string>& requi
   for (const std::string& dir : dirs) searched += (searched.empty() ? "" : ", ") + dir;
   return accel::make_error("shader '" + first_missing + "' not found; searched: " +
                            (searched.empty() ? std::string("(no candidate directories)") : searched));
+}
+
+std::string last_state_path() {
+  const char* xdg = std::getenv("XDG_STATE_HOME");
+  if (xdg && xdg[0] == '/') return std::string(xdg) + "/accelviz/last.state";
+  const char* home = std::getenv("HOME");
+  if (home && home[0] != '\0') return std::string(home) + "/.local/state/accelviz/last.state";
+  return "";
 }
 
 }  // namespace viz

@@ -20,4 +20,9 @@ std::vector<std::string> shader_dir_candidates();
 /// first missing file and every directory searched.
 accel::Result<std::string> find_shader_dir(const std::vector<std::string>& required);
 
+/// Where the viewer keeps the state it had when its window closed, for --restore without a
+/// file: $XDG_STATE_HOME/accelviz/last.state, else ~/.local/state/accelviz/last.state
+/// (empty when neither variable is set).
+std::string last_state_path();
+
 }  // namespace viz

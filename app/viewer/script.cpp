@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -112,9 +113,18 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
   }
   if (verb == "ray") {
     c.kind = CommandKind::Ray;
-    if (n != 6) return count_error("ray OX OY OZ DX DY DZ");
-    if (auto e = floats(0, 6, "ray OX OY OZ DX DY DZ"); !e.empty()) return e;
+    const char* usage = "ray OX OY OZ DX DY DZ [TMIN TMAX]";
+    if (n != 6 && n != 8) return count_error(usage);
+    if (auto e = floats(0, 6, usage); !e.empty()) return e;
     if (c.values[3] == 0.0f && c.values[4] == 0.0f && c.values[5] == 0.0f) return "ray: the direction is zero";
+    c.values[6] = 0.0f;
+    c.values[7] = std::numeric_limits<float>::infinity();
+    if (n == 8) {  // as in a rays file: TMAX may be inf; TMIN <= TMAX
+      if (!parse_finite(args[6], &c.values[6])) return "'" + args[6] + "' is not a finite number (" + usage + ")";
+      if (!accel::parse_ray_number(args[7], &c.values[7]) || std::isnan(c.values[7]) || c.values[7] == -INFINITY)
+        return "'" + args[7] + "' is not a number or inf (" + usage + ")";
+      if (!(c.values[6] <= c.values[7])) return "ray: TMIN is greater than TMAX";
+    }
     return "";
   }
   if (verb == "mode") {

@@ -108,7 +108,7 @@ struct ScriptCommand {
   int line = 0;                      ///< 1-based line in the script
   std::string name;                  ///< scene spec, structure, kernel, preset, panel, path, prefix, param, trap
   std::vector<std::string> params;   ///< structure: key=value list; show-chart: its settings
-  std::array<float, 7> values{};     ///< camera (6 or 7), ray (6), ray-at-pixel (2), sweep (lo, hi),
+  std::array<float, 8> values{};     ///< camera (6 or 7), ray (6, or 8 with tmin tmax), ray-at-pixel (2), sweep (lo, hi),
                                      ///< add2d (6: from values[0]), ray2d (4)
   bool has_fov = false;              ///< camera: FOVY given
   size_t bytes = 0;                  ///< memory-limit (0: the default)

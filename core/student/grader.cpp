@@ -168,6 +168,25 @@ bool triangle_lost_at_split(const KitStructure& s, const Scene& scene, const Ray
   return some_leaf;
 }
 
+/// Hierarchies: the answer is the first leaf's hit and the traversal ended right after that
+/// leaf although nodes were still pending (or it logs no stack): it stopped at the first hit.
+bool stopped_at_first_leaf_hit(const TraceRecorder& rec, const Hit& got) {
+  const auto& events = rec.events();
+  const NaiveAnswer naive = naive_first_leaf_hit(events);
+  if (!naive.hit || !got.valid() || naive.prim != got.prim || naive.t != got.t) return false;
+  int64_t pending = 0;
+  bool pushes = false;
+  for (size_t i = 0; i < events.size(); ++i) {
+    const TraceEventKind k = events[i].kind;
+    if (i > naive.stop_step && k != TraceEventKind::Done && k != TraceEventKind::NewClosest &&
+        k != TraceEventKind::TestPrim)
+      return false;  // the walk went on after that leaf
+    if (i <= naive.stop_step && k == TraceEventKind::Push) ++pending, pushes = true;
+    if (i <= naive.stop_step && k == TraceEventKind::Pop) --pending;
+  }
+  return pending > 0 || !pushes;
+}
+
 std::string name_trap(accelviz::Kind kind, const KitStructure& s, const Scene& scene, const Ray& ray,
                       const TraceRecorder& rec, const Hit& got, const ReferenceHit& ref) {
   using K = accelviz::Kind;
@@ -179,15 +198,17 @@ std::string name_trap(accelviz::Kind kind, const KitStructure& s, const Scene& s
     return "a near-child hit beyond t_split was returned (check t_hit <= t_split before stopping)";
   if (kind == K::grid && grid_hit_outside_cell(rec, got))
     return "a hit outside the current cell was accepted (it must lie inside the cell to stop the walk)";
-  if (kind == K::bvh || kind == K::spheretree || kind == K::octree) {
-    const NaiveAnswer naive = naive_first_leaf_hit(rec.events());
-    if (naive.hit && got.valid() && naive.prim == got.prim && naive.t == got.t)
-      return "stopped at the first leaf with a hit (a farther bounding volume can hold a nearer triangle)";
-  }
+  if ((kind == K::bvh || kind == K::spheretree || kind == K::octree) && stopped_at_first_leaf_hit(rec, got))
+    return "stopped at the first leaf with a hit (a farther bounding volume can hold a nearer triangle)";
   return "";
 }
 
 // --- invariants of the logs ----------------------------------------------------------------
+
+/// Faults (exceptions, kit errors) of one case before its other rays are skipped, and cases
+/// with faults before the others are: enough to see the bug, soon enough to see it.
+constexpr size_t kFaultsPerCase = 3;
+constexpr size_t kFaultyCases = 3;
 
 enum Inv { kReferenced, kNested, kContains, kReported, kListening, kLogSane, kInvCount };
 
@@ -371,7 +392,19 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
   report.kind = info.builtin_peer.empty() ? info.name : info.builtin_peer;
   report.invariants = invariant_rows(kind);
 
+  size_t cases_with_faults = 0;
   for (const CaseSpec& spec : case_specs(options)) {
+    if (cases_with_faults == kFaultyCases) {
+      report.faults.push_back("the other cases skipped after faults in " + std::to_string(kFaultyCases) + " cases");
+      break;
+    }
+    // Counts this case as faulty when it added a fault, whichever way the iteration ends.
+    struct CaseFaults {
+      size_t& cases;
+      const std::vector<std::string>& faults;
+      size_t before;
+      ~CaseFaults() { cases += faults.size() > before; }
+    } case_faults{cases_with_faults, report.faults, report.faults.size()};
     const std::string where = spec.category + "/" + spec.name;
     progress(where, 0);
     auto made = spec.make();
@@ -416,20 +449,28 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
 
     cat->rays += rays.size();
     size_t faults_here = 0;
+    std::string fault;
     for (size_t i = 0; i < rays.size(); ++i) {
       progress(where, i);
-      Hit fast, traced;
+      Hit fast = no_hit(rays[i]), traced = no_hit(rays[i]);
       TraceRecorder rec(size_t(64) << 20);
       try {
-        fast = kit->intersect(rays[i]);
+        // Listened to first: the log's step budget stops an endless loop that logs.
         traced = kit->intersect_traced(rays[i], rec);
+        fast = kit->intersect(rays[i]);
       } catch (const std::exception& e) {
-        if (faults_here++ < 3) report.faults.push_back(where + " ray " + std::to_string(i) + ": " + describe_exception(e));
-        ++cat->wrong[int(HitVerdict::FalseMiss)];
-        continue;
+        fault = where + " ray " + std::to_string(i) + ": " + describe_exception(e);
       } catch (...) {
-        if (faults_here++ < 3) report.faults.push_back(where + " ray " + std::to_string(i) + ": threw a non-standard exception");
+        fault = where + " ray " + std::to_string(i) + ": threw a non-standard exception";
+      }
+      if (!fault.empty()) {  // counted as a wrong answer; three per case are enough to see
+        report.faults.push_back(std::move(fault));
+        fault.clear();
         ++cat->wrong[int(HitVerdict::FalseMiss)];
+        if (++faults_here == kFaultsPerCase) {
+          report.faults.push_back(where + ": its other rays skipped after " + std::to_string(kFaultsPerCase) + " faults");
+          break;
+        }
         continue;
       }
       CheckInvariant& listening = report.invariants[kListening];

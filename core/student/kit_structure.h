@@ -71,7 +71,7 @@ struct KitTree {
 };
 
 /// Budget of one traversal's logged steps before the kit calls it endless (strict mode).
-inline constexpr uint64_t kKitStepBudget = 50'000'000;
+inline constexpr uint64_t kKitStepBudget = 20'000'000;
 
 class KitStructure final : public Structure {
  public:

@@ -21,18 +21,40 @@ void CompareTool::start(std::shared_ptr<const accel::Scene> scene, const accel::
   auto progress = progress_;
   job_.start(
       [scene, ray, current, progress](const std::atomic<bool>& cancel) {
-        return compare_structures(scene, ray, current, cancel, progress.get());
+        CompareResult result;
+        result.rows = compare_structures(scene, ray, current, cancel, progress.get());
+        auto info = accel::find_structure(current.name);
+        if (!info || !info.value()->student || cancel) return result;
+        // A student's structure: the same ray through the built-in of its kind, step by step.
+        result.peer = info.value()->builtin_peer;
+        const std::vector<std::string> peer_params = accel::builtin_compare_params(result.peer);
+        for (const std::string& p : peer_params) result.peer_params += (result.peer_params.empty() ? "" : " ") + p;
+        auto mine = accel::build_structure(current.name, *scene, current.params, current.kernel);
+        auto peer = accel::build_structure(result.peer, *scene, peer_params, current.kernel);
+        if (!mine || !peer) {
+          result.builtin_error = !mine ? mine.error().message : peer.error().message;
+          return result;
+        }
+        result.builtin = accel::compare_with_builtin(*scene, ray, *mine.value(), *peer.value());
+        return result;
       },
       synchronous);
   if (synchronous) poll();
 }
 
 void CompareTool::poll() {
-  if (job_.ready()) rows_ = job_.take();
+  if (job_.ready()) result_ = job_.take();
 }
 
 void CompareTool::print_rows() const {
-  for (const CompareRow& r : rows_) {
+  if (result_.builtin) {
+    std::printf("compare-builtin %s %s\n", result_.peer.c_str(), result_.peer_params.c_str());
+    std::printf("compare-builtin %s\n", result_.builtin->difference_line().c_str());
+    std::printf("compare-builtin %s\n", result_.builtin->answers_line().c_str());
+  } else if (!result_.builtin_error.empty()) {
+    std::printf("compare-builtin error %s\n", result_.builtin_error.c_str());
+  }
+  for (const CompareRow& r : result_.rows) {
     if (!r.ok) {
       std::printf("compare %s error %s\n", r.label.c_str(), r.error.c_str());
       continue;
@@ -59,14 +81,16 @@ std::optional<StructureChoice> CompareTool::panel(const PanelPlace& where, const
     std::snprintf(overlay, sizeof overlay, "building and tracing: %d rows done", done);
     ImGui::ProgressBar(std::fmod(static_cast<float>(job_.seconds()) * 0.7f, 1.0f), ImVec2(-1, 0), overlay);
   }
-  if (rows_.empty()) {
+  const std::vector<CompareRow>& rows = result_.rows;
+  if (rows.empty()) {
     ImGui::TextDisabled("shoot a ray, then press Compare (C)");
     ImGui::End();
     return choice;
   }
   if (ray_.org != ray.org || ray_.dir != ray.dir)
     ImGui::TextDisabled("(for the previous ray; press C to update)");
-  const int32_t reference = rows_.front().hit.prim;
+  builtin_lines();
+  const int32_t reference = rows.front().hit.prim;
   if (ImGui::BeginTable("compare", 8,
                         ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
                             ImGuiTableFlags_ScrollY)) {
@@ -74,8 +98,8 @@ std::optional<StructureChoice> CompareTool::panel(const PanelPlace& where, const
     for (const char* h : {"structure (traversal)", "nodes", "skipped", "triangles", "steps", "hit", "build ms", ""})
       ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
-    for (size_t i = 0; i < rows_.size(); ++i) {
-      const CompareRow& r = rows_[i];
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const CompareRow& r = rows[i];
       const bool current = built && r.structure == built->request.name &&
                            (r.params == built->request.params ||
                             param_value(r.params, "traversal") == built->traversal);
@@ -114,6 +138,23 @@ std::optional<StructureChoice> CompareTool::panel(const PanelPlace& where, const
   }
   ImGui::End();
   return choice;
+}
+
+void CompareTool::builtin_lines() {
+  if (!result_.builtin_error.empty()) ImGui::TextColored(miss_text(), "built-in %s: %s", result_.peer.c_str(),
+                                                         result_.builtin_error.c_str());
+  if (!result_.builtin) return;
+  const accel::TraceDifference& d = *result_.builtin;
+  ImGui::Text("yours against the built-in %s (%s):", result_.peer.c_str(),
+              result_.peer_params.empty() ? "its defaults" : result_.peer_params.c_str());
+  if (d.differs) {
+    if (ImGui::SmallButton("go to your step")) seek_ = d.mine_step;
+    ImGui::SameLine();
+  }
+  ImGui::TextWrapped("%s", d.difference_line().c_str());
+  const bool mine_right = d.mine_verdict == accel::HitVerdict::Correct;
+  ImGui::TextColored(mine_right ? ImVec4(1, 1, 1, 1) : miss_text(), "%s", d.answers_line().c_str());
+  ImGui::Separator();
 }
 
 }  // namespace viz

@@ -1,12 +1,16 @@
 #pragma once
 // Compare: the same ray through every structure and traversal order. Owns the background
 // job, its rows, the ray they were made for and the "Same ray, every structure" window.
+// For a student's structure it also runs the ray through the built-in structure of its kind
+// and shows the first step where the two differ, and which answer is right (trace_diff.h).
 #include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "student/trace_diff.h"
 #include "view_layout.h"
 #include "workbench.h"
 
@@ -16,6 +20,14 @@ namespace viz {
 struct StructureChoice {
   std::string name;
   std::vector<std::string> params;
+};
+
+/// What one comparison found.
+struct CompareResult {
+  std::vector<CompareRow> rows;
+  /// A student structure against the built-in of its kind (`peer`, as `peer_params`).
+  std::optional<accel::TraceDifference> builtin;
+  std::string peer, peer_params, builtin_error;
 };
 
 /// The comparison table and its job.
@@ -28,9 +40,11 @@ class CompareTool {
   /// Takes the finished rows (per frame).
   void poll();
   /// Forgets the rows (a new scene).
-  void clear() { rows_.clear(); }
+  void clear() { result_ = CompareResult{}; }
   /// The rows of the last finished comparison.
-  const std::vector<CompareRow>& rows() const { return rows_; }
+  const std::vector<CompareRow>& rows() const { return result_.rows; }
+  /// The step of the current (student's) trace the user asked to go to, once.
+  std::optional<size_t> take_seek() { return std::exchange(seek_, std::nullopt); }
   /// Prints the rows as the `compare` script command does.
   void print_rows() const;
   /// Waits for the job.
@@ -45,9 +59,12 @@ class CompareTool {
   std::optional<StructureChoice> panel(const PanelPlace& place, const BuiltStructure* built, const accel::Ray& ray);
 
  private:
-  Job<std::vector<CompareRow>> job_;
+  void builtin_lines();  // the student-against-built-in lines above the table
+
+  Job<CompareResult> job_;
   std::shared_ptr<std::atomic<int>> progress_;
-  std::vector<CompareRow> rows_;
+  CompareResult result_;
+  std::optional<size_t> seek_;
   accel::Ray ray_;  // the ray of the rows
   bool open_ = false;
 };
