@@ -123,9 +123,9 @@ std::vector<HardCase> hard_cases() {
     for (Ray& r : rays) r.org = cornell.bounds().center() + 0.9f * (r.org - cornell.bounds().center()) / 1.5f;
     cases.push_back({"origins_inside_scene", cornell, rays});
   }
-  for (auto [scale, offset, name] : {std::tuple{1.0f, Vec3(1e5f, -1e5f, 1e5f), "offset_1e5"},
-                                     std::tuple{1e-3f, Vec3(0.0f), "scale_1e-3"},
-                                     std::tuple{1e3f, Vec3(0.0f), "scale_1e3"}}) {
+  for (auto [scale, offset, name] :
+       {std::tuple{1.0f, Vec3(1e5f, -1e5f, 1e5f), "offset_1e5"}, std::tuple{1e-3f, Vec3(0.0f), "scale_1e-3"},
+        std::tuple{1e3f, Vec3(0.0f), "scale_1e3"}}) {
     const Scene s = transformed(sphere, scale, offset, name);
     auto rays = rays_at_vertices_and_edges(s, 3, 6000);
     auto more = random_rays(s.bounds(), 4000, 4);
@@ -216,7 +216,6 @@ std::vector<HardCase> hard_cases() {
   cases.push_back(cube_diagonals());
   return cases;
 }
-
 
 std::vector<std::string> edge_scene_names() { return {"one_triangle", "coplanar", "identical"}; }
 

@@ -6,8 +6,11 @@
 # once with apt-get source through a private apt configuration (the machine's apt sources
 # are left as they are).
 #   scripts/build_web.sh                 # ACCEL_WEB_BUILD_DIR=... to build elsewhere
+#   scripts/build_web.sh --student DIR   # with a student's structures (docs/student.md)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/student_args.sh"
+set -- "${remaining_args[@]}"
 build_dir="${ACCEL_WEB_BUILD_DIR:-$root/build-web}"
 jobs="$(nproc 2>/dev/null || echo 2)"
 "$root/scripts/deps.sh"
@@ -46,5 +49,6 @@ fi
 # emcc's JavaScript tools need Debian's acorn; a node from elsewhere on the PATH does not
 # look in Debian's module folder.
 export NODE_PATH="${NODE_PATH:+$NODE_PATH:}/usr/share/nodejs"
-emcmake cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DACCEL_IMGUI_SOURCE_DIR="$imgui_dir" "$@" >/dev/null
+emcmake cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DACCEL_IMGUI_SOURCE_DIR="$imgui_dir" \
+  "${student_cmake_args[@]}" "$@" >/dev/null
 cmake --build "$build_dir" -j"$jobs" --target accelviz

@@ -6,6 +6,10 @@
 #   scripts/make_figures.sh --recordings [NAME ...]
 #                                       the GIF / MP4 recordings instead, from
 #                                       scripts/recordings/NAME.txt (scripts/make_recordings.sh)
+#   scripts/make_figures.sh --kit [NAME ...]
+#                                       the assignment kit's figures, from scripts/figures/kit_NAME.txt,
+#                                       with the kit tests' viewer (bin/accelviz-kit: the worked
+#                                       example, the solutions and the planted bugs built in)
 # The viewer is taken from $ACCEL_BUILD_DIR/bin (default build/, as scripts/build.sh makes it).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -25,6 +29,11 @@ dir=scripts/figures prefix=viewer_ what=figures
 if [[ "${1:-}" == "--recordings" ]]; then
   shift
   dir=scripts/recordings prefix= what=recordings
+elif [[ "${1:-}" == "--kit" ]]; then
+  shift
+  prefix=kit_ what="kit figures"
+  viewer="$build_dir/bin/accelviz-kit"
+  [[ -x "$viewer" ]] || { echo "make_figures.sh: $viewer not found: build the tests (scripts/build.sh)" >&2; exit 1; }
 fi
 if [[ $# -gt 0 ]]; then
   scripts=()

@@ -164,8 +164,7 @@ bool intersect_triangle(const Ray& ray, const Scene& scene, uint32_t prim, float
 /// rounding never culls a box that holds a hit.
 bool intersect_box(const Ray& ray, const Box& box, float t_min, float t_max, float& t_enter, float& t_exit);
 /// The same for a sphere.
-bool intersect_sphere(const Ray& ray, const Sphere& sphere, float t_min, float t_max, float& t_enter,
-                      float& t_exit);
+bool intersect_sphere(const Ray& ray, const Sphere& sphere, float t_min, float t_max, float& t_enter, float& t_exit);
 
 class TraversalLog;
 /// The lecture's "test the triangle, keep the closest hit" in one call: tests `prim` against
@@ -216,8 +215,7 @@ class TraversalListener {
   virtual void triangle_tested(uint32_t prim, bool hit, float t) = 0;
   virtual void new_closest(uint32_t prim, float t) = 0;
   virtual void grid_dda(const int cell[3], const int step[3], const float t_max[3], const float t_delta[3]) = 0;
-  virtual void kd_split(float t_min, float t_split, float t_max, uint32_t near_child, uint32_t far_child,
-                        int axis) = 0;
+  virtual void kd_split(float t_min, float t_split, float t_max, uint32_t near_child, uint32_t far_child, int axis) = 0;
   virtual void kd_far_pop(float t_hit, float t_split, uint32_t far_child, bool exits) = 0;
   virtual void octree_children(unsigned mask, const OctreeChild* children, int count) = 0;
 };
@@ -236,6 +234,9 @@ class BuildListener {
 };
 }  // namespace detail
 
+// Every log call is forced inline, so a file compiled with ACCELVIZ_STUDENT_NO_LOG (the kit's
+// measurement of what the calls cost) never shares a copy of them with the rest of the program.
+#define ACCELVIZ_LOG_FN [[gnu::always_inline]] inline
 #ifdef ACCELVIZ_STUDENT_NO_LOG
 #define ACCELVIZ_LOG(call) \
   do {                     \
@@ -258,37 +259,46 @@ class TraversalLog {
   bool listening() const { return to_ != nullptr; }
 
   /// Entering node `node` at `depth` (root 0); the ray is inside it over [t_enter, t_exit].
-  void visit(uint32_t node, int depth, float t_enter, float t_exit) { ACCELVIZ_LOG(visit(node, depth, t_enter, t_exit)); }
+  ACCELVIZ_LOG_FN void visit(uint32_t node, int depth, float t_enter, float t_exit) {
+    ACCELVIZ_LOG(visit(node, depth, t_enter, t_exit));
+  }
   /// Grid: stepping into cell (x, y, z), inside it over [t_enter, t_exit].
-  void enter_cell(int x, int y, int z, float t_enter, float t_exit) { ACCELVIZ_LOG(enter_cell(x, y, z, t_enter, t_exit)); }
+  ACCELVIZ_LOG_FN void enter_cell(int x, int y, int z, float t_enter, float t_exit) {
+    ACCELVIZ_LOG(enter_cell(x, y, z, t_enter, t_exit));
+  }
   /// Skipping a node (and its subtree): it was missed, or it starts beyond the closest hit.
-  void cull(uint32_t node, int depth, Cull why, float t_enter = kInfinity) { ACCELVIZ_LOG(cull(node, depth, why, t_enter)); }
+  ACCELVIZ_LOG_FN void cull(uint32_t node, int depth, Cull why, float t_enter = kInfinity) {
+    ACCELVIZ_LOG(cull(node, depth, why, t_enter));
+  }
   /// Putting a node on the stack or priority queue (key: its entry distance).
-  void push(uint32_t node, int depth, float key) { ACCELVIZ_LOG(push(node, depth, key)); }
+  ACCELVIZ_LOG_FN void push(uint32_t node, int depth, float key) { ACCELVIZ_LOG(push(node, depth, key)); }
   /// Taking one off.
-  void pop(uint32_t node, int depth, float key) { ACCELVIZ_LOG(pop(node, depth, key)); }
+  ACCELVIZ_LOG_FN void pop(uint32_t node, int depth, float key) { ACCELVIZ_LOG(pop(node, depth, key)); }
   /// A ray/triangle test and its outcome (t when hit). test_triangle() logs it for you.
-  void triangle_tested(uint32_t prim, bool hit, float t) { ACCELVIZ_LOG(triangle_tested(prim, hit, t)); }
+  ACCELVIZ_LOG_FN void triangle_tested(uint32_t prim, bool hit, float t) {
+    ACCELVIZ_LOG(triangle_tested(prim, hit, t));
+  }
   /// The closest hit improved. test_triangle() logs it for you.
-  void new_closest(uint32_t prim, float t) { ACCELVIZ_LOG(new_closest(prim, t)); }
+  ACCELVIZ_LOG_FN void new_closest(uint32_t prim, float t) { ACCELVIZ_LOG(new_closest(prim, t)); }
 
   // The lecture's variables, shown in the viewer's Variables panel.
   /// Grid 3D-DDA, on entering a cell: X, Y, Z, stepX.., tMaxX.., tDeltaX.. (the axis that
   /// steps next is the smallest tMax).
-  void grid_dda(const int cell[3], const int step[3], const float t_max[3], const float t_delta[3]) {
+  ACCELVIZ_LOG_FN void grid_dda(const int cell[3], const int step[3], const float t_max[3], const float t_delta[3]) {
     ACCELVIZ_LOG(grid_dda(cell, step, t_max, t_delta));
   }
   /// kd-tree inner node, after its visit: [t_min, t_max], t_split and the near / far child
   /// (near = the side the ray is on before t_split). The case (a, b, c) is derived.
-  void kd_split(float t_min, float t_split, float t_max, uint32_t near_child, uint32_t far_child, int axis) {
+  ACCELVIZ_LOG_FN void kd_split(float t_min, float t_split, float t_max, uint32_t near_child, uint32_t far_child,
+                                int axis) {
     ACCELVIZ_LOG(kd_split(t_min, t_split, t_max, near_child, far_child, axis));
   }
   /// kd-tree, when a pending far child is taken: the lecture's "if t_hit < t_split return".
-  void kd_far_pop(float t_hit, float t_split, uint32_t far_child, bool exits) {
+  ACCELVIZ_LOG_FN void kd_far_pop(float t_hit, float t_split, uint32_t far_child, bool exits) {
     ACCELVIZ_LOG(kd_far_pop(t_hit, t_split, far_child, exits));
   }
   /// Octree inner node: its children in visiting order (mask: the axes the ray runs down).
-  void octree_children(unsigned mask, const OctreeChild* children, int count) {
+  ACCELVIZ_LOG_FN void octree_children(unsigned mask, const OctreeChild* children, int count) {
     ACCELVIZ_LOG(octree_children(mask, children, count));
   }
 
@@ -307,39 +317,44 @@ class BuildLog {
   bool recording() const { return to_ && to_->records(); }
 
   /// A node made over `prims` (the root: parent kNoParent, depth 0), with its box.
-  void node(uint32_t id, uint32_t parent, int depth, const Box& box, const std::vector<uint32_t>& prims) {
+  ACCELVIZ_LOG_FN void node(uint32_t id, uint32_t parent, int depth, const Box& box,
+                            const std::vector<uint32_t>& prims) {
     ACCELVIZ_LOG(node(id, parent, depth, box, prims.data(), prims.size()));
   }
-  void node(uint32_t id, uint32_t parent, int depth, const Box& box, const uint32_t* prims, size_t n) {
+  ACCELVIZ_LOG_FN void node(uint32_t id, uint32_t parent, int depth, const Box& box, const uint32_t* prims, size_t n) {
     ACCELVIZ_LOG(node(id, parent, depth, box, prims, n));
   }
   /// Sphere tree: the node's bounding sphere (after node()).
-  void sphere(uint32_t id, const Sphere& s) { ACCELVIZ_LOG(sphere(id, s)); }
+  ACCELVIZ_LOG_FN void sphere(uint32_t id, const Sphere& s) { ACCELVIZ_LOG(sphere(id, s)); }
   /// The split chosen for node `id`: the axis, the plane, its cost C(B) against the leaf's,
   /// and the triangles going left and right.
-  void split(uint32_t id, int axis, float position, float cost, float leaf_cost, uint32_t left, uint32_t right) {
+  ACCELVIZ_LOG_FN void split(uint32_t id, int axis, float position, float cost, float leaf_cost, uint32_t left,
+                             uint32_t right) {
     ACCELVIZ_LOG(split(id, axis, position, cost, leaf_cost, left, right));
   }
   /// The candidate planes evaluated along `axis`: the viewer's C(B) curve.
-  void candidates(uint32_t id, int axis, const std::vector<Candidate>& c) {
+  ACCELVIZ_LOG_FN void candidates(uint32_t id, int axis, const std::vector<Candidate>& c) {
     ACCELVIZ_LOG(candidates(id, axis, c.data(), c.size()));
   }
   /// Node `id` becomes a leaf holding `prims`.
-  void leaf(uint32_t id, const std::vector<uint32_t>& prims, LeafWhy why = LeafWhy::FewTriangles) {
+  ACCELVIZ_LOG_FN void leaf(uint32_t id, const std::vector<uint32_t>& prims, LeafWhy why = LeafWhy::FewTriangles) {
     ACCELVIZ_LOG(leaf(id, prims.data(), prims.size(), why));
   }
-  void leaf(uint32_t id, const uint32_t* prims, size_t n, LeafWhy why = LeafWhy::FewTriangles) {
+  ACCELVIZ_LOG_FN void leaf(uint32_t id, const uint32_t* prims, size_t n, LeafWhy why = LeafWhy::FewTriangles) {
     ACCELVIZ_LOG(leaf(id, prims, n, why));
   }
   /// Grid: its box and cells per axis (call once, before cell_filled()).
-  void grid_resolution(const Box& box, int nx, int ny, int nz) { ACCELVIZ_LOG(grid_resolution(box, nx, ny, nz)); }
+  ACCELVIZ_LOG_FN void grid_resolution(const Box& box, int nx, int ny, int nz) {
+    ACCELVIZ_LOG(grid_resolution(box, nx, ny, nz));
+  }
   /// Grid: cell (x, y, z) receives triangle `prim`.
-  void cell_filled(int x, int y, int z, uint32_t prim) { ACCELVIZ_LOG(cell_filled(x, y, z, prim)); }
+  ACCELVIZ_LOG_FN void cell_filled(int x, int y, int z, uint32_t prim) { ACCELVIZ_LOG(cell_filled(x, y, z, prim)); }
 
  private:
   detail::BuildListener* to_ = nullptr;
 };
 #undef ACCELVIZ_LOG
+#undef ACCELVIZ_LOG_FN
 
 // ---------------------------------------------------------------------------------------
 // The structure and its registration
@@ -362,7 +377,7 @@ class StudentStructure {
 
 /// How a registered structure presents itself. Filled by ACCELVIZ_STUDENT_STRUCTURE.
 struct Registration {
-  std::string name;       ///< what --structure takes: lower case, digits and '_'
+  std::string name;  ///< what --structure takes: lower case, digits and '_'
   Kind kind = Kind::bvh;
   std::string file;       ///< the source file that registered it
   bool optimized = true;  ///< that file was compiled with optimisation (check times only these)
@@ -392,10 +407,11 @@ bool register_student_structure(const Registration& r);
 
 /// Registers class `Class` (a StudentStructure) as structure `name` (a string literal)
 /// implementing the lecture's `kind` (grid, octree, kdtree, bvh or spheretree).
-#define ACCELVIZ_STUDENT_STRUCTURE(Class, name, kind)                                                         \
-  namespace {                                                                                                 \
-  [[maybe_unused]] const bool ACCELVIZ_STUDENT_CONCAT_(accelviz_registered_, __LINE__) =                      \
-      ::accelviz::register_student_structure(                                                                 \
-          {name, ::accelviz::Kind::kind, __FILE__, ACCELVIZ_STUDENT_OPTIMIZED_,                               \
-           []() -> std::unique_ptr<::accelviz::StudentStructure> { return std::make_unique<Class>(); }}); \
+#define ACCELVIZ_STUDENT_STRUCTURE(Class, name, kind)                                                              \
+  namespace {                                                                                                      \
+  [[maybe_unused]] const bool ACCELVIZ_STUDENT_CONCAT_(accelviz_registered_, __LINE__) =                           \
+      ::accelviz::register_student_structure({name, ::accelviz::Kind::kind, __FILE__, ACCELVIZ_STUDENT_OPTIMIZED_, \
+                                              []() -> std::unique_ptr<::accelviz::StudentStructure> {              \
+                                                return std::make_unique<Class>();                                  \
+                                              }});                                                                 \
   }

@@ -18,10 +18,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
-
-#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "memory_budget.h"
@@ -228,8 +227,12 @@ int run_worker(const CheckOptions& o) {
 json run_child(const std::string& structure, const CheckOptions& o, const std::string& self) {
   char dir_template[] = "/tmp/accelviz-check-XXXXXX";
   const char* dir = mkdtemp(dir_template);
-  json failed = {{"structure", structure}, {"passed", false}, {"categories", json::array()},
-                 {"wrong_rays", json::array()}, {"invariants", json::array()}, {"faults", json::array()},
+  json failed = {{"structure", structure},
+                 {"passed", false},
+                 {"categories", json::array()},
+                 {"wrong_rays", json::array()},
+                 {"invariants", json::array()},
+                 {"faults", json::array()},
                  {"speed", {{"timed", false}, {"why_not", "the check did not finish"}}}};
   if (!dir) {
     failed["failure"] = "cannot create a temporary folder";
@@ -244,10 +247,22 @@ json run_child(const std::string& structure, const CheckOptions& o, const std::s
     }
     ::close(fd);
   }
-  std::vector<std::string> args = {self,        "check",          "--structure",   structure,
-                                   "--worker-progress", progress_file, "--worker-report", report_file,
-                                   "--out-dir", o.out_dir, "--shared", o.shared, "--ray-scale", fmt(o.ray_scale, "%.17g"),
-                                   "--memory-limit", std::to_string(o.memory_bytes)};
+  std::vector<std::string> args = {self,
+                                   "check",
+                                   "--structure",
+                                   structure,
+                                   "--worker-progress",
+                                   progress_file,
+                                   "--worker-report",
+                                   report_file,
+                                   "--out-dir",
+                                   o.out_dir,
+                                   "--shared",
+                                   o.shared,
+                                   "--ray-scale",
+                                   fmt(o.ray_scale, "%.17g"),
+                                   "--memory-limit",
+                                   std::to_string(o.memory_bytes)};
   if (!o.time) args.push_back("--no-time");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -273,8 +288,9 @@ json run_child(const std::string& structure, const CheckOptions& o, const std::s
   }
   std::string where = progress ? std::string(progress->where) : "";
   const uint64_t ray = progress ? uint64_t(progress->ray) : 0;
-  const std::string at = where.empty() ? "before the first case"
-                                       : "at " + where + (where.rfind("speed/", 0) == 0 ? " (timing)" : " ray " + std::to_string(ray));
+  const std::string at =
+      where.empty() ? "before the first case"
+                    : "at " + where + (where.rfind("speed/", 0) == 0 ? " (timing)" : " ray " + std::to_string(ray));
   json result;
   std::ifstream in(report_file);
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && in) {
@@ -292,7 +308,8 @@ json run_child(const std::string& structure, const CheckOptions& o, const std::s
     else if (WIFSIGNALED(status))
       result["failure"] = std::string("crashed (") + strsignal(WTERMSIG(status)) + ") " + at;
     else
-      result["failure"] = "the check's child process exited with code " + std::to_string(WEXITSTATUS(status)) + " " + at;
+      result["failure"] =
+          "the check's child process exited with code " + std::to_string(WEXITSTATUS(status)) + " " + at;
     if (!where.empty() && where.rfind("speed/", 0) != 0) {
       result["failure_case"] = where;
       result["failure_ray"] = ray;
@@ -307,7 +324,8 @@ json run_child(const std::string& structure, const CheckOptions& o, const std::s
 void print_report(const json& r) {
   const std::string name = r.value("structure", "?");
   std::printf("== %s (student %s, compared with the built-in %s)%s\n", name.c_str(), r.value("kind", "?").c_str(),
-              r.value("builtin", "?").c_str(), r.value("source", "").empty() ? "" : (" from " + r.value("source", "")).c_str());
+              r.value("builtin", "?").c_str(),
+              r.value("source", "").empty() ? "" : (" from " + r.value("source", "")).c_str());
   if (!r.value("failure", "").empty()) std::printf("FAILED: %s\n", r["failure"].get<std::string>().c_str());
   if (!r["categories"].empty()) {
     std::printf("%-12s %6s %9s %11s %10s %15s %8s\n", "category", "cases", "rays", "false miss", "false hit",
@@ -321,25 +339,26 @@ void print_report(const json& r) {
   }
   size_t k = 0;
   for (const auto& w : r["wrong_rays"]) {
-    std::printf("wrong %zu: %s/%s ray %zu: %s: answered %s, the reference %s\n", ++k,
-                w["category"].get<std::string>().c_str(), w["case"].get<std::string>().c_str(), w["ray"].get<size_t>(),
-                w["verdict"].get<std::string>().c_str(),
-                w["got"]["prim"].get<int>() < 0 ? "miss"
-                                                : ("triangle " + std::to_string(w["got"]["prim"].get<int>()) + " at t=" +
-                                                   fmt(w["got"]["t"].get<double>(), "%.9g")).c_str(),
-                w["reference"]["prim"].get<int>() < 0
-                    ? "misses"
-                    : ("hits triangle " + std::to_string(w["reference"]["prim"].get<int>()) + " at t=" +
-                       fmt(w["reference"]["t"].get<double>(), "%.9g")).c_str());
+    std::printf(
+        "wrong %zu: %s/%s ray %zu: %s: answered %s, the reference %s\n", ++k, w["category"].get<std::string>().c_str(),
+        w["case"].get<std::string>().c_str(), w["ray"].get<size_t>(), w["verdict"].get<std::string>().c_str(),
+        w["got"]["prim"].get<int>() < 0 ? "miss"
+                                        : ("triangle " + std::to_string(w["got"]["prim"].get<int>()) +
+                                           " at t=" + fmt(w["got"]["t"].get<double>(), "%.9g"))
+                                              .c_str(),
+        w["reference"]["prim"].get<int>() < 0 ? "misses"
+                                              : ("hits triangle " + std::to_string(w["reference"]["prim"].get<int>()) +
+                                                 " at t=" + fmt(w["reference"]["t"].get<double>(), "%.9g"))
+                                                    .c_str());
     if (!w.value("trap", "").empty()) std::printf("  the lecture's trap: %s\n", w["trap"].get<std::string>().c_str());
     if (w.contains("replay")) std::printf("  replay: %s\n", w["replay"].get<std::string>().c_str());
   }
   for (const auto& i : r["invariants"]) {
     if (!i["applies"].get<bool>()) continue;
     const size_t failed = i["failed"].get<size_t>();
-    std::printf("invariant: %-56s %s\n", i["name"].get<std::string>().c_str(),
-                failed ? ("FAILED " + std::to_string(failed) + "x: " + i["first_failure"].get<std::string>()).c_str()
-                       : "ok");
+    std::printf(
+        "invariant: %-56s %s\n", i["name"].get<std::string>().c_str(),
+        failed ? ("FAILED " + std::to_string(failed) + "x: " + i["first_failure"].get<std::string>()).c_str() : "ok");
   }
   for (const auto& f : r["faults"]) std::printf("fault: %s\n", f.get<std::string>().c_str());
   const auto& s = r["speed"];
@@ -354,7 +373,8 @@ void print_report(const json& r) {
   } else {
     std::printf("speed: not timed: %s\n", s.value("why_not", "").c_str());
   }
-  std::printf("%s: %s\n", name.c_str(), r.value("passed", false) ? "PASSED (every answer right, every invariant kept)" : "FAILED");
+  std::printf("%s: %s\n", name.c_str(),
+              r.value("passed", false) ? "PASSED (every answer right, every invariant kept)" : "FAILED");
 }
 
 }  // namespace

@@ -57,11 +57,11 @@ std::vector<CaseSpec> case_specs(const CheckOptions& o) {
   specs.push_back({"edge", "empty", [k]() -> Result<HardCase> {
                      return HardCase{"empty", Scene{}, random_rays(Aabb{Vec3(-1), Vec3(1)}, scaled(200, k), 3)};
                    }});
-  specs.push_back({"edge", "all_degenerate", [k]() -> Result<HardCase> {
-                     Scene flat({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1, 2}, {0, 0, 1}}, "all_degenerate");
-                     return HardCase{"all_degenerate", std::move(flat),
-                                     random_rays(Aabb{Vec3(-1), Vec3(3)}, scaled(200, k), 4)};
-                   }});
+  specs.push_back(
+      {"edge", "all_degenerate", [k]() -> Result<HardCase> {
+         Scene flat({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1, 2}, {0, 0, 1}}, "all_degenerate");
+         return HardCase{"all_degenerate", std::move(flat), random_rays(Aabb{Vec3(-1), Vec3(3)}, scaled(200, k), 4)};
+       }});
   // The hard cases: generated together, handed out one by one.
   auto hard = std::make_shared<std::vector<HardCase>>();
   for (const char* name : {"closed_mesh_edges_vertices", "axis_parallel_on_planes", "origins_inside_scene",
@@ -250,7 +250,8 @@ void check_tree(std::vector<CheckInvariant>& inv, const KitStructure& s, const S
     if (!seen[p] && missing++ == 0) first_missing = p;
   if (missing)
     fail(inv[kReferenced], where,
-         std::to_string(missing) + " triangles in no leaf or cell, the first: triangle " + std::to_string(first_missing));
+         std::to_string(missing) + " triangles in no leaf or cell, the first: triangle " +
+             std::to_string(first_missing));
 
   ++inv[kLogSane].checked;
   if (tree.problem_count) fail(inv[kLogSane], where, tree.problems[0]);
@@ -263,9 +264,10 @@ void check_tree(std::vector<CheckInvariant>& inv, const KitStructure& s, const S
       ++inv[kNested].checked;
       const Aabb& pb = tree.nodes[k.parent].box;
       const Vec3 pad = 1e-6f * (pb.max - pb.min);
-      if (!k.box.empty() && (glm::any(glm::lessThan(k.box.min, pb.min - pad)) || glm::any(glm::greaterThan(k.box.max, pb.max + pad))))
-        fail(inv[kNested], where, node + "'s box is not inside its parent's (node " +
-                                      std::to_string(tree.nodes[k.parent].student_id) + ")");
+      if (!k.box.empty() &&
+          (glm::any(glm::lessThan(k.box.min, pb.min - pad)) || glm::any(glm::greaterThan(k.box.max, pb.max + pad))))
+        fail(inv[kNested], where,
+             node + "'s box is not inside its parent's (node " + std::to_string(tree.nodes[k.parent].student_id) + ")");
     }
     if (inv[kContains].applies) {
       ++inv[kContains].checked;
@@ -340,7 +342,8 @@ CheckSpeed time_structure(const StructureInfo& info, const CheckOptions& o, cons
   const std::vector<Ray> rays = random_rays(scene.value().bounds(), scaled(200000, o.ray_scale), 21);
   sp.workload = "procedural:stadium, " + std::to_string(rays.size()) + " random rays, every core";
   auto mine = build_structure(info, scene.value(), ParamSet(info.params, info.name));
-  auto peer = build_structure(*peer_info.value(), scene.value(), ParamSet(peer_info.value()->params, info.builtin_peer));
+  auto peer =
+      build_structure(*peer_info.value(), scene.value(), ParamSet(peer_info.value()->params, info.builtin_peer));
   if (!mine || !peer) {
     sp.why_not = !mine ? mine.error().message : peer.error().message;
     return sp;
@@ -468,7 +471,8 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
         fault.clear();
         ++cat->wrong[int(HitVerdict::FalseMiss)];
         if (++faults_here == kFaultsPerCase) {
-          report.faults.push_back(where + ": its other rays skipped after " + std::to_string(kFaultsPerCase) + " faults");
+          report.faults.push_back(where + ": its other rays skipped after " + std::to_string(kFaultsPerCase) +
+                                  " faults");
           break;
         }
         continue;
@@ -493,9 +497,12 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
       }
     }
   }
-  if (options.time && report.faults.empty()) report.speed = time_structure(info, options, progress);
-  else if (options.time) report.speed.why_not = "not timed: the structure threw or failed (see above)";
-  else report.speed.why_not = "not timed (--no-time)";
+  if (options.time && report.faults.empty())
+    report.speed = time_structure(info, options, progress);
+  else if (options.time)
+    report.speed.why_not = "not timed: the structure threw or failed (see above)";
+  else
+    report.speed.why_not = "not timed (--no-time)";
   return report;
 }
 

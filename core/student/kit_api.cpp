@@ -86,8 +86,7 @@ bool intersect_box(const Ray& ray, const Box& box, float t_min, float t_max, flo
   return prepared(ray).box.intersect(KitAccess::to_aabb(box), t_min, t_max, &t_enter, &t_exit);
 }
 
-bool intersect_sphere(const Ray& ray, const Sphere& sphere, float t_min, float t_max, float& t_enter,
-                      float& t_exit) {
+bool intersect_sphere(const Ray& ray, const Sphere& sphere, float t_min, float t_max, float& t_enter, float& t_exit) {
   if (sphere.radius < 0.0f) return false;
   accel::Ray r;
   r.org = to_core(ray.origin);

@@ -22,19 +22,25 @@ std::vector<accelviz::Registration>& registrations() {
 }
 
 bool valid_name(const std::string& name) {
-  return !name.empty() && name.size() <= 40 &&
-         std::all_of(name.begin(), name.end(), [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
+  return !name.empty() && name.size() <= 40 && std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  });
 }
 
 }  // namespace
 
 const char* kit_kind_name(accelviz::Kind kind) {
   switch (kind) {
-    case accelviz::Kind::grid: return "grid";
-    case accelviz::Kind::octree: return "octree";
-    case accelviz::Kind::kdtree: return "kdtree";
-    case accelviz::Kind::bvh: return "bvh";
-    case accelviz::Kind::spheretree: return "spheretree";
+    case accelviz::Kind::grid:
+      return "grid";
+    case accelviz::Kind::octree:
+      return "octree";
+    case accelviz::Kind::kdtree:
+      return "kdtree";
+    case accelviz::Kind::bvh:
+      return "bvh";
+    case accelviz::Kind::spheretree:
+      return "spheretree";
   }
   return "bvh";
 }

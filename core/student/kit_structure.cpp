@@ -21,10 +21,14 @@ CullReason to_core(accelviz::Cull why) {
 
 LeafReason to_core(accelviz::LeafWhy why) {
   switch (why) {
-    case accelviz::LeafWhy::FewTriangles: return LeafReason::FewPrims;
-    case accelviz::LeafWhy::MaxDepth: return LeafReason::MaxDepth;
-    case accelviz::LeafWhy::NoGain: return LeafReason::NoGain;
-    case accelviz::LeafWhy::NoProgress: return LeafReason::NoProgress;
+    case accelviz::LeafWhy::FewTriangles:
+      return LeafReason::FewPrims;
+    case accelviz::LeafWhy::MaxDepth:
+      return LeafReason::MaxDepth;
+    case accelviz::LeafWhy::NoGain:
+      return LeafReason::NoGain;
+    case accelviz::LeafWhy::NoProgress:
+      return LeafReason::NoProgress;
   }
   return LeafReason::FewPrims;
 }

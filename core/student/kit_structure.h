@@ -36,10 +36,10 @@ struct KitNode {
   int depth = 0;
   Aabb box;
   BoundingSphere sphere;
-  uint32_t prim_count = 0;         ///< triangles the node was made over
-  std::vector<uint32_t> prims;     ///< a leaf's triangles
-  std::vector<uint32_t> made_over; ///< the triangles node() named (kept for the checks only)
-  std::vector<uint32_t> children;  ///< dense ids, in the order they were made
+  uint32_t prim_count = 0;          ///< triangles the node was made over
+  std::vector<uint32_t> prims;      ///< a leaf's triangles
+  std::vector<uint32_t> made_over;  ///< the triangles node() named (kept for the checks only)
+  std::vector<uint32_t> children;   ///< dense ids, in the order they were made
   int split_axis = -1;
   float split_pos = 0.0f;
   bool leaf = false;
@@ -50,7 +50,7 @@ struct KitNode {
 struct KitTree {
   std::vector<KitNode> nodes;
   std::unordered_map<uint32_t, uint32_t> dense_of;  ///< student id -> dense id
-  bool keep_made_over = false;  ///< keep every node's triangles (strict: the grader's invariants)
+  bool keep_made_over = false;                      ///< keep every node's triangles (strict: the grader's invariants)
   bool grid = false;
   Aabb grid_box;
   int res[3] = {0, 0, 0};
@@ -99,7 +99,8 @@ class KitStructure final : public Structure {
   Hit run_query(const Ray& ray, accelviz::detail::TraversalListener* listener) const;
 
  protected:
-  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control, BuildRecorder* recorder) override;
+  Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control,
+                    BuildRecorder* recorder) override;
   BuildStats compute_stats() const override;
 
  private:

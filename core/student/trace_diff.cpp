@@ -25,11 +25,18 @@ std::vector<Step> lecture_steps(const Structure& s, const TraceRecorder& rec) {
     st.index = i;
     switch (e.kind) {
       case TraceEventKind::Visit:
-      case TraceEventKind::EnterCell: st.box = s.node_view(e.node).box; break;
-      case TraceEventKind::TestPrim: st.prim = e.prim, st.hit = e.hit; break;
+      case TraceEventKind::EnterCell:
+        st.box = s.node_view(e.node).box;
+        break;
+      case TraceEventKind::TestPrim:
+        st.prim = e.prim, st.hit = e.hit;
+        break;
       case TraceEventKind::NewClosest:
-      case TraceEventKind::Done: st.prim = e.prim; break;
-      default: continue;
+      case TraceEventKind::Done:
+        st.prim = e.prim;
+        break;
+      default:
+        continue;
     }
     out.push_back(st);
   }
@@ -51,9 +58,12 @@ bool same_step(const Step& a, const Step& b, float tolerance) {
   }
   switch (a.kind) {
     case TraceEventKind::Visit:
-    case TraceEventKind::EnterCell: return same_box(a.box, b.box, tolerance);
-    case TraceEventKind::TestPrim: return a.prim == b.prim && a.hit == b.hit;
-    default: return a.prim == b.prim;
+    case TraceEventKind::EnterCell:
+      return same_box(a.box, b.box, tolerance);
+    case TraceEventKind::TestPrim:
+      return a.prim == b.prim && a.hit == b.hit;
+    default:
+      return a.prim == b.prim;
   }
 }
 
@@ -68,12 +78,18 @@ std::string step_text(const std::vector<Step>& steps, size_t k) {
   if (k >= steps.size()) return "(ended)";
   const Step& s = steps[k];
   switch (s.kind) {
-    case TraceEventKind::Visit: return "visit box " + box_text(s.box);
-    case TraceEventKind::EnterCell: return "enter cell " + box_text(s.box);
-    case TraceEventKind::TestPrim: return "test triangle " + std::to_string(s.prim) + (s.hit ? " (hit)" : " (miss)");
-    case TraceEventKind::NewClosest: return "closest hit: triangle " + std::to_string(s.prim);
-    case TraceEventKind::Done: return s.prim >= 0 ? "answer: triangle " + std::to_string(s.prim) : "answer: miss";
-    default: return "?";
+    case TraceEventKind::Visit:
+      return "visit box " + box_text(s.box);
+    case TraceEventKind::EnterCell:
+      return "enter cell " + box_text(s.box);
+    case TraceEventKind::TestPrim:
+      return "test triangle " + std::to_string(s.prim) + (s.hit ? " (hit)" : " (miss)");
+    case TraceEventKind::NewClosest:
+      return "closest hit: triangle " + std::to_string(s.prim);
+    case TraceEventKind::Done:
+      return s.prim >= 0 ? "answer: triangle " + std::to_string(s.prim) : "answer: miss";
+    default:
+      return "?";
   }
 }
 
@@ -105,7 +121,8 @@ std::vector<std::string> builtin_compare_params(const std::string& peer) {
   return {};
 }
 
-TraceDifference compare_with_builtin(const Scene& scene, const Ray& ray, const Structure& mine, const Structure& builtin) {
+TraceDifference compare_with_builtin(const Scene& scene, const Ray& ray, const Structure& mine,
+                                     const Structure& builtin) {
   TraceDifference d;
   TraceRecorder rm, rb;
   d.mine_hit = mine.intersect_traced(ray, rm);

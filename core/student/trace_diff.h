@@ -14,9 +14,9 @@
 namespace accel {
 
 struct TraceDifference {
-  bool differs = false;            ///< false: every compared step agrees
-  size_t mine_step = 0;            ///< index into the student's recorded events (the viewer's step)
-  size_t builtin_step = 0;         ///< index into the built-in's
+  bool differs = false;                 ///< false: every compared step agrees
+  size_t mine_step = 0;                 ///< index into the student's recorded events (the viewer's step)
+  size_t builtin_step = 0;              ///< index into the built-in's
   std::string mine_text, builtin_text;  ///< the two steps, described ("(ended)" past the last)
   Hit mine_hit, builtin_hit;
   ReferenceHit reference;
@@ -32,6 +32,7 @@ struct TraceDifference {
 std::vector<std::string> builtin_compare_params(const std::string& peer);
 
 /// Traces `ray` through both structures (built over `scene`) and compares their steps.
-TraceDifference compare_with_builtin(const Scene& scene, const Ray& ray, const Structure& mine, const Structure& builtin);
+TraceDifference compare_with_builtin(const Scene& scene, const Ray& ray, const Structure& mine,
+                                     const Structure& builtin);
 
 }  // namespace accel

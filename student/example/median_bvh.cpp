@@ -121,8 +121,9 @@ class MedianBvh : public StudentStructure {
                      });
     // The SAH cost of this split against the leaf's, for the viewer (the median ignores it).
     const float area = std::max(box.area(), 1e-30f);
-    const float cost = 1.0f + (bounds_of(begin, mid).area() * float(mid - begin) +
-                               bounds_of(mid, end).area() * float(end - mid)) / area;
+    const float cost =
+        1.0f +
+        (bounds_of(begin, mid).area() * float(mid - begin) + bounds_of(mid, end).area() * float(end - mid)) / area;
     log.split(id, axis, scene_->centroid(prims_[mid])[axis], cost, float(n), uint32_t(mid - begin),
               uint32_t(end - mid));
     const uint32_t left = build_node(begin, mid, id, depth + 1, log);

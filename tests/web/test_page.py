@@ -20,6 +20,10 @@ Checks (--only takes the short name or the full one; repeatable):
   f12          'F12 downloads a screenshot'  F12 saves accelviz_0001.png, the canvas's size
   blackboard   'blackboard'          the 2D mode: ray2d + print-hit per structure on the bundled
                                      scenes/blackboard.scene2d give its hit (triangle 7 at 13.238)
+  student      'student structure'   a page built with --student (scripts/build_web.sh): the
+                                     student's structure answers as the built-in BVH does, and
+                                     `compare` runs it against the built-in of its kind (skipped
+                                     when the page has no student structure)
 Standard library only.
 """
 
@@ -547,6 +551,36 @@ class Tester:
         if hits != expected:
             raise CheckFailed('print-hit gave %s, expected %s' % (hits, expected))
 
+    def check_student(self):
+        # A student's structure built into the page (--student-structure, the worked example
+        # by default): the same answers as the built-in BVH on fixed rays through the Cornell
+        # box, and compare's line against the built-in of its kind.
+        name = self.args.student_structure
+        rays = ['ray 0 0.5 3 0 0 -1', 'ray 0.3 1.7 2.5 -0.1 -0.4 -1', 'ray -0.9 0.2 -0.4 1 0.3 0.2',
+                'ray 0.5 1.9 0 0 -1 0.01', 'ray 0 1 0 0.3 0.2 1']
+        lines = ['# written by tests/web/test_page.py', 'size 640 480', 'scene procedural:cornell']
+        for structure in (name, 'bvh'):
+            lines.append('structure ' + structure)
+            for r in rays:
+                lines += [r, 'print-hit']
+        lines += ['structure ' + name, rays[0], 'compare']
+        run = self.run_script('student.txt', lines, timeout=180)
+        if run.end is None:
+            raise CheckFailed('the script did not end: %s' % run.details)
+        if 'unknown structure' in run.end:
+            raise Skipped('the page has no structure %r (build it with scripts/build_web.sh --student DIR)' % name)
+        if not run.end.startswith(PREFIX + 'script done'):
+            raise CheckFailed('%s\n%s' % (run.end, run.details))
+        hits = [t for t in run.lines if HIT_RE.match(t) or t == 'miss']
+        if len(hits) != 2 * len(rays):
+            raise CheckFailed('expected %d print-hit lines, got %s' % (2 * len(rays), hits))
+        mine, builtin = hits[:len(rays)], hits[len(rays):]
+        if mine != builtin:
+            raise CheckFailed('%s answered %s, the built-in bvh %s' % (name, mine, builtin))
+        if not any(t.startswith('compare-builtin first difference') or t.startswith('compare-builtin no difference')
+                   for t in run.lines):
+            raise CheckFailed('compare printed no line against the built-in:\n%s' % '\n'.join(run.lines[-12:]))
+
     CHECKS = [
         ('loads', 'loads', check_loads),
         ('hits', 'hits match the CLI', check_hits),
@@ -556,6 +590,7 @@ class Tester:
         ('bad-script', 'bad script', check_bad_script),
         ('f12', 'F12 downloads a screenshot', check_f12),
         ('blackboard', 'blackboard', check_blackboard),
+        ('student', 'student structure', check_student),
     ]
 
     def run_checks(self, only):
@@ -605,6 +640,8 @@ def main():
     ap.add_argument('--keep', action='store_true',
                     help='keep WEB_DIR/test-scripts (scripts and the screenshots as PNGs)')
     ap.add_argument('-v', '--verbose', action='store_true', help='print the pages\' console')
+    ap.add_argument('--student-structure', default='median_bvh',
+                    help='the student structure the page was built with (scripts/build_web.sh --student)')
     args = ap.parse_args()
 
     known = set(s for s, _, _ in Tester.CHECKS) | set(n for _, n, _ in Tester.CHECKS)

@@ -1,8 +1,8 @@
 // Assignment: the BVH (AABB tree) of the lecture ("BVH (AABB-Tree, Sphere-Tree)"): built top
-// down by a median (or SAH) split, traversed nearest box first. Fill in build() and
-// intersect() where it says TODO; the log calls are already where the lecture's steps happen
-// (keep them there: the viewer animates them and `check` reads them). As it stands the root
-// is one empty leaf and every ray misses.
+// down by a median split, traversed nearest box first. Fill in build() and intersect() where
+// it says TODO; the log calls are already where the lecture's steps happen (keep them there:
+// the viewer animates them and `check` reads them). As it stands the root is one empty leaf
+// and every ray misses.
 //
 // Build it into accelviz and check it:
 //   scripts/run.sh --student student/skeletons/bvh
@@ -48,15 +48,16 @@ class MyBvh : public StudentStructure {
       log.cull(0, 0, Cull::MissedBounds);
       return finish(closest);
     }
-    struct Entry {  // a node waiting in the queue (or stack), with its distance
+    struct Entry {  // a node waiting in the queue, with its distance
       uint32_t node;
       float t_enter, t_exit;
     };
     std::vector<Entry> queue = {{0, t_enter, t_exit}};
     log.push(0, 0, t_enter);
     while (!queue.empty()) {
-      // TODO 2: "node <- extract front from q": the NEAREST entry (a priority queue), or the
-      //         top of a stack onto which the farther child was pushed first.
+      // TODO 2: "node <- extract front from q": the NEAREST entry (a priority queue, e.g.
+      //         std::priority_queue), or the top of a stack onto which the farther child was
+      //         pushed first. (back() as it stands takes the most recent: plain DFS.)
       const Entry e = queue.back();
       queue.pop_back();
       const Node& n = nodes_[e.node];
@@ -73,10 +74,19 @@ class MyBvh : public StudentStructure {
         for (uint32_t i = n.first; i < n.first + n.count; ++i) test_triangle(ray, *scene_, prims_[i], closest, log);
         continue;
       }
-      // TODO 4: "forall children of node: if ray intersects child: insert child in q with its
-      //         distance": intersect_box(ray, child's box, ray.tmin, closest.t, c_enter, c_exit);
-      //         a miss -> log.cull(child, n.depth + 1, Cull::MissedBounds); a hit ->
-      //         queue it and log.push(child, n.depth + 1, c_enter).
+      // "forall children of node: if ray intersects child: insert child in q with its distance"
+      for (uint32_t child : {n.left, n.right}) {
+        float c_enter = 0.0f, c_exit = 0.0f;
+        // TODO 4: does the ray meet the child's box before closest_hit? intersect_box(ray,
+        //         nodes_[child].box, ray.tmin, closest.t, c_enter, c_exit)
+        const bool hit = false;
+        if (!hit) {
+          log.cull(child, n.depth + 1, Cull::MissedBounds);
+          continue;
+        }
+        queue.push_back({child, c_enter, c_exit});
+        log.push(child, n.depth + 1, c_enter);
+      }
     }
     return finish(closest);
   }
@@ -109,14 +119,20 @@ class MyBvh : public StudentStructure {
       log.leaf(id, prims_.data() + begin, n, n <= size_t(kMaxLeaf) ? LeafWhy::FewTriangles : LeafWhy::MaxDepth);
       return id;
     }
-    nodes_[id].leaf = false;
-    // TODO 7: "2. Sort all objects according to their center along the axis (longest extent)
-    //          3. Partition the scene along the median; half of the objects to the left and
-    //          the right subtree" (std::nth_element on prims_[begin, end));
-    //         log.split(id, axis, position, cost, leaf_cost, n_left, n_right);
-    //         "4. Repeat 1-3 recursively":
-    //           const uint32_t l = build_node(begin, mid, id, depth + 1, log);
-    //           ... nodes_[id].left = l;  (index, not a reference: nodes_ may have grown)
+    // TODO 7: "2. Sort all objects according to their center along the axis (e.g. the longest
+    //         extent of the centres), 3. partition the scene along the median; assign half of
+    //         the objects to the left and the right subtree": std::nth_element on
+    //         prims_[begin, end) by scene_->centroid(p)[axis] puts the median at `mid`.
+    const int axis = 0;
+    const size_t mid = begin + n / 2;
+    const float position = 0.0f;  // the median's centre along the axis
+    const float cost = 0.0f;      // C(B) of this split (for the viewer), against the leaf's n
+    log.split(id, axis, position, cost, float(n), uint32_t(mid - begin), uint32_t(end - mid));
+    // "4. Repeat 1-3 recursively"
+    const uint32_t l = build_node(begin, mid, id, depth + 1, log);
+    const uint32_t r = build_node(mid, end, id, depth + 1, log);
+    Node& node = nodes_[id];  // only now: nodes_ grew in the recursion (references go stale)
+    node.leaf = false, node.left = l, node.right = r;
     return id;
   }
 

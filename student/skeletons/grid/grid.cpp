@@ -21,22 +21,31 @@ class MyGrid : public StudentStructure {
  public:
   void build(const Scene& scene, BuildLog& log) override {
     scene_ = &scene;
-    // TODO 1: "Calculate BBox of the scene": the box around every triangle that is not
-    //         degenerate (scene.is_degenerate(p): zero-area triangles are never hit).
+    // TODO 1: "Calculate BBox of the scene": the triangles that are not degenerate
+    //         (scene.is_degenerate(p): zero-area triangles are never hit) and the box around
+    //         them. (An empty scene: keep one empty cell, every ray misses.)
+    std::vector<uint32_t> prims;
     box_ = scene.bounds().empty() ? Box{Vec3(0.0f), Vec3(0.0f)} : scene.bounds();
 
     // TODO 2: "Choose a (suitable) grid resolution (n_x, n_y, n_z)": resolution =
-    //         lambda * cbrt(N) cells (lambda about 2) along the box, cells cube-like, at
+    //         lambda * cbrt(N) (lambda about 2) cells along the box, the cells cube-like, at
     //         least 1 per axis (a flat scene is 1 cell thick) and not millions of cells.
     res_[0] = res_[1] = res_[2] = 1;
     log.grid_resolution(box_, res_[0], res_[1], res_[2]);
     cells_.assign(size_t(res_[0]) * size_t(res_[1]) * size_t(res_[2]), {});
 
-    // TODO 3: "For each cell store all objects intersecting that cell": insert each
-    //         triangle into every cell its bounding box overlaps (closed: touching counts).
-    //         For each cell (x, y, z) a triangle p goes into:
-    //           cells_[index(x, y, z)].push_back(p);
-    //           log.cell_filled(x, y, z, p);
+    // "For each cell store all objects intersecting that cell"; "use bbox of objects".
+    for (uint32_t p : prims) {
+      // TODO 3: the cells its bounding box overlaps, lo[a] .. hi[a] along each axis (closed:
+      //         a box touching a cell counts; mind rounding at the cell boundaries).
+      int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};
+      for (int z = lo[2]; z <= hi[2]; ++z)
+        for (int y = lo[1]; y <= hi[1]; ++y)
+          for (int x = lo[0]; x <= hi[0]; ++x) {
+            cells_[index(x, y, z)].push_back(p);
+            log.cell_filled(x, y, z, p);
+          }
+    }
   }
 
   Hit intersect(const Ray& ray, TraversalLog& log) const override {
@@ -78,8 +87,9 @@ class MyGrid : public StudentStructure {
       //             if (tMaxY < tMaxZ) { Y = Y + stepY; if (Y == justOutY) return NIL; tMaxY += tDeltaY; }
       //             else               { Z = Z + stepZ; if (Z == justOutZ) return NIL; tMaxZ += tDeltaZ; }
       //           }
-      //         Stop too when the next boundary lies beyond t1 (the ray ends in this cell).
-      //         The entry distance of the next cell is the tMax you stepped at.
+      //         "return(NIL)": the ray left the grid -- leave the loop (the closest hit found
+      //         so far is the answer). Leave it too when the next boundary lies beyond t1 (the
+      //         ray ends in this cell). The next cell's t_enter is the tMax you stepped at.
       inside = false;
     }
     return finish(closest);  // every cell walked: the closest hit found, or a miss

@@ -57,39 +57,60 @@ class MyKdTree : public StudentStructure {
       int depth;
       float t_min, t_max;
     };
-    std::vector<Entry> stack;
+    std::vector<Entry> stack;  // (a fixed array of kMaxDepth entries is faster)
     uint32_t id = 0;
     int depth = 0;
     for (;;) {
       const Node& n = nodes_[id];
       log.visit(id, depth, t_min, t_max);
       if (!n.leaf) {
-        // TODO 2: t_split = (n.split - o[axis]) * inv_direction[axis]; near = the child the
-        //         ray is in before t_split, far = the other. Mind d[axis] == +-0 (t_split is
-        //         +-inf, or NaN when the ray lies in the plane) and rounding at t_min, t_max.
+        // TODO 2: t_split = (n.split - o[axis]) * inv_direction[axis]; near = the child the ray
+        //         is in before t_split, far = the other. Mind d[axis] == +-0 (t_split is +-inf,
+        //         or NaN when the ray lies in the plane: then visit both children).
         const float t_split = kInfinity;
         const uint32_t near = n.left, far = n.right;
         log.kd_split(t_min, t_split, t_max, near, far, n.axis);
-        // TODO 3: the three cases:
-        //   (b) t_split > t_max: near only   -> log.cull(far, depth + 1, Cull::MissedBounds, t_split);
-        //   (c) t_split < t_min: far only    -> log.cull(near, depth + 1, Cull::MissedBounds, t_split);
-        //   (a) otherwise: defer far on [t_split, t_max] (stack.push_back(...) and
-        //       log.push(far, depth + 1, t_split)), go on with near on [t_min, t_split].
-        //   Then continue the loop with the chosen child (id, depth + 1, its interval).
-        break;
+        // TODO 3: which of the three cases applies (and mind rounding: when t_split is about
+        //         t_min or t_max, visiting both children is the safe choice).
+        const bool case_b = true;   // (b) t_split > t_max: the near child only
+        const bool case_c = false;  // (c) t_split < t_min: the far child only
+        ++depth;
+        if (case_b) {
+          log.cull(far, depth, Cull::MissedBounds, t_split);
+          id = near;
+        } else if (case_c) {
+          log.cull(near, depth, Cull::MissedBounds, t_split);
+          id = far;
+        } else {  // (a) near now over [t_min, t_split], far later over [t_split, t_max]
+          // (std::max / std::min in this order keep [t_min, t_max] when t_split is NaN)
+          stack.push_back({far, depth, std::max(t_min, t_split), t_max});
+          log.push(far, depth, std::max(t_min, t_split));
+          t_max = std::min(t_max, t_split);
+          id = near;
+        }
+        continue;
       }
-      // A leaf: "intersect r with each primitive in object list" (test_triangle keeps the
-      // closest; a hit may lie beyond this leaf's t_max).
+      // A leaf: "intersect r with each primitive" (a hit may lie beyond this leaf's t_max).
       for (uint32_t p : n.prims) test_triangle(ray, *scene_, p, closest, log);
-      // TODO 4: take the next deferred far child off the stack (log.pop(e.node, e.depth, e.t_min)),
-      //   unless the early exit applies: "if t_hit < t_split: return t_hit" -- only a hit
-      //   BEFORE the far child's t_split ends the search (a hit beyond it may be beaten by a
-      //   triangle in the far child):
-      //     const bool exits = ...;
-      //     log.kd_far_pop(closest.t, e.t_min, e.node, exits);
-      //     if (exits) log.cull(e.node, e.depth, Cull::BeyondClosestHit, e.t_min);
-      //   Continue with that child and its interval; an empty stack ends the loop.
-      break;
+      // Next: the most recently deferred far child, unless the early exit applies.
+      bool more = false;
+      while (!stack.empty() && !more) {
+        const Entry e = stack.back();
+        stack.pop_back();
+        log.pop(e.node, e.depth, e.t_min);
+        // TODO 4: the early exit "if t_hit < t_split: return t_hit": only a hit found BEFORE
+        //         the far child's t_split (e.t_min) ends the search -- a hit beyond it may be
+        //         beaten by a triangle in the far child.
+        const bool exits = false;
+        log.kd_far_pop(closest.t, e.t_min, e.node, exits);
+        if (exits) {
+          log.cull(e.node, e.depth, Cull::BeyondClosestHit, e.t_min);
+          continue;
+        }
+        id = e.node, depth = e.depth, t_min = e.t_min, t_max = e.t_max;
+        more = true;
+      }
+      if (!more) break;
     }
     return finish(closest);
   }
@@ -100,10 +121,10 @@ class MyKdTree : public StudentStructure {
 
   struct Node {
     bool leaf = true;
-    int axis = 0;                 // the split plane: axis ...
-    float split = 0.0f;           // ... and position
+    int axis = 0;                  // the split plane: axis ...
+    float split = 0.0f;            // ... and position
     uint32_t left = 0, right = 0;  // the children: below and above the plane
-    std::vector<uint32_t> prims;  // a leaf's triangles
+    std::vector<uint32_t> prims;   // a leaf's triangles
   };
 
   uint32_t build_node(const Box& region, const std::vector<uint32_t>& prims, uint32_t parent, int depth,
@@ -111,22 +132,32 @@ class MyKdTree : public StudentStructure {
     const uint32_t id = uint32_t(nodes_.size());
     nodes_.push_back(Node{});
     log.node(id, parent, depth, region, prims);
-    // TODO 5: the stopping criterion: few triangles or depth >= kMaxDepth -> a leaf (drop
-    //         the "true ||"; and LeafWhy::NoProgress when a split would separate nothing).
+    // TODO 5: the stopping criterion: few triangles or depth >= kMaxDepth -> a leaf (drop the
+    //         "true ||"). (TODO 6 may make one too, after choosing the split.)
     if (true || prims.size() <= kMaxLeaf || depth >= kMaxDepth) {
       nodes_[id].prims = prims;
       log.leaf(id, prims, prims.size() <= kMaxLeaf ? LeafWhy::FewTriangles : LeafWhy::MaxDepth);
       return id;
     }
-    nodes_[id].leaf = false;
-    // TODO 6: "1. Choose an axis-aligned plane, with which to split the cell": the middle of
-    //         the region's longest axis (or the median of the triangles, or the SAH minimum);
-    //         log.split(id, axis, position, cost, leaf_cost, n_left, n_right).
-    //         "2. Distribute the geometry among the two children": a triangle whose box
-    //         touches or straddles the plane goes to BOTH children.
-    //         "3. Do a recursion": the children's regions are the region cut at the plane:
-    //           const uint32_t l = build_node(left_region, left_prims, id, depth + 1, log);
-    //           ... nodes_[id].left = l;  (index, not a reference: nodes_ may have grown)
+    // TODO 6: "1. Choose an axis-aligned plane, with which to split the cell" (e.g. the middle
+    //         of the region's longest axis), "2. Distribute the geometry among the two
+    //         children": a triangle whose box touches or straddles the plane goes to BOTH; the
+    //         children's regions are the region cut at the plane.
+    const int axis = 0;
+    const float position = region.center()[axis];
+    std::vector<uint32_t> left, right;
+    Box left_region = region, right_region = region;
+    const float cost = 0.0f;  // C(B) of this split, against the leaf's cost prims.size()
+    // TODO 6 (cont.): a leaf after all when the split separates little (identical or heavily
+    //         overlapping triangles go to both sides again and again: LeafWhy::NoProgress)
+    //         or costs more than the leaf (LeafWhy::NoGain): nodes_[id].prims = prims,
+    //         log.leaf(id, prims, why), return id.
+    log.split(id, axis, position, cost, float(prims.size()), uint32_t(left.size()), uint32_t(right.size()));
+    // "3. Do a recursion"
+    const uint32_t l = build_node(left_region, left, id, depth + 1, log);
+    const uint32_t r = build_node(right_region, right, id, depth + 1, log);
+    Node& node = nodes_[id];  // only now: nodes_ grew in the recursion (references go stale)
+    node.leaf = false, node.axis = axis, node.split = position, node.left = l, node.right = r;
     return id;
   }
 

@@ -48,7 +48,7 @@ class MyOctree : public StudentStructure {
     std::vector<Entry> stack;  // (a fixed array of 8 * (kMaxDepth + 1) entries is faster)
     stack.push_back({0, t_enter, t_exit});
     log.push(0, 0, t_enter);
-    // TODO 5: the order of the children, front to back along the ray: the octants i ^ mask
+    // TODO 2: the order of the children, front to back along the ray: the octants i ^ mask
     //         for i = 0..7, where mask has bit a set when the ray runs down axis a.
     const unsigned mask = 0;
     while (!stack.empty()) {
@@ -56,7 +56,7 @@ class MyOctree : public StudentStructure {
       stack.pop_back();
       const Node& n = nodes_[e.node];
       log.pop(e.node, n.depth, e.t_enter);
-      // TODO 6: "if a collision has already been detected and it's closer than the ray entry
+      // TODO 3: "if a collision has already been detected and it's closer than the ray entry
       //         point into this node: return" (skip this node).
       const bool beyond_closest = false;
       if (beyond_closest) {
@@ -77,12 +77,14 @@ class MyOctree : public StudentStructure {
         c.octant = int(unsigned(i) ^ mask);
         c.node = n.child[c.octant];
         c.fate = OctreeChild::Fate::Empty;  // no child in this octant
-        // TODO 7: for a child that exists: intersect_box(ray, its box, ray.tmin, ray.tmax,
+        // TODO 4: for a child that exists: intersect_box(ray, its box, ray.tmin, ray.tmax,
         //         c.t_enter, c.t_exit); a miss -> Fate::Missed and
-        //         log.cull(c.node, n.depth + 1, Cull::MissedBounds); a hit -> Fate::Pushed.
+        //         log.cull(c.node, n.depth + 1, Cull::MissedBounds); entered beyond the
+        //         closest hit -> Fate::BeyondClosestHit and log.cull(..., Cull::BeyondClosestHit,
+        //         c.t_enter); otherwise Fate::Pushed.
       }
       log.octree_children(mask, order, 8);
-      // TODO 8: push the Pushed children so that the FIRST in `order` comes off the stack
+      // TODO 5: push the Pushed children so that the FIRST in `order` comes off the stack
       //         first (push them in reverse), each with log.push(c.node, n.depth + 1, c.t_enter).
     }
     return finish(closest);
@@ -108,20 +110,37 @@ class MyOctree : public StudentStructure {
     nodes_[id].box = box;
     nodes_[id].depth = depth;
     log.node(id, parent, depth, box, prims);
-    // TODO 3: the stopping criterion: few triangles or depth >= kMaxDepth -> a leaf (drop the
-    //         "true ||"). Also stop when subdividing cannot help (e.g. a child would get every
-    //         triangle: identical triangles never separate): LeafWhy::NoProgress.
-    if (true || prims.size() <= kMaxLeaf || depth >= kMaxDepth) {
+    // TODO 6: "Stopping criterion: the number of objects, and maximal depth": few triangles
+    //         or depth >= kMaxDepth -> a leaf (drop the "true ||").
+    const bool stop = true || prims.size() <= kMaxLeaf || depth >= kMaxDepth;
+    // "Subdivide a cell into 8 equal sub-cells"; octant o: bit 0 = upper half in x, bit 1 = in
+    // y, bit 2 = in z.
+    Box child_box[8];
+    std::vector<uint32_t> child_prims[8];
+    for (int o = 0; o < 8 && !stop; ++o) {
+      // TODO 7: octant o's eighth of `box`, and every triangle whose box overlaps it (closed:
+      //         touching counts, so a triangle in a child's face plane belongs to both sides).
+      //         Along an axis on which the box is flat (a 2D scene) there is only one half:
+      //         make no upper children there.
+      child_box[o] = box;
+    }
+    // TODO 8: a leaf after all when subdividing cannot help, e.g. when a child got every
+    //         triangle (identical or heavily overlapping triangles never separate).
+    const bool no_progress = false;
+    if (stop || no_progress) {
       nodes_[id].prims = prims;
-      log.leaf(id, prims, prims.size() <= kMaxLeaf ? LeafWhy::FewTriangles : LeafWhy::MaxDepth);
+      const LeafWhy why = no_progress                  ? LeafWhy::NoProgress
+                          : prims.size() <= kMaxLeaf ? LeafWhy::FewTriangles
+                                                     : LeafWhy::MaxDepth;
+      log.leaf(id, prims, why);
       return id;
     }
     nodes_[id].leaf = false;
-    // TODO 4: "Subdivide a cell into 8 equal sub-cells": octant o (bit 0 = upper half in x,
-    //         bit 1 = in y, bit 2 = in z) gets every triangle whose box overlaps the child's
-    //         box (closed: touching counts). Recurse for each non-empty child:
-    //           const uint32_t c = build_node(child_box, child_prims, id, depth + 1, log);
-    //           nodes_[id].child[o] = c;  // nodes_ may have grown: use the index, not a reference
+    for (int o = 0; o < 8; ++o) {
+      if (child_prims[o].empty()) continue;  // an empty octant gets no node
+      const uint32_t c = build_node(child_box[o], child_prims[o], id, depth + 1, log);
+      nodes_[id].child[o] = c;  // nodes_ grew in the recursion: index it, keep no reference
+    }
     return id;
   }
 

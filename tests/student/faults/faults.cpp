@@ -49,7 +49,8 @@ class Faulty : public StudentStructure {
         }
       case Fault::LoggedLoop:
         for (;;) log.visit(0, 0, 0.0f, 1.0f);
-      case Fault::Throw: throw std::runtime_error("a planted student bug");
+      case Fault::Throw:
+        throw std::runtime_error("a planted student bug");
       case Fault::Alloc: {
         static std::vector<char*> hoard;
         for (;;) {
@@ -58,7 +59,8 @@ class Faulty : public StudentStructure {
           hoard.push_back(block);
         }
       }
-      case Fault::BuildThrow: break;
+      case Fault::BuildThrow:
+        break;
     }
   }
   const Scene* scene_ = nullptr;

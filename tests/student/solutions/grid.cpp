@@ -153,7 +153,9 @@ class SolutionGrid : public StudentStructure {
   static constexpr float kLambda = 2.0f;
   static constexpr size_t kMaxCells = size_t(1) << 22;
 
-  size_t index(int x, int y, int z) const { return size_t(x) + size_t(res_[0]) * (size_t(y) + size_t(res_[1]) * size_t(z)); }
+  size_t index(int x, int y, int z) const {
+    return size_t(x) + size_t(res_[0]) * (size_t(y) + size_t(res_[1]) * size_t(z));
+  }
 
   /// The position of the cell boundary `k` (0 .. res) along `axis`.
   float boundary(int axis, int k) const { return box_.lo[axis] + float(k) * size_[axis]; }
