@@ -7,6 +7,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -174,6 +175,9 @@ json report_json(const accel::CheckReport& r, const CheckOptions& o) {
 
 /// The child: checks one structure, writes the JSON report.
 int run_worker(const CheckOptions& o) {
+  // The grader that started this child may be stopped (a course's time limit, Ctrl-C): then
+  // this child goes too, instead of looping on in the background.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
   auto info = accel::find_structure(o.structure);
   if (!info) {
     std::fprintf(stderr, "accelviz-cli: check: %s\n", info.error().message.c_str());
