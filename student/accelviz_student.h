@@ -9,7 +9,7 @@
 //   class MyBvh : public accelviz::StudentStructure {
 //    public:
 //     void build(const accelviz::Scene& scene, accelviz::BuildLog& log) override;
-//     accelviz::Hit intersect(const accelviz::Ray& ray, accelviz::TraversalLog& log) const override;
+//     accelviz::Hit intersect(const accelviz::Ray& ray, accelviz::TraversalLog log) const override;
 //   };
 //   ACCELVIZ_STUDENT_STRUCTURE(MyBvh, "my_bvh", bvh)
 //
@@ -175,7 +175,7 @@ class TraversalLog;
 /// it hits closer replaces `closest` and logs the new closest hit. Returns true then. A tie
 /// keeps the triangle found first, and a triangle never replaces itself (a triangle held by
 /// several cells or leaves may be tested again).
-bool test_triangle(const Ray& ray, const Scene& scene, uint32_t prim, Hit& closest, TraversalLog& log);
+bool test_triangle(const Ray& ray, const Scene& scene, uint32_t prim, Hit& closest, TraversalLog log);
 /// The answer of a traversal whose running closest hit is `closest`: a miss when no
 /// triangle was taken (t back to inf).
 inline Hit finish(const Hit& closest) { return closest.valid() ? closest : Hit{}; }
@@ -253,7 +253,8 @@ class BuildListener {
 #endif
 
 /// The traversal's steps, as the lecture names them. Call each where your loop takes it;
-/// the viewer animates exactly these calls, and `check` reads them.
+/// the viewer animates exactly these calls, and `check` reads them. A handle the size of a
+/// pointer: pass it by value (then it stays in a register, and each call is one branch).
 class TraversalLog {
  public:
   TraversalLog() = default;
@@ -376,7 +377,7 @@ class StudentStructure {
   /// Builds over `scene` (which outlives this object), logging every node and leaf.
   virtual void build(const Scene& scene, BuildLog& log) = 0;
   /// The closest hit of `ray` in [ray.tmin, ray.tmax] by the hit rule above, or Hit{}.
-  virtual Hit intersect(const Ray& ray, TraversalLog& log) const = 0;
+  virtual Hit intersect(const Ray& ray, TraversalLog log) const = 0;
 };
 
 /// How a registered structure presents itself. Filled by ACCELVIZ_STUDENT_STRUCTURE.

@@ -236,7 +236,8 @@ struct CompareRow {
   double build_ms = 0.0;
 };
 
-/// One row per structure of the registry, and per value of its "traversal" parameter when
+/// One row per built-in structure of the registry (and the current one when it is a
+/// student's), and per value of its "traversal" parameter when
 /// it has one. The current structure keeps its parameters (the traversal varied); others
 /// use their defaults. Each row is a real build + intersect(ray, &stats) + a traced query.
 /// Stops early when cancelled; `progress` counts finished rows.

@@ -97,7 +97,7 @@ bool intersect_sphere(const Ray& ray, const Sphere& sphere, float t_min, float t
                                  &t_enter, &t_exit);
 }
 
-bool test_triangle(const Ray& ray, const Scene& scene, uint32_t prim, Hit& closest, TraversalLog& log) {
+bool test_triangle(const Ray& ray, const Scene& scene, uint32_t prim, Hit& closest, TraversalLog log) {
   Hit h;
   const bool hit = intersect_triangle(ray, scene, prim, closest.t, h);
   log.triangle_tested(prim, hit, hit ? h.t : kInfinity);

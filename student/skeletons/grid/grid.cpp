@@ -48,7 +48,7 @@ class MyGrid : public StudentStructure {
     }
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;  // closest_hit: at first "as far as the ray goes"
 

@@ -42,7 +42,7 @@ class MyKdTree : public StudentStructure {
     build_node(root_box_, prims, kNoParent, 0, log);
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;  // closest_hit: at first "as far as the ray goes"
     if (nodes_.empty()) return finish(closest);

@@ -30,7 +30,7 @@ class MyOctree : public StudentStructure {
     build_node(box, prims, kNoParent, 0, log);
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;  // closest_hit: at first "as far as the ray goes"
     if (nodes_.empty()) return finish(closest);

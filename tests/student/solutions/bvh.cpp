@@ -32,7 +32,7 @@ class MedianBvh : public StudentStructure {
     build_node(0, prims_.size(), kNoParent, 0, log);
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;  // the lecture's closest_hit, at first "as far as the ray goes"
     if (nodes_.empty()) return finish(closest);

@@ -85,7 +85,7 @@ class SolutionGrid : public StudentStructure {
     }
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;
     if (empty_) return finish(closest);

@@ -45,7 +45,7 @@ class SolutionKdTree : public StudentStructure {
     build_node(box, prims, kNoParent, 0, log);
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;
     if (nodes_.empty()) return finish(closest);

@@ -33,7 +33,7 @@ class SolutionSphereTree : public StudentStructure {
     build_node(0, prims_.size(), kNoParent, 0, log);
   }
 
-  Hit intersect(const Ray& ray, TraversalLog& log) const override {
+  Hit intersect(const Ray& ray, TraversalLog log) const override {
     Hit closest;
     closest.t = ray.tmax;
     if (nodes_.empty()) return finish(closest);
