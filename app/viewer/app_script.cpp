@@ -116,6 +116,8 @@ accel::Status App::execute(const ScriptCommand& c, ScriptHost& host) {
       return add_triangle_2d({c.values[0], c.values[1], c.values[2], c.values[3], c.values[4], c.values[5]});
     case CommandKind::Save2d:
       return save_scene2d(c.name);
+    case CommandKind::SaveState:
+      return save_state(c.name);
     case CommandKind::Ray2d:
       return set_ray_2d(c.values[0], c.values[1], c.values[2], c.values[3]);
     case CommandKind::Step: {

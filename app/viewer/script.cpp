@@ -145,9 +145,9 @@ std::string parse_command(const std::string& verb, const std::vector<std::string
     if (n != 7 || args[0] != "tri") return count_error(usage);
     return floats(1, 6, usage);
   }
-  if (verb == "save2d") {
-    c.kind = CommandKind::Save2d;
-    if (n != 1) return count_error("save2d FILE");
+  if (verb == "save2d" || verb == "save-state") {
+    c.kind = verb == "save2d" ? CommandKind::Save2d : CommandKind::SaveState;
+    if (n != 1) return count_error(verb == "save2d" ? "save2d FILE" : "save-state FILE");
     c.name = args[0];
     return "";
   }

@@ -13,7 +13,7 @@
 //                                     (512M, 4G, 25%); a build over it is a script error
 //   camera EX EY EZ TX TY TZ [FOVY_DEG]
 //   ray-at-pixel X Y                  shoot like a click; pixel from the top-left
-//   ray OX OY OZ DX DY DZ
+//   ray OX OY OZ DX DY DZ [TMIN TMAX]  (TMAX may be inf)
 //   mode 2d|3d                        the blackboard (a 2D scene in the plane z = 0, seen
 //                                     from above; an empty one unless a 2D scene is loaded)
 //                                     or back to the last 3D scene
@@ -61,6 +61,8 @@
 //   colors viridis|cividis|turbo [hits=blue-orange|green-red]
 //                                     the colour map of depths, counts and the heat map, and
 //                                     the hit / miss pair (defaults: viridis, blue-orange)
+//   save-state FILE                   write the state (scene, structure, camera, ray, step) as
+//                                     the script that restores it (accelviz --restore FILE)
 //   print-hit                         "hit PRIM T" or "miss"
 //   print-step                        the current step as one line
 //   print-vars                        "vars: name=value ..." of the current step (the
@@ -96,7 +98,7 @@ enum class CommandKind {
   PrintVars, Trap, PrintNaive,
   Tree, TreeSelect,
   Playlist, Next, Prev, PrintState, Record, RecordStop, Colors, HeatmapScale, PrintHeatmap, HeatmapDiff,
-  MemoryLimit, TraceRays, Mode, Scene2d, Add2d, Ray2d, Save2d,
+  MemoryLimit, TraceRays, Mode, Scene2d, Add2d, Ray2d, Save2d, SaveState,
 };
 
 enum class StepMode { Forward, Back, End, Hit, Start };

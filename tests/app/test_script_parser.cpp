@@ -1,4 +1,5 @@
 // The script parser: every command, its errors (naming script and line), the chart commands.
+#include <cmath>
 #include <gtest/gtest.h>
 
 #include "script.h"
@@ -289,6 +290,39 @@ TEST(Script, BenchChartCommands) {
   };
   for (const auto& [text, expected] : errors) {
     auto bad = parse_script(text, "t.txt");
+    ASSERT_FALSE(bad.ok()) << text;
+    EXPECT_NE(bad.error().message.find(expected), std::string::npos) << bad.error().message;
+  }
+}
+
+TEST(Script, StateCommands) {
+  // What accelviz-cli check's replay files and save-state write: a ray with its tmin and tmax
+  // (hex floats, tmax inf), and the state saved to a file.
+  auto parsed = parse_script("ray 0x1p-1 0 3 0 0 -0x1p+0 0x1p-2 inf\nray 0 0 3 0 0 -1 0 2.5\nray 0 0 3 0 0 -1\n"
+                             "save-state s.state\n",
+                             "s.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const auto& c = parsed.value();
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[0].kind, CommandKind::Ray);
+  EXPECT_EQ(c[0].values[0], 0.5f);
+  EXPECT_EQ(c[0].values[5], -1.0f);
+  EXPECT_EQ(c[0].values[6], 0.25f);
+  EXPECT_TRUE(std::isinf(c[0].values[7]));
+  EXPECT_EQ(c[1].values[7], 2.5f);
+  EXPECT_EQ(c[2].values[6], 0.0f);  // without them: [0, inf)
+  EXPECT_TRUE(std::isinf(c[2].values[7]));
+  EXPECT_EQ(c[3].kind, CommandKind::SaveState);
+  EXPECT_EQ(c[3].name, "s.state");
+  const std::pair<const char*, const char*> errors[] = {
+      {"ray 0 0 3 0 0 -1 0\n", "usage: ray OX OY OZ DX DY DZ [TMIN TMAX]"},
+      {"ray 0 0 3 0 0 -1 2 1\n", "ray: TMIN is greater than TMAX"},
+      {"ray 0 0 3 0 0 -1 inf inf\n", "'inf' is not a finite number"},
+      {"ray 0 0 3 0 0 -1 0 nan\n", "'nan' is not a number or inf"},
+      {"save-state\n", "usage: save-state FILE"},
+  };
+  for (const auto& [text, expected] : errors) {
+    auto bad = parse_script(text, "s.txt");
     ASSERT_FALSE(bad.ok()) << text;
     EXPECT_NE(bad.error().message.find(expected), std::string::npos) << bad.error().message;
   }

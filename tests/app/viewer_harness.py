@@ -1,4 +1,5 @@
-"""What the scripted viewer tests share (test_viewer_scripts.py, test_viewer_2d.py): failures
+"""What the scripted viewer tests share (test_viewer_scripts.py, test_viewer_2d.py, and the kit's
+tests/student/test_kit.py): failures
 collected rather than raised, subprocess runs, and the viewer run on a script under Xvfb."""
 import argparse
 import os
@@ -15,8 +16,8 @@ def check(cond, what):
     return cond
 
 
-def run(cmd, timeout=300, env=None):
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
+def run(cmd, timeout=300, env=None, cwd=None):
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=cwd)
     return p.returncode, p.stdout, p.stderr
 
 

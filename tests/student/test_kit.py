@@ -12,23 +12,11 @@ import argparse
 import json
 import os
 import shutil
-import subprocess
 import sys
 import time
 
-FAILURES = []
-
-
-def check(cond, what):
-    if not cond:
-        FAILURES.append(what)
-        print("FAIL:", what)
-    return cond
-
-
-def run(cmd, timeout=600, cwd=None, env=None):
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=cwd, env=env)
-    return p.returncode, p.stdout, p.stderr
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "app"))
+from viewer_harness import FAILURES, check, run  # noqa: E402
 
 
 def check_json(args, name, *extra, scale="0.3", timeout=600):
@@ -62,8 +50,9 @@ def replay_in_viewer(args, report, name):
     for k, w in enumerate(replays[:2]):
         script = os.path.join(args.work, f"{name}_{k}.script")
         shot = os.path.join(args.work, f"{name}_{k}.png")
+        saved = os.path.join(args.work, f"{name}_{k}.state")
         with open(script, "w") as f:
-            f.write(f"print-hit\nstep hit\nscreenshot {shot}\n")
+            f.write(f"print-hit\nstep hit\nscreenshot {shot}\nsave-state {saved}\n")
         auth = os.path.join(args.work, f"{name}_{k}.Xauthority")
         open(auth, "w").close()
         code, out, err = run(["xvfb-run", "-a", "-f", auth, "-s", "-screen 0 1280x1024x24", args.viewer, "--msaa", "0",
@@ -79,6 +68,10 @@ def replay_in_viewer(args, report, name):
         check(code == 0 and same, f"{name}: replay {w['state_file']} printed '{line}', the check saw {got} "
               f"(exit {code}: {err[-300:]})")
         check(os.path.exists(shot), f"{name}: the replay's screenshot {shot} was not written")
+        # save-state writes what --restore read: the same scene, structure and ray.
+        wanted = [l for l in open(w["state_file"]).read().splitlines() if l.split(" ", 1)[0] in ("structure", "ray")]
+        got_lines = open(saved).read().splitlines() if os.path.exists(saved) else []
+        check(all(l in got_lines for l in wanted), f"{name}: save-state wrote {got_lines}, expected {wanted} in it")
 
 
 def main():
