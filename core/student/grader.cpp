@@ -500,9 +500,9 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
   if (options.time && report.faults.empty())
     report.speed = time_structure(info, options, progress);
   else if (options.time)
-    report.speed.why_not = "not timed: the structure threw or failed (see above)";
+    report.speed.why_not = "the structure threw or failed (see above)";
   else
-    report.speed.why_not = "not timed (--no-time)";
+    report.speed.why_not = "--no-time was given";
   return report;
 }
 

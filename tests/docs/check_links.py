@@ -4,7 +4,7 @@ heading that exists when it names one (#anchor, as GitHub makes them).
 
     python3 tests/docs/check_links.py [REPO]
 
-Checks README.md, bench/README.md, scenes/README.md and docs/*.md: links and images, inline
+Checks README.md, bench/README.md, scenes/README.md, student/README.md and docs/*.md: links and images, inline
 (`[text](target)`), relative paths only (http(s) and mailto links are not followed). Prints
 one line per broken link, 'FILE:LINE: target: why', and exits 1 when there is any.
 """
@@ -71,7 +71,7 @@ def check(repo, doc):
 
 def main():
     repo = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), '..', '..'))
-    docs = ['README.md', 'bench/README.md', 'scenes/README.md']
+    docs = ['README.md', 'bench/README.md', 'scenes/README.md', 'student/README.md']
     docs += sorted(os.path.join('docs', n) for n in os.listdir(os.path.join(repo, 'docs')) if n.endswith('.md'))
     problems = []
     for doc in docs:
