@@ -509,7 +509,9 @@ int run_bench(const BenchOptions& o) {
       }
       accel::BuildStats stats = structure->build_stats();
       stats.build_ms = best_build_ms;
-      for (accel::Kernel kernel : kernels) {
+      for (accel::Kernel requested : kernels) {
+        // A 2D scene has one hit rule, whatever --kernel says (build_structure() set it).
+        const accel::Kernel kernel = s.planar() ? accel::Kernel::Planar : requested;
         progress(step, total_steps, scene_spec + ": " + name + " " + std::string(accel::kernel_name(kernel)));
         structure->set_kernel(kernel);
         Row row = make_row(scene_spec, name, param_sets[k].to_string(), std::string(accel::kernel_name(kernel)), o.rays,

@@ -133,6 +133,20 @@ def test_trace_2d(cli, work):
         _, rows = read_csv(out)
         got = [(int(r[1]), float(r[2])) for r in rows]
         check(got == EXPECTED_2D, f"2D trace {structure}: {got}, expected {EXPECTED_2D}")
+    # bench on a 2D scene judges by the 2D rule too: no wrong answer, the kernel named planar.
+    import json
+    bench_json = os.path.join(work, "bench_2d.json")
+    code, _, err = run(cli, "bench", "--scene", scene, "--structures", "grid,kdtree,bvh", "--rays", rays,
+                       "--kernel", "watertight", "--no-embree", "--no-tinybvh", "--min-time", "0.001",
+                       "--out-json", bench_json)
+    check(code == 0, f"2D bench: exit {code}: {err}")
+    if code == 0:
+        with open(bench_json) as f:
+            bench_rows = json.load(f)
+        for r in bench_rows:
+            check(r["kernel"] == "planar" and r["false_miss"] + r["false_hit"] + r["wrong_prim"] == 0,
+                  f"2D bench row {r['structure']}: kernel {r['kernel']}, {r['false_miss']} false misses, "
+                  f"{r['false_hit']} false hits, {r['wrong_prim']} wrong triangles")
     three_d = os.path.join(work, "rays_3d.txt")
     with open(three_d, "w") as f:
         f.write("# a 3D ray\n-2 1 0 1 0 0\n0 0 1 0 0 -1\n")
