@@ -204,6 +204,9 @@ int run_worker(const CheckOptions& o) {
     setrlimit(RLIMIT_AS, &lim);
   }
 #endif
+  // The replays of an earlier check of this structure would be mistaken for this one's.
+  std::error_code ec;
+  fs::remove_all(fs::path(o.out_dir) / o.structure, ec);
   accel::CheckOptions co;
   co.shared_scenes = o.shared;
   co.ray_scale = o.ray_scale;
