@@ -111,6 +111,24 @@ Result<std::vector<Ray>> read_rays(const std::string& path) {
   return parse_rays(text.value(), path);
 }
 
+std::string format_ray_number(float v) {
+  if (std::isinf(v)) return v > 0.0f ? "inf" : "-inf";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%a", double(v));
+  return buf;
+}
+
+std::string format_ray_line(const Ray& ray, bool interval) {
+  std::string line;
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on `" " + std::string`.
+  const float values[8] = {ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin, ray.tmax};
+  for (int i = 0; i < (interval ? 8 : 6); ++i) {
+    if (i > 0) line += ' ';
+    line += format_ray_number(values[i]);
+  }
+  return line;
+}
+
 std::string format_hit_row(size_t ray_index, const Hit& hit) {
   char buf[128];
   if (!hit.valid()) {

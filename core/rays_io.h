@@ -44,6 +44,13 @@ Result<std::vector<Ray>> read_rays(const std::string& path);
 /// Same, from text already in memory (`source_name` is used in messages).
 Result<std::vector<Ray>> parse_rays(const std::string& text, const std::string& source_name);
 
+/// `v` as a C99 hex float ("0x1.8p+1"), or "inf" / "-inf": what parse_ray_number reads back
+/// exactly.
+std::string format_ray_number(float v);
+/// `ox oy oz dx dy dz` (and ` tmin tmax` with `interval`) in format_ray_number's form: a rays-file
+/// line that reads back as exactly `ray` (print-ray, the viewer's state files, check's replays).
+std::string format_ray_line(const Ray& ray, bool interval = true);
+
 /// Formats one hit row `ray,prim,t,u,v` (t with %.9g, "inf" on a miss).
 std::string format_hit_row(size_t ray_index, const Hit& hit);
 

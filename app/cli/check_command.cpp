@@ -25,6 +25,7 @@
 
 #include "commands.h"
 #include "memory_budget.h"
+#include "rays_io.h"
 #include "registry.h"
 #include "student/grader.h"
 
@@ -43,12 +44,6 @@ struct SharedProgress {
 };
 
 const char* kVerdictKeys[5] = {"correct", "false_miss", "false_hit", "wrong_triangle", "wrong_t"};
-
-std::string hexf(float v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%a", double(v));
-  return buf;
-}
 
 std::string fmt(double v, const char* f = "%.4g") {
   char buf[64];
@@ -100,16 +95,11 @@ std::string write_replay(const accel::WrongRay& w, const std::string& structure,
     }
   }
   const std::string state = (fs::path(dir) / ("wrong" + std::to_string(k) + ".state")).native();
-  std::ofstream out(state);
-  out << "# accelviz-cli check: " << structure << ", " << w.category << "/" << w.case_name << " ray " << w.index << ": "
-      << kVerdictKeys[int(w.verdict)] << "\n"
-      << "scene " << scene << "\n"
-      << "structure " << structure << "\n"
-      << "ray " << hexf(w.ray.org.x) << " " << hexf(w.ray.org.y) << " " << hexf(w.ray.org.z) << " " << hexf(w.ray.dir.x)
-      << " " << hexf(w.ray.dir.y) << " " << hexf(w.ray.dir.z) << " " << hexf(w.ray.tmin) << " "
-      << (std::isinf(w.ray.tmax) ? std::string("inf") : hexf(w.ray.tmax)) << "\n";
-  if (!out.flush()) {
-    *error = state + ": write failed";
+  const std::string text = "# accelviz-cli check: " + structure + ", " + w.category + "/" + w.case_name + " ray " +
+                           std::to_string(w.index) + ": " + kVerdictKeys[int(w.verdict)] + "\n" + "scene " + scene +
+                           "\nstructure " + structure + "\nray " + accel::format_ray_line(w.ray) + "\n";
+  if (auto s = accel::write_file_atomic(state, text); !s) {
+    *error = s.error().message;
     return "";
   }
   return state;
@@ -225,9 +215,7 @@ int run_worker(const CheckOptions& o) {
       f += " (ran out of memory: a runaway allocation? the check's limit is " +
            accel::format_bytes(double(o.memory_bytes)) + ")";
   const json j = report_json(report, o);
-  std::ofstream out(o.worker_report);
-  out << j.dump(1) << "\n";
-  return out.flush() ? 0 : kExitBadInput;
+  return accel::write_file_atomic(o.worker_report, j.dump(1) + "\n") ? 0 : kExitBadInput;
 }
 
 /// Runs the child for `structure`; returns its report, or one made of how it died.

@@ -1,27 +1,15 @@
 // The viewer's state as a script of the commands that rebuild it (scene, structure, kernel,
 // camera, ray, step): `--restore` reopens it. A student's loop is edit, rebuild, look at the
 // same ray again; `accelviz-cli check` writes such a file for every wrong ray it reports.
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "app.h"
-#include "paths.h"
+#include "rays_io.h"
 
 namespace viz {
-namespace {
-
-std::string hex(float v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%a", static_cast<double>(v));
-  return buf;
-}
-
-}  // namespace
 
 std::string App::state_script() const {
+  using accel::format_ray_number;
   std::string out = "# accelviz state (reopen: accelviz --restore FILE)\n";
   const std::string& spec = session_.scene_info().spec;
   const bool file_scene = !spec.empty() && spec.rfind("procedural:", 0) != 0;
@@ -39,14 +27,17 @@ std::string App::state_script() const {
   if (request.kernel != accel::Kernel::Watertight && !mode_2d())
     out += "kernel " + std::string(accel::kernel_name(request.kernel)) + "\n";
   const accel::PinholeCamera cam = camera_.pinhole();
-  if (!mode_2d())
-    out += "camera " + hex(cam.eye.x) + " " + hex(cam.eye.y) + " " + hex(cam.eye.z) + " " + hex(cam.target.x) + " " +
-           hex(cam.target.y) + " " + hex(cam.target.z) + " " + hex(cam.fovy_deg) + "\n";
+  if (!mode_2d()) {
+    out += "camera";
+    for (float v : {cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z, cam.fovy_deg}) {
+      out += ' ';
+      out += format_ray_number(v);
+    }
+    out += "\n";
+  }
   const DebugRay& ray = ray_.ray();
   if (ray.active && !mode_2d()) {
-    const accel::Ray& r = ray.ray;
-    out += "ray " + hex(r.org.x) + " " + hex(r.org.y) + " " + hex(r.org.z) + " " + hex(r.dir.x) + " " + hex(r.dir.y) +
-           " " + hex(r.dir.z) + " " + hex(r.tmin) + " " + hex(r.tmax) + "\n";
+    out += "ray " + accel::format_ray_line(ray.ray) + "\n";
     if (ray.player.step() > 0) out += "step " + std::to_string(ray.player.step()) + "\n";
   }
   return out;
@@ -55,15 +46,7 @@ std::string App::state_script() const {
 accel::Status App::save_state(const std::string& path) const {
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp);
-    out << state_script();
-    if (!out.flush()) return accel::make_error(path + ": cannot write the viewer's state");
-  }
-  std::filesystem::rename(temp, path, ec);  // never half written
-  if (ec) return accel::make_error(path + ": " + ec.message());
-  return {};
+  return accel::write_file_atomic(path, state_script());  // never half written
 }
 
 }  // namespace viz

@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "rays_io.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -129,14 +130,7 @@ accel::Status RayDebugger::need_trace() const {
   return {};
 }
 
-std::string RayDebugger::ray_line() const {
-  const accel::Ray& r = ray_.ray;
-  char text[256];
-  std::snprintf(text, sizeof text, "%a %a %a %a %a %a", static_cast<double>(r.org.x), static_cast<double>(r.org.y),
-                static_cast<double>(r.org.z), static_cast<double>(r.dir.x), static_cast<double>(r.dir.y),
-                static_cast<double>(r.dir.z));
-  return text;
-}
+std::string RayDebugger::ray_line() const { return accel::format_ray_line(ray_.ray, false); }
 
 // ---------------------------------------------------------------------------------------
 // Panels
