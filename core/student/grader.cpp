@@ -13,6 +13,7 @@
 #include "check_suites.h"
 #include "parallel.h"
 #include "ray_gen.h"
+#include "rays_io.h"
 #include "student/kit_structure.h"
 #include "traps.h"
 
@@ -62,28 +63,20 @@ std::vector<CaseSpec> case_specs(const CheckOptions& o) {
          Scene flat({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1, 2}, {0, 0, 1}}, "all_degenerate");
          return HardCase{"all_degenerate", std::move(flat), random_rays(Aabb{Vec3(-1), Vec3(3)}, scaled(200, k), 4)};
        }});
-  // The hard cases: generated together, handed out one by one.
-  auto hard = std::make_shared<std::vector<HardCase>>();
-  for (const char* name : {"closed_mesh_edges_vertices", "axis_parallel_on_planes", "origins_inside_scene",
-                           "offset_1e5", "scale_1e-3", "scale_1e3", "flat_scene", "slivers_zero_area_duplicates",
-                           "teapot_in_stadium", "coplanar_overlapping", "hits_at_tmin_tmax", "cube_diagonals"}) {
-    const std::string n = name;
-    specs.push_back({"hard", n, [hard, n, k]() -> Result<HardCase> {
-                       if (hard->empty()) *hard = hard_cases();
-                       for (const HardCase& h : *hard)
-                         if (h.name == n) {
-                           HardCase c = h;
-                           if (k < 1.0) {  // keep every step-th ray, in order
-                             const size_t step = std::max<size_t>(1, size_t(1.0 / k));
-                             std::vector<Ray> kept;
-                             for (size_t i = 0; i < c.rays.size(); i += step) kept.push_back(c.rays[i]);
-                             c.rays = std::move(kept);
-                           }
-                           return c;
-                         }
-                       return make_error("hard case " + n + " is gone");
+  // The hard cases: every one of core/check_suites.h, generated once, handed out one by one
+  // (every step-th ray kept, in order, at a ray scale below 1).
+  auto hard = std::make_shared<std::vector<HardCase>>(hard_cases());
+  for (size_t h = 0; h < hard->size(); ++h)
+    specs.push_back({"hard", (*hard)[h].name, [hard, h, k]() -> Result<HardCase> {
+                       HardCase c = std::move((*hard)[h]);
+                       if (k < 1.0) {
+                         const size_t step = std::max<size_t>(1, size_t(1.0 / k));
+                         std::vector<Ray> kept;
+                         for (size_t i = 0; i < c.rays.size(); i += step) kept.push_back(c.rays[i]);
+                         c.rays = std::move(kept);
+                       }
+                       return c;
                      }});
-  }
   if (!o.shared_scenes.empty() && std::filesystem::is_directory(o.shared_scenes))
     for (const char* file : {"cornell_box.obj", "teapot.obj", "bunny_lowres.obj"}) {
       const std::string path = o.shared_scenes + "/" + file;
@@ -378,12 +371,6 @@ size_t CheckReport::invariant_failures() const {
   return n;
 }
 
-std::vector<std::string> check_case_names(const CheckOptions& options) {
-  std::vector<std::string> names;
-  for (const CaseSpec& c : case_specs(options)) names.push_back(c.category + "/" + c.name);
-  return names;
-}
-
 CheckReport check_structure(const StructureInfo& info, const CheckOptions& options, const CheckProgress& progress) {
   CheckReport report;
   report.structure = info.name;
@@ -507,15 +494,18 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
 }
 
 Status write_scene_obj(const Scene& scene, const std::string& path) {
-  FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) return make_error(path + ": cannot open for writing");
-  std::fprintf(f, "# written by accelviz-cli check: %zu triangles, numbered as in the checked scene\n",
-               scene.triangle_count());
-  for (const Vec3& p : scene.positions()) std::fprintf(f, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
-  for (const UVec3& t : scene.triangles()) std::fprintf(f, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
-  const bool ok = std::fflush(f) == 0;
-  if (std::fclose(f) != 0 || !ok) return make_error(path + ": write failed");
-  return {};
+  std::string text = "# written by accelviz-cli check: " + std::to_string(scene.triangle_count()) +
+                     " triangles, numbered as in the checked scene\n";
+  char line[128];
+  for (const Vec3& p : scene.positions()) {
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
+    text += line;
+  }
+  for (const UVec3& t : scene.triangles()) {
+    std::snprintf(line, sizeof line, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    text += line;
+  }
+  return write_file_atomic(path, text);
 }
 
 }  // namespace accel

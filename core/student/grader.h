@@ -82,9 +82,6 @@ using CheckProgress = std::function<void(const std::string& where, size_t ray)>;
 /// attribute (none in practice); the student's exceptions become faults.
 CheckReport check_structure(const StructureInfo& info, const CheckOptions& options, const CheckProgress& progress);
 
-/// The case names in order, "category/case", for the report of a child that died.
-std::vector<std::string> check_case_names(const CheckOptions& options);
-
 /// Writes `scene` as an OBJ whose floats read back exactly (%.9g): the replay's scene.
 Status write_scene_obj(const Scene& scene, const std::string& path);
 

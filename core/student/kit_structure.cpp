@@ -165,17 +165,18 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
   std::vector<uint32_t> pending_cells_;
 };
 
-/// Listens to the student's traversal log: the core's trace events and step variables.
+/// Listens to the student's traversal log and hands every step to `Sink` (a TraversalSink:
+/// TraceRecorder, StatsSink) as the core's events, with ids made dense; the lecture's
+/// variables only to a sink that records them.
+template <TraversalSink Sink>
 class KitTraversalListener final : public accelviz::detail::TraversalListener {
  public:
-  KitTraversalListener(const KitTree& tree, TraceRecorder* recorder, StatsSink* stats, bool strict)
-      : tree_(tree), recorder_(recorder), stats_(stats), strict_(strict) {}
+  KitTraversalListener(const KitTree& tree, Sink& sink, bool strict) : tree_(tree), sink_(sink), strict_(strict) {}
 
   void visit(uint32_t node, int depth, float t0, float t1) override {
     const NodeId n = dense(node, "visit");
     step();
-    if (recorder_) recorder_->visit(n, depth, t0, t1);
-    if (stats_) stats_->visit(n, depth, t0, t1);
+    sink_.visit(n, depth, t0, t1);
   }
   void enter_cell(int x, int y, int z, float t0, float t1) override {
     const NodeId cell = tree_.cell_index(x, y, z);
@@ -183,73 +184,70 @@ class KitTraversalListener final : public accelviz::detail::TraversalListener {
       throw KitError("enter_cell(" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
                      "): no such cell in the grid the build logged");
     step();
-    if (recorder_) recorder_->enter_cell(cell, t0, t1);
-    if (stats_) stats_->enter_cell(cell, t0, t1);
+    sink_.enter_cell(cell, t0, t1);
   }
   void cull(uint32_t node, int depth, accelviz::Cull why, float t) override {
     const NodeId n = dense(node, "cull");
     step();
-    if (recorder_) recorder_->cull(n, depth, to_core(why), t);
-    if (stats_) stats_->cull(n, depth, to_core(why), t);
+    sink_.cull(n, depth, to_core(why), t);
   }
   void push(uint32_t node, int depth, float key) override {
     const NodeId n = dense(node, "push");
     step();
-    if (recorder_) recorder_->push(n, depth, key);
-    if (stats_) stats_->push(n, depth, key);
+    sink_.push(n, depth, key);
   }
   void pop(uint32_t node, int depth, float key) override {
     const NodeId n = dense(node, "pop");
     step();
-    if (recorder_) recorder_->pop(n, depth, key);
-    if (stats_) stats_->pop(n, depth, key);
+    sink_.pop(n, depth, key);
   }
   void triangle_tested(uint32_t prim, bool hit, float t) override {
     step();
-    if (recorder_) recorder_->test_prim(prim, hit, t);
-    if (stats_) stats_->test_prim(prim, hit, t);
+    sink_.test_prim(prim, hit, t);
   }
   void new_closest(uint32_t prim, float t) override {
     step();
-    if (recorder_) recorder_->new_closest(prim, t);
+    sink_.new_closest(prim, t);
   }
   void grid_dda(const int cell[3], const int step_[3], const float t_max[3], const float t_delta[3]) override {
-    if (!recorder_) return;
-    GridDdaVars v;
-    for (int a = 0; a < 3; ++a) {
-      v.cell[a] = cell[a], v.step[a] = step_[a], v.t_max[a] = t_max[a], v.t_delta[a] = t_delta[a];
+    if constexpr (Sink::kRecords) {
+      GridDdaVars v;
+      for (int a = 0; a < 3; ++a) {
+        v.cell[a] = cell[a], v.step[a] = step_[a], v.t_max[a] = t_max[a], v.t_delta[a] = t_delta[a];
+      }
+      v.next_axis = v.t_max[0] <= v.t_max[1] && v.t_max[0] <= v.t_max[2] ? 0 : v.t_max[1] <= v.t_max[2] ? 1 : 2;
+      sink_.vars(v);
     }
-    v.next_axis = v.t_max[0] <= v.t_max[1] && v.t_max[0] <= v.t_max[2] ? 0 : v.t_max[1] <= v.t_max[2] ? 1 : 2;
-    recorder_->vars(v);
   }
   void kd_split(float t_min, float t_split, float t_max, uint32_t near_child, uint32_t far_child, int axis) override {
-    if (!recorder_) return;
-    KdSplitVars v;
-    v.t_min = t_min, v.t_split = t_split, v.t_max = t_max;
-    v.near_child = dense(near_child, "kd_split");
-    v.far_child = dense(far_child, "kd_split");
-    v.axis = std::clamp(axis, 0, 2);
-    v.kase = t_split > t_max ? KdCase::NearOnly : t_split < t_min ? KdCase::FarOnly : KdCase::Both;
-    recorder_->vars(v);
+    if constexpr (Sink::kRecords) {
+      KdSplitVars v;
+      v.t_min = t_min, v.t_split = t_split, v.t_max = t_max;
+      v.near_child = dense(near_child, "kd_split");
+      v.far_child = dense(far_child, "kd_split");
+      v.axis = std::clamp(axis, 0, 2);
+      v.kase = t_split > t_max ? KdCase::NearOnly : t_split < t_min ? KdCase::FarOnly : KdCase::Both;
+      sink_.vars(v);
+    }
   }
   void kd_far_pop(float t_hit, float t_split, uint32_t far_child, bool exits) override {
-    if (!recorder_) return;
-    recorder_->vars(KdExitVars{t_hit, t_split, dense(far_child, "kd_far_pop"), exits});
+    if constexpr (Sink::kRecords) sink_.vars(KdExitVars{t_hit, t_split, dense(far_child, "kd_far_pop"), exits});
   }
   void octree_children(unsigned mask, const accelviz::OctreeChild* children, int count) override {
-    if (!recorder_) return;
-    OctreeOrderVars v;
-    v.mask = mask & 7u;
-    v.count = std::clamp(count, 0, 8);
-    for (int i = 0; i < v.count; ++i) {
-      const accelviz::OctreeChild& c = children[i];
-      OctreeOrderVars::Child& o = v.children[i];
-      o.node = c.node == accelviz::kNoParent ? kNoNode : dense(c.node, "octree_children");
-      o.octant = uint8_t(c.octant & 7);
-      o.fate = OctreeOrderVars::Fate(int(c.fate));
-      o.t_enter = c.t_enter, o.t_exit = c.t_exit;
+    if constexpr (Sink::kRecords) {
+      OctreeOrderVars v;
+      v.mask = mask & 7u;
+      v.count = std::clamp(count, 0, 8);
+      for (int i = 0; i < v.count; ++i) {
+        const accelviz::OctreeChild& c = children[i];
+        OctreeOrderVars::Child& o = v.children[i];
+        o.node = c.node == accelviz::kNoParent ? kNoNode : dense(c.node, "octree_children");
+        o.octant = uint8_t(c.octant & 7);
+        o.fate = OctreeOrderVars::Fate(int(c.fate));
+        o.t_enter = c.t_enter, o.t_exit = c.t_exit;
+      }
+      sink_.vars(v);
     }
-    recorder_->vars(v);
   }
 
  private:
@@ -268,8 +266,7 @@ class KitTraversalListener final : public accelviz::detail::TraversalListener {
   }
 
   const KitTree& tree_;
-  TraceRecorder* recorder_;
-  StatsSink* stats_;
+  Sink& sink_;
   bool strict_;
   uint64_t steps_ = 0;
 };
@@ -294,11 +291,6 @@ Aabb KitTree::cell_box(NodeId cell) const {
 void KitTree::problem(std::string what) {
   if (problems.size() < 8) problems.push_back(std::move(what));
   ++problem_count;
-}
-
-std::unique_ptr<accelviz::detail::TraversalListener> make_kit_listener(const KitTree& tree, TraceRecorder* recorder,
-                                                                       StatsSink* stats, bool strict) {
-  return std::make_unique<KitTraversalListener>(tree, recorder, stats, strict);
 }
 
 KitStructure::KitStructure(std::string name, accelviz::Kind kind,
@@ -373,14 +365,14 @@ std::string KitStructure::last_error() const {
 Hit KitStructure::intersect(const Ray& ray, QueryStats* stats) const {
   if (!stats) return guarded_query(ray, nullptr);  // the fast path: nobody listens
   StatsSink sink;
-  KitTraversalListener listener(tree_, nullptr, &sink, strict_);
+  KitTraversalListener<StatsSink> listener(tree_, sink, strict_);
   const Hit hit = guarded_query(ray, &listener);
   *stats = sink.stats;
   return hit;
 }
 
 Hit KitStructure::intersect_traced(const Ray& ray, TraceRecorder& recorder) const {
-  KitTraversalListener listener(tree_, &recorder, nullptr, strict_);
+  KitTraversalListener<TraceRecorder> listener(tree_, recorder, strict_);
   const Hit hit = guarded_query(ray, &listener);
   recorder.done(hit);
   return hit;

@@ -118,10 +118,4 @@ class KitStructure final : public Structure {
   mutable std::string last_error_;
 };
 
-/// Turns the student's traversal log into the core's sink calls (ids made dense, the
-/// lecture variables as StepVars), counting steps against kKitStepBudget. `Sink` is a
-/// TraversalSink (TraceRecorder, StatsSink).
-std::unique_ptr<accelviz::detail::TraversalListener> make_kit_listener(const KitTree& tree, TraceRecorder* recorder,
-                                                                       StatsSink* stats, bool strict);
-
 }  // namespace accel
