@@ -1,4 +1,4 @@
-# Sourced by scripts/build.sh and scripts/build_web.sh: takes the kit's options out of "$@".
+# Sourced by scripts/run.sh, build.sh and build_web.sh: takes the kit's options out of "$@".
 #   --student DIR    a folder of student structures to build in (repeatable; docs/student.md)
 #   --no-student     build none (clears what an earlier --student left in the build folder)
 # Sets student_cmake_args (the CMake -D to add, if any) and remaining_args (everything else).

@@ -187,7 +187,8 @@ void App::set_ray(const accel::Ray& ray, const std::string& origin) {
 
 void App::start_compare() {
   if (!ray_.ray().active) return;
-  compare_.start(session_.scene_ptr(), ray_.ray().ray, session_.current_request(), synchronous_);
+  compare_.start(session_.scene_ptr(), ray_.ray().ray, session_.current_request(), session_.current_ptr(),
+                 synchronous_);
 }
 
 accel::Status App::start_sweep() {

@@ -15,27 +15,28 @@ using ui::kCullText;
 using ui::miss_text;
 
 void CompareTool::start(std::shared_ptr<const accel::Scene> scene, const accel::Ray& ray,
-                        const StructureRequest& current, bool synchronous) {
+                        const StructureRequest& current, BuiltPtr shown, bool synchronous) {
   ray_ = ray;
   progress_ = std::make_shared<std::atomic<int>>(0);
   auto progress = progress_;
   job_.start(
-      [scene, ray, current, progress](const std::atomic<bool>& cancel) {
+      [scene, ray, current, shown, progress](const std::atomic<bool>& cancel) {
         CompareResult result;
         result.rows = compare_structures(scene, ray, current, cancel, progress.get());
         auto info = accel::find_structure(current.name);
-        if (!info || !info.value()->student || cancel) return result;
+        if (!info || !info.value()->student || !shown || cancel) return result;
         // A student's structure: the same ray through the built-in of its kind, step by step.
         result.peer = info.value()->builtin_peer;
         const std::vector<std::string> peer_params = accel::builtin_compare_params(result.peer);
         for (const std::string& p : peer_params) result.peer_params += (result.peer_params.empty() ? "" : " ") + p;
-        auto mine = accel::build_structure(current.name, *scene, current.params, current.kernel);
         auto peer = accel::build_structure(result.peer, *scene, peer_params, current.kernel);
-        if (!mine || !peer) {
-          result.builtin_error = !mine ? mine.error().message : peer.error().message;
+        if (!peer) {
+          result.builtin_error = peer.error().message;
           return result;
         }
-        result.builtin = accel::compare_with_builtin(*scene, ray, *mine.value(), *peer.value());
+        // The student's structure as shown (its queries are const): the steps compared are the
+        // steps of the trace on screen, so "go to your step" lands on the same event.
+        result.builtin = accel::compare_with_builtin(*scene, ray, *shown->structure, *peer.value());
         return result;
       },
       synchronous);

@@ -34,9 +34,10 @@ struct CompareResult {
 class CompareTool {
  public:
   /// Starts comparing `ray` over `scene`; `current` keeps its parameters (the traversal
-  /// varied). Synchronous in script mode.
+  /// varied); `shown`, the structure built for `current`, is compared with the built-in of
+  /// its kind when it is a student's. Synchronous in script mode.
   void start(std::shared_ptr<const accel::Scene> scene, const accel::Ray& ray, const StructureRequest& current,
-             bool synchronous);
+             BuiltPtr shown, bool synchronous);
   /// Takes the finished rows (per frame).
   void poll();
   /// Forgets the rows (a new scene).
