@@ -12,6 +12,7 @@
 #include "random.h"
 #include "scene.h"
 #include "structures/bvh_builders.h"
+#include "structures/hierarchy_params.h"
 #include "build_tree_compare.h"
 
 namespace accel {
@@ -72,6 +73,31 @@ void expect_valid_build_tree(const BuildTree& tree, const Scene& scene, int leaf
   std::vector<uint32_t> valid = scene.valid_prims();
   std::sort(seen.begin(), seen.end());
   EXPECT_EQ(seen, valid);  // valid_prims() is ascending: every valid triangle exactly once
+}
+
+// The builders' table is the one place a builder is named: every kind has one row, the
+// names are distinct, and the `builder` parameter offers exactly the table's names in order.
+TEST(BvhBuilderTable, OneRowPerBuilderDrivesTheParameter) {
+  const auto rows = accel::bvh_builder_table();
+  std::set<std::string> names;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(size_t(rows[k].kind), k) << "rows in enum order";
+    EXPECT_EQ(&accel::bvh_builder(rows[k].kind), &rows[k]);
+    EXPECT_STREQ(accel::builder_name(rows[k].kind), rows[k].name);
+    EXPECT_TRUE(names.insert(rows[k].name).second) << rows[k].name;
+    EXPECT_GT(std::strlen(rows[k].label), 0u);
+    EXPECT_GT(std::strlen(rows[k].help), 0u);
+    EXPECT_NE(rows[k].build, nullptr);
+  }
+  EXPECT_EQ(rows.size(), size_t(accel::BvhBuilderKind::Sbvh) + 1);
+  for (const accel::ParamSpec& spec : accel::bvh_param_specs()) {
+    if (spec.name != "builder") continue;
+    ASSERT_EQ(spec.choices.size(), rows.size());
+    for (size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_EQ(spec.choices[k], rows[k].name);
+      EXPECT_NE(spec.doc.find(rows[k].help), std::string::npos) << rows[k].help;
+    }
+  }
 }
 
 TEST(BvhBinnedBuild, TreeDoesNotDependOnTheThreadCount) {

@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "batch.h"
+#include "structures/kd_builder.h"
 #include "structures/kd_tree.h"
 #include "oracle.h"
 #include "random.h"

@@ -10,6 +10,7 @@
 #include "registry.h"
 #include "scene.h"
 #include "structures/bvh.h"
+#include "structures/bvh_builders.h"
 #include "structures/wide_bvh.h"
 #include "structures/wide_collapse.h"
 #include "test_support.h"

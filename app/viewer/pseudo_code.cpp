@@ -4,6 +4,8 @@
 #include <utility>
 
 #include "params.h"
+#include "structures/bvh_builders.h"
+#include "structures/hierarchy_params.h"
 
 namespace viz {
 namespace {
@@ -572,61 +574,61 @@ const PseudoCode& build_bvh_insertion_code() {
 
 }  // namespace
 
+BuildCodeKind build_code_of(accel::ConstructionFamily family) { return {true, family}; }
+
+BuildCodeKind build_code_of(accel::BvhBuilderKind builder) {
+  return {true, accel::ConstructionFamily::Hierarchy, builder};
+}
+
 BuildCodeKind build_code_kind(const std::string& name, const std::vector<std::string>& params) {
   auto info = accel::find_structure(name);
   if (!info) return BuildCodeKind::Unknown;
-  switch (info.value()->construction) {
-    case accel::ConstructionFamily::Linear: return BuildCodeKind::Brute;
-    case accel::ConstructionFamily::GridInsert: return BuildCodeKind::Grid;
-    case accel::ConstructionFamily::Octree: return BuildCodeKind::Octree;
-    case accel::ConstructionFamily::KdTree: return BuildCodeKind::KdTree;
-    case accel::ConstructionFamily::Hierarchy: break;
-  }
+  const accel::ConstructionFamily family = info.value()->construction;
+  if (family != accel::ConstructionFamily::Hierarchy) return build_code_of(family);
   auto set = accel::ParamSet::parse(info.value()->params, params, name);
   if (!set || !set.value().has("builder")) return BuildCodeKind::Unknown;
-  const std::string b = set.value().get_choice("builder");
-  if (b == "median") return BuildCodeKind::BvhMedian;
-  if (b == "sah") return BuildCodeKind::BvhSah;
-  if (b == "binned_sah") return BuildCodeKind::BvhBinned;
-  if (b == "pca_sah") return BuildCodeKind::BvhPca;
-  if (b == "bottom_up") return BuildCodeKind::BvhBottomUp;
-  if (b == "insertion") return BuildCodeKind::BvhInsertion;
-  if (b == "sbvh") return BuildCodeKind::BvhSpatial;
-  return BuildCodeKind::Unknown;
+  return build_code_of(accel::hierarchy_options(set.value()).build.builder);
 }
 
 const char* build_code_label(BuildCodeKind kind) {
-  switch (kind) {
-    case BuildCodeKind::Brute: return "brute force";
-    case BuildCodeKind::Grid: return "grid";
-    case BuildCodeKind::Octree: return "octree";
-    case BuildCodeKind::KdTree: return "kd-tree";
-    case BuildCodeKind::BvhMedian: return "median";
-    case BuildCodeKind::BvhSah: return "SAH sweep";
-    case BuildCodeKind::BvhBinned: return "binned SAH";
-    case BuildCodeKind::BvhPca: return "PCA + SAH";
-    case BuildCodeKind::BvhBottomUp: return "bottom-up";
-    case BuildCodeKind::BvhInsertion: return "insertion";
-    case BuildCodeKind::BvhSpatial: return "spatial splits";
-    case BuildCodeKind::Unknown: break;
+  if (!kind.known) return "?";
+  switch (kind.family) {
+    case accel::ConstructionFamily::Linear: return "brute force";
+    case accel::ConstructionFamily::GridInsert: return "grid";
+    case accel::ConstructionFamily::Octree: return "octree";
+    case accel::ConstructionFamily::KdTree: return "kd-tree";
+    case accel::ConstructionFamily::Hierarchy: return accel::bvh_builder(kind.builder).label;
   }
   return "?";
 }
 
+namespace {
+
+/// The listing of a hierarchy's builder. A new builder shows "no listing" until it has one.
+const PseudoCode& builder_code(accel::BvhBuilderKind builder) {
+  using K = accel::BvhBuilderKind;
+  switch (builder) {
+    case K::Median: return build_bvh_median_code();
+    case K::Sah: return build_bvh_sah_code();
+    case K::BinnedSah: return build_bvh_binned_code();
+    case K::PcaSah: return build_bvh_pca_code();
+    case K::BottomUp: return build_bvh_bottom_up_code();
+    case K::Insertion: return build_bvh_insertion_code();
+    case K::Sbvh: return build_bvh_spatial_code();
+    default: return unknown_code();
+  }
+}
+
+}  // namespace
+
 const PseudoCode& build_pseudo_code(BuildCodeKind kind) {
-  switch (kind) {
-    case BuildCodeKind::Brute: return build_brute_code();
-    case BuildCodeKind::Grid: return build_grid_code();
-    case BuildCodeKind::Octree: return build_octree_code();
-    case BuildCodeKind::KdTree: return build_kd_code();
-    case BuildCodeKind::BvhMedian: return build_bvh_median_code();
-    case BuildCodeKind::BvhSah: return build_bvh_sah_code();
-    case BuildCodeKind::BvhBinned: return build_bvh_binned_code();
-    case BuildCodeKind::BvhPca: return build_bvh_pca_code();
-    case BuildCodeKind::BvhBottomUp: return build_bvh_bottom_up_code();
-    case BuildCodeKind::BvhInsertion: return build_bvh_insertion_code();
-    case BuildCodeKind::BvhSpatial: return build_bvh_spatial_code();
-    case BuildCodeKind::Unknown: break;
+  if (!kind.known) return unknown_code();
+  switch (kind.family) {
+    case accel::ConstructionFamily::Linear: return build_brute_code();
+    case accel::ConstructionFamily::GridInsert: return build_grid_code();
+    case accel::ConstructionFamily::Octree: return build_octree_code();
+    case accel::ConstructionFamily::KdTree: return build_kd_code();
+    case accel::ConstructionFamily::Hierarchy: return builder_code(kind.builder);
   }
   return unknown_code();
 }

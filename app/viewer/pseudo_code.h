@@ -10,6 +10,7 @@
 #include "build_trace.h"
 #include "registry.h"
 #include "structure.h"
+#include "structures/bvh_build_types.h"
 
 namespace viz {
 
@@ -57,28 +58,31 @@ std::string pseudo_code_anchor(TraversalKind kind, std::span<const accel::TraceE
 // ---------------------------------------------------------------------------------------
 // Construction (the construction mode's panel)
 
-/// The construction algorithms the viewer has pseudo code for.
-enum class BuildCodeKind {
-  Brute,        ///< one leaf of every triangle
-  Grid,         ///< resolution rule + insert loop
-  Octree,       ///< subdivide into 8 until the stopping criterion
-  KdTree,       ///< choose axis / plane, distribute, recurse, leaf
-  BvhMedian,    ///< top-down, median of the centres
-  BvhSah,       ///< top-down, SAH plane sweep on all axes
-  BvhBinned,    ///< top-down, binned SAH
-  BvhPca,       ///< top-down, SAH sweep along the PCA axis
-  BvhBottomUp,  ///< agglomerative clustering
-  BvhInsertion, ///< Goldsmith-Salmon insertion
-  BvhSpatial,   ///< binned SAH with spatial splits (SBVH)
-  Unknown,
+/// The construction a listing is shown for: the structure's construction family and, for
+/// the hierarchies, their builder -- keyed by the core's accel::BvhBuilderKind, whose table
+/// (bvh_builders.h) names the builders, so no list of them is kept here.
+struct BuildCodeKind {
+  bool known = false;
+  accel::ConstructionFamily family = accel::ConstructionFamily::Linear;
+  accel::BvhBuilderKind builder = accel::BvhBuilderKind::BinnedSah;  ///< family Hierarchy only
+  /// No construction known (an unknown structure or invalid parameters).
+  static const BuildCodeKind Unknown;
+  bool operator==(const BuildCodeKind&) const = default;
 };
+inline const BuildCodeKind BuildCodeKind::Unknown{};
+
+/// The kind of a family without builders (Linear, GridInsert, Octree, KdTree).
+BuildCodeKind build_code_of(accel::ConstructionFamily family);
+/// The kind of a hierarchy built by `builder`.
+BuildCodeKind build_code_of(accel::BvhBuilderKind builder);
 
 /// The construction of structure `name` with its `params` (key=value; the builder and
 /// split parameters choose the listing, defaults as the registry's).
 BuildCodeKind build_code_kind(const std::string& name, const std::vector<std::string>& params);
-/// Short label, e.g. "binned SAH".
+/// Short label, e.g. "binned SAH" (a builder's: its row's label).
 const char* build_code_label(BuildCodeKind kind);
-/// The listing of `kind`; its anchors are build_event_kind_name()s (leaves: "leaf").
+/// The listing of `kind`; its anchors are build_event_kind_name()s (leaves: "leaf"). A
+/// builder without a listing of its own gets the "no listing" one.
 const PseudoCode& build_pseudo_code(BuildCodeKind kind);
 /// The line of step `e` in build_pseudo_code(kind), or -1 when it has none (nullptr: -1).
 int build_code_line(BuildCodeKind kind, const accel::BuildEvent* e);

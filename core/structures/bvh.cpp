@@ -1,5 +1,7 @@
 #include "structures/bvh.h"
 
+#include "structures/bvh_builders.h"
+
 namespace accel {
 
 void add_hierarchy_option_lines(const BvhBuildOptions& options, TraversalOrder order, BuildStats* s) {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "build_trace.h"
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel::bottom_up {
 

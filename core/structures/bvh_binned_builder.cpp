@@ -12,8 +12,8 @@
 //  - the partition is in place (two pointers) and returns the children's boxes and
 //    centroid bounds, so no node ever rescans its references to find its bounds;
 //  - no heap allocation per node: a serial subtree appends to one vector;
-//  - TBB tasks for subtrees of at least kTaskThreshold references, and binning over fixed
-//    slices for the largest nodes.
+//  - TBB tasks for large subtrees through the top-down driver (top_down_tasks.h), and
+//    binning over fixed slices for the largest nodes.
 //
 // Determinism: every decision depends only on the references of the node (bin bounds are
 // min/max and bin counts are integer sums, both exact in any order, and partial bins are
@@ -31,45 +31,55 @@
 #include "check.h"
 #include "parallel.h"
 #include "structures/bvh_binned_detail.h"
-#include "structures/bvh_chunks.h"
+#include "structures/top_down_tasks.h"
 
 namespace accel {
 namespace {
 
-constexpr size_t kTaskThreshold = 4096;        // smaller subtrees are one serial task
-
 using namespace binned;
 
-/// The chunk of range `r` (bvh_chunks.h): a serial subtree below kTaskThreshold references,
-/// else its root with the two children as tasks.
-std::unique_ptr<BuildChunk> build_upper(const BvhBuildOptions& o, Ref* refs, const Range& r,
-                                        ProgressCounter& progress) {
-  auto u = std::make_unique<BuildChunk>();
-  if (progress.stopped()) return u;  // cancelled: an empty subtree, discarded by the caller
-  NullBuildSink no_steps;
-  BinnedBuilder<NullBuildSink> builder(o, refs, no_steps);
-  if (r.size() < kTaskThreshold) {
-    u->nodes.reserve(r.size());
-    builder.build_serial(r, u->nodes);
-    u->size = u->nodes.size();
-    progress.add(r.size());
-    return u;
+/// The binned builder under the top-down driver (top_down_tasks.h). Its leaves index the
+/// one shared reference order, so chunks have no triangles of their own; progress counts the
+/// references placed.
+template <class Sink>
+class BinnedTasks {
+ public:
+  using Node = BuildNode;
+  using Task = Range;
+  using Stats = top_down::NoChunkStats;
+  using ChunkT = top_down::Chunk<BuildNode>;
+
+  BinnedTasks(const BvhBuildOptions& o, Ref* refs, ProgressCounter& progress, Sink& sink)
+      : o_(o), refs_(refs), progress_(progress), sink_(sink) {}
+
+  size_t refs(const Range& r) const { return r.size(); }
+  bool all_serial() const { return Sink::kRecords; }  // recording: one chunk, the event ids in pre-order
+  bool stopped() const { return progress_.stopped(); }
+  void build_serial(Range& r, ChunkT& chunk) {
+    BinnedBuilder<Sink> builder(o_, refs_, sink_);
+    chunk.nodes.reserve(Sink::kRecords ? 2 * r.size() / size_t(std::max(1, o_.leaf_size)) + 1 : r.size());
+    builder.build_serial(r, chunk.nodes);
+    progress_.add(r.size());
   }
-  u->node.box = r.box.aabb();
-  Range left, right;
-  if (!builder.split_node(r, left, right)) {  // only at the depth limit
-    u->node.first = uint32_t(r.begin);
-    u->node.count = uint32_t(r.size());
-    u->nodes.push_back(u->node);
-    u->size = 1;
-    progress.add(r.size());
-    return u;
+  top_down::RootSplit split_root(Range& r, ChunkT& chunk, Range& left, Range& right) {
+    BinnedBuilder<Sink> builder(o_, refs_, sink_);
+    chunk.node.box = r.box.aabb();
+    if (!builder.split_node(r, left, right)) {  // only at the depth limit
+      chunk.node.first = uint32_t(r.begin);
+      chunk.node.count = uint32_t(r.size());
+      chunk.nodes.push_back(chunk.node);
+      progress_.add(r.size());
+      return top_down::RootSplit::Leaf;
+    }
+    return top_down::RootSplit::Split;
   }
-  par::parallel_invoke([&] { u->left = build_upper(o, refs, left, progress); },
-                       [&] { u->right = build_upper(o, refs, right, progress); });
-  u->size = 1 + u->left->size + u->right->size;
-  return u;
-}
+
+ private:
+  const BvhBuildOptions& o_;
+  Ref* refs_;
+  ProgressCounter& progress_;
+  Sink& sink_;
+};
 
 }  // namespace
 
@@ -106,20 +116,15 @@ BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& optio
   root.begin = 0;
   root.end = n;
   root.depth = 0;
-  if (recorder) {  // recorded: the serial build from the root (the same tree, in pre-order)
-    BinnedBuilder<BuildRecorder> builder(options, refs.data(), *recorder);
-    tree.nodes.reserve(2 * n / size_t(std::max(1, options.leaf_size)) + 1);
-    builder.build_serial(root, tree.nodes);
-    if (progress) progress->advance(1.0);
-    tree.prims.resize(n);
-    for (size_t i = 0; i < n; ++i) tree.prims[i] = refs[i].prim;
-    return tree;
-  }
-
-  ProgressCounter shared_progress(progress, n);  // triangles placed in leaves
-  const std::unique_ptr<BuildChunk> upper = build_upper(options, refs.data(), root, shared_progress);
-  if (shared_progress.stopped()) return tree;  // cancelled: the caller discards the tree
-  stitch_chunks(*upper, tree.nodes);
+  ProgressCounter placed(progress, n);  // references placed in leaves
+  const bool cancelled = with_build_sink(recorder, [&](auto& sink) {
+    BinnedTasks<std::remove_reference_t<decltype(sink)>> tasks(options, refs.data(), placed, sink);
+    const auto chunks = top_down::TopDownTasks(tasks).build(root);
+    if (placed.stopped()) return true;  // cancelled: the caller discards the tree
+    top_down::stitch(*chunks, tree.nodes);
+    return false;
+  });
+  if (cancelled) return tree;
   tree.root = 0;
   tree.prims.resize(n);
   par::parallel_for(par::blocked_range<size_t>(0, n, 16384), [&](const par::blocked_range<size_t>& br) {

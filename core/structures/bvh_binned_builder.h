@@ -3,7 +3,7 @@
 // construction of SAH-based BVHs": flat primitive references built once, one binning pass
 // over all three axes, an in-place partition that also yields the children's bounds, and
 // TBB tasks for the upper levels. The tree does not depend on the thread count.
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

@@ -16,7 +16,7 @@
 #include "check.h"
 #include "geometry.h"
 #include "parallel.h"
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel::binned {
 

@@ -5,7 +5,8 @@
 //              three over bvh_top_down.h's recursion; bvh_binned_builder.cpp (binned SAH,
 //              the default) and bvh_spatial_builder.cpp (SBVH) with their own;
 //   bottom-up  bvh_ploc_builder.cpp (clustering), bvh_insertion_builder.cpp (Goldsmith &
-//              Salmon), both finished by bvh_binary_tree.cpp.
+//              Salmon), both finished by bvh_binary_tree.cpp;
+// and the table that names them (bvh_builders.h).
 #include "structures/bvh_builders.h"
 
 #include "check.h"
@@ -20,18 +21,28 @@
 
 namespace accel {
 
-const char* builder_name(BvhBuilderKind kind) {
-  switch (kind) {
-    case BvhBuilderKind::Median: return "median";
-    case BvhBuilderKind::Sah: return "sah";
-    case BvhBuilderKind::BinnedSah: return "binned_sah";
-    case BvhBuilderKind::PcaSah: return "pca_sah";
-    case BvhBuilderKind::BottomUp: return "bottom_up";
-    case BvhBuilderKind::Insertion: return "insertion";
-    case BvhBuilderKind::Sbvh: return "sbvh";
-  }
-  return "?";
+// The table: the one place a builder is named. Its order is the parameter's.
+constexpr BvhBuilderInfo kBuilders[] = {
+    {BvhBuilderKind::Median, "median", "median", "top-down median split", build_median_tree},
+    {BvhBuilderKind::Sah, "sah", "SAH sweep", "SAH plane sweep on all axes", build_sweep_tree},
+    {BvhBuilderKind::BinnedSah, "binned_sah", "binned SAH", "binned SAH", build_binned_sah_tree},
+    {BvhBuilderKind::PcaSah, "pca_sah", "PCA + SAH", "SAH sweep along the PCA axis", build_pca_tree},
+    {BvhBuilderKind::BottomUp, "bottom_up", "bottom-up", "bottom-up agglomerative clustering", build_ploc_tree},
+    {BvhBuilderKind::Insertion, "insertion", "insertion", "Goldsmith-Salmon insertion", build_insertion_tree},
+    {BvhBuilderKind::Sbvh, "sbvh", "spatial splits",
+     "binned SAH with spatial splits (SBVH: a triangle may be in several leaves)", build_spatial_split_tree},
+};
+
+std::span<const BvhBuilderInfo> bvh_builder_table() { return kBuilders; }
+
+const BvhBuilderInfo& bvh_builder(BvhBuilderKind kind) {
+  for (const BvhBuilderInfo& row : kBuilders)
+    if (row.kind == kind) return row;
+  ACCEL_CHECK(false && "a BvhBuilderKind without a row in kBuilders");
+  return kBuilders[0];
 }
+
+const char* builder_name(BvhBuilderKind kind) { return bvh_builder(kind).name; }
 
 Status check_bvh_memory(const std::string& structure, const Scene& scene, const BvhBuildOptions& options,
                         size_t layout_bytes_per_node, size_t memory_limit) {
@@ -65,16 +76,7 @@ std::vector<uint32_t> binary_subtree_sizes(const BuildTree& tree) {
 
 BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                          BuildRecorder* recorder) {
-  switch (options.builder) {
-    case BvhBuilderKind::Median: return build_median_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::Sah: return build_sweep_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::BinnedSah: return build_binned_sah_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::PcaSah: return build_pca_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::BottomUp: return build_ploc_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::Insertion: return build_insertion_tree(scene, options, progress, recorder);
-    case BvhBuilderKind::Sbvh: return build_spatial_split_tree(scene, options, progress, recorder);
-  }
-  return {};
+  return bvh_builder(options.builder).build(scene, options, progress, recorder);
 }
 
 }  // namespace accel

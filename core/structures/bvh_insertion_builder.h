@@ -1,6 +1,6 @@
 #pragma once
 // Insertion BVH builder (builder=insertion): Goldsmith & Salmon's incremental construction.
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

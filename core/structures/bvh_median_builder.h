@@ -1,6 +1,6 @@
 #pragma once
 // Median split BVH builder (builder=median): the lecture's first top-down construction.
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

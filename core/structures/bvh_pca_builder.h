@@ -1,6 +1,6 @@
 #pragma once
 // PCA sweep BVH builder (builder=pca_sah): the SAH plane sweep along each node's principal axis.
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

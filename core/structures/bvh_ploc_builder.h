@@ -1,6 +1,6 @@
 #pragma once
 // Bottom-up BVH builder (builder=bottom_up): locally-ordered agglomerative clustering (PLOC).
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

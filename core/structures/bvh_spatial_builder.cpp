@@ -31,9 +31,9 @@
 // shrinks both children's reference counts, and the depth limit forces leaves as in the
 // other builders.
 //
-// Parallel as the binned builder: subtrees of at least kTaskThreshold references are TBB
+// Parallel as the binned builder, through the top-down driver: large subtrees are TBB
 // tasks building into their own chunks (nodes and leaf triangles in local pre-order), placed
-// at their pre-order offsets at the end (bvh_chunks.h); the recorded build is the serial
+// at their pre-order offsets at the end (top_down_tasks.h); the recorded build is the serial
 // recursion from the root, with the same decisions, so the same tree.
 #include "structures/bvh_spatial_builder.h"
 
@@ -49,7 +49,7 @@
 #include "check.h"
 #include "parallel.h"
 #include "structures/bvh_binned_detail.h"
-#include "structures/bvh_chunks.h"
+#include "structures/top_down_tasks.h"
 
 namespace accel {
 namespace {
@@ -137,7 +137,6 @@ using binned::Box4;
 using binned::Range;
 using binned::Ref;
 
-constexpr size_t kTaskThreshold = 4096;  // smaller subtrees are one serial task
 /// Nodes of at least this many references chop each reference into the spatial bins by
 /// clipping its triangle (Stich et al.); smaller ones bin the reference's box cut to each
 /// bin's slab, which bounds the clipped part too (an estimate for the sweep only: the chosen
@@ -195,7 +194,8 @@ class SpatialBuilder {
 
   /// Serial build of `t` (consumed), appended to `out` in pre-order; returns its index
   /// there (the node's id in the recorded steps: the index in the finished tree).
-  uint32_t build_serial(Task& t, BuildChunk& out, ProgressCounter* progress, uint32_t parent = kNoBuildNode) {
+  uint32_t build_serial(Task& t, top_down::Chunk<BuildNode>& out, ProgressCounter* progress,
+                        uint32_t parent = kNoBuildNode) {
     const uint32_t index = uint32_t(out.nodes.size());
     out.nodes.emplace_back();
     out.nodes[index].box = t.range.box.aabb();
@@ -519,35 +519,46 @@ class SpatialBuilder {
   std::vector<SplitCandidate> planes_;  ///< recording only: one axis's spatial planes
 };
 
-std::unique_ptr<BuildChunk> build_chunk(const Scene& scene, const BvhBuildOptions& o, float root_area, Task& t,
-                                        ProgressCounter& progress) {
-  auto c = std::make_unique<BuildChunk>();
-  if (progress.stopped()) return c;  // cancelled: the caller discards the tree
-  NullBuildSink no_steps;
-  SpatialBuilder<NullBuildSink> builder(scene, o, root_area, no_steps);
-  if (t.refs.size() < kTaskThreshold) {
-    builder.build_serial(t, *c, &progress);
-    c->size = c->nodes.size();
-    c->prim_count = c->prims.size();
-    return c;
+/// The spatial-split builder under the top-down driver (top_down_tasks.h). A triangle may be
+/// in several leaves, so each chunk lists its leaves' triangles; progress counts the
+/// leaves' shares of the build (Task::weight).
+template <class Sink>
+class SpatialTasks {
+ public:
+  using Node = BuildNode;
+  using Task = accel::Task;
+  using Stats = top_down::NoChunkStats;
+  using ChunkT = top_down::Chunk<BuildNode>;
+
+  SpatialTasks(const Scene& scene, const BvhBuildOptions& o, float root_area, ProgressCounter& progress, Sink& sink)
+      : scene_(scene), o_(o), root_area_(root_area), progress_(progress), sink_(sink) {}
+
+  size_t refs(const Task& t) const { return t.refs.size(); }
+  bool all_serial() const { return Sink::kRecords; }  // recording: one chunk, the event ids in pre-order
+  bool stopped() const { return progress_.stopped(); }
+  void build_serial(Task& t, ChunkT& chunk) {
+    SpatialBuilder<Sink>(scene_, o_, root_area_, sink_).build_serial(t, chunk, &progress_);
   }
-  c->node.box = t.range.box.aabb();
-  Task left, right;
-  if (!builder.decide(t, 0, kNoBuildNode, left, right)) {  // only at the depth limit
-    c->node.count = uint32_t(t.refs.size());
-    c->nodes.push_back(c->node);
-    for (const Ref& r : t.refs) c->prims.push_back(r.prim);
-    c->size = 1;
-    c->prim_count = c->prims.size();
-    progress.add_share(t.weight);
-    return c;
+  top_down::RootSplit split_root(Task& t, ChunkT& chunk, Task& left, Task& right) {
+    SpatialBuilder<Sink> builder(scene_, o_, root_area_, sink_);
+    chunk.node.box = t.range.box.aabb();
+    if (!builder.decide(t, 0, kNoBuildNode, left, right)) {  // only at the depth limit
+      chunk.node.count = uint32_t(t.refs.size());
+      chunk.nodes.push_back(chunk.node);
+      for (const Ref& r : t.refs) chunk.prims.push_back(r.prim);
+      progress_.add_share(t.weight);
+      return top_down::RootSplit::Leaf;
+    }
+    return top_down::RootSplit::Split;
   }
-  par::parallel_invoke([&] { c->left = build_chunk(scene, o, root_area, left, progress); },
-                       [&] { c->right = build_chunk(scene, o, root_area, right, progress); });
-  c->size = 1 + c->left->size + c->right->size;
-  c->prim_count = c->left->prim_count + c->right->prim_count;
-  return c;
-}
+
+ private:
+  const Scene& scene_;
+  const BvhBuildOptions& o_;
+  float root_area_;
+  ProgressCounter& progress_;
+  Sink& sink_;
+};
 
 }  // namespace
 
@@ -565,19 +576,15 @@ BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& op
   const double extra = std::max(0.0, double(options.sbvh_budget) - 1.0) * double(n);
   root.budget = size_t(std::min(extra, double(uint32_t(-1)) - double(n)));  // uint32 prims indices
   const float root_area = root.range.box.area();
-  if (recorder) {  // recorded: the serial build from the root (the same tree, in pre-order)
-    SpatialBuilder<BuildRecorder> builder(scene, options, root_area, *recorder);
-    BuildChunk whole;
-    builder.build_serial(root, whole, nullptr);
-    if (progress) progress->advance(1.0);
-    tree.nodes = std::move(whole.nodes);
-    tree.prims = std::move(whole.prims);
-    return tree;
-  }
   ProgressCounter shared(progress, ProgressCounter::kWhole);  // leaves add their share (weight) of the build
-  const std::unique_ptr<BuildChunk> top = build_chunk(scene, options, root_area, root, shared);
-  if (shared.stopped()) return tree;  // cancelled: the caller discards the tree
-  stitch_chunks(*top, tree.nodes, &tree.prims);
+  const bool cancelled = with_build_sink(recorder, [&](auto& sink) {
+    SpatialTasks<std::remove_reference_t<decltype(sink)>> tasks(scene, options, root_area, shared, sink);
+    const auto chunks = top_down::TopDownTasks(tasks).build(root);
+    if (shared.stopped()) return true;  // cancelled: the caller discards the tree
+    top_down::stitch(*chunks, tree.nodes, &tree.prims);
+    return false;
+  });
+  if (cancelled) return tree;
   tree.root = 0;
   return tree;
 }

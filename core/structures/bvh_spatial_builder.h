@@ -4,7 +4,7 @@
 // binned builder (bvh_binned_detail.h) and, where that split's children overlap, a spatial
 // split -- a plane that cuts the triangles straddling it into two references, each with the
 // box of its triangle's part on its side. A triangle can then be in several leaves.
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

@@ -1,6 +1,6 @@
 #pragma once
 // SAH plane sweep BVH builder (builder=sah): every split position on all three axes.
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

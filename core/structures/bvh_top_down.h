@@ -3,10 +3,10 @@
 // (bvh_median_builder.cpp, bvh_sweep_builder.cpp, bvh_pca_builder.cpp): "split the node's
 // triangles in two, recurse into both halves, stop at a leaf". The builders differ only in
 // how they split, a Splitter class each; this header holds the rest -- triangle references,
-// the SAH cost, the leaf rule, the object-median fallback, the parallel tasks and their
-// stitching into one pre-order, progress and cancellation. Not a public interface: only
-// those three builders include it (the binned SAH and SBVH builders have their own
-// recursion, bvh_binned_detail.h).
+// the SAH cost, the leaf rule, the object-median fallback, progress and cancellation; the
+// parallel tasks and their stitching are the top-down driver's (top_down_tasks.h). Not a
+// public interface: only those three builders include it (the binned SAH and SBVH builders
+// have their own recursion, bvh_binned_detail.h, under the same driver).
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -19,8 +19,8 @@
 #include "check.h"
 #include "geometry.h"
 #include "parallel.h"
-#include "structures/bvh_builders.h"
-#include "structures/bvh_chunks.h"
+#include "structures/bvh_build_types.h"
+#include "structures/top_down_tasks.h"
 
 namespace accel::top_down {
 
@@ -152,10 +152,10 @@ class InPlaceSplitter {
 
 /// The recursion, over a Splitter (see InPlaceSplitter).
 ///
-/// Parallel and deterministic: subtrees of more than kTaskThreshold references are tasks,
-/// the smaller ones serial chunks, stitched into one pre-order by bvh_chunks.h. Every
-/// decision depends only on the references of the node, so the tree is the same for any
-/// thread count.
+/// Parallel and deterministic through the top-down driver (top_down_tasks.h), whose
+/// interface it provides: large subtrees are tasks, the smaller ones serial chunks, stitched
+/// into one pre-order. Every decision depends only on the references of the node, so the
+/// tree is the same for any thread count.
 ///
 /// Sink (build_trace.h): NullBuildSink for the normal build; BuildRecorder records every
 /// node, axis, candidate sweep, split and leaf. Recording builds the whole tree in one
@@ -171,18 +171,46 @@ class TopDownBuilder {
     BuildTree tree;
     prims_.assign(total_, 0);
     splitter_.prepare();
-    const std::unique_ptr<BuildChunk> root = build_chunk(0, total_, 0, kRefsOrder);
-    stitch_chunks(*root, tree.nodes);
+    Task root{0, total_, 0, kRefsOrder};
+    const std::unique_ptr<ChunkT> chunks = top_down::TopDownTasks<TopDownBuilder>(*this).build(root);
+    top_down::stitch(*chunks, tree.nodes);
     tree.prims = std::move(prims_);
     tree.root = 0;
     return tree;
   }
 
- private:
-  /// Subtrees with at most this many references are one serial task (below it, the task
-  /// overhead outweighs the work).
-  static constexpr size_t kTaskThreshold = 4096;
+  // The top-down driver's interface (top_down_tasks.h).
+  using Node = BuildNode;
+  using Stats = NoChunkStats;
+  /// A subtree to build: references [begin, end) arriving in `order`.
+  struct Task {
+    size_t begin = 0, end = 0;
+    int depth = 0;
+    int order = kRefsOrder;
+  };
+  using ChunkT = Chunk<BuildNode>;
+  size_t refs(const Task& t) const { return t.end - t.begin; }
+  bool all_serial() const { return Sink::kRecords; }  // recording: one chunk, the event ids in pre-order
+  bool stopped() const { return progress_.stopped(); }
+  void build_serial(Task& t, ChunkT& chunk) {
+    Scratch scratch;
+    chunk.nodes.reserve(2 * (t.end - t.begin));
+    build_serial(chunk.nodes, scratch, t.begin, t.end, t.depth, t.order, kNoBuildNode);
+  }
+  RootSplit split_root(Task& t, ChunkT& chunk, Task& left, Task& right) {
+    Scratch scratch;  // freed before the children allocate theirs
+    const Decision d = decide(scratch, t.begin, t.end, t.depth, t.order, 0, kNoBuildNode);
+    if (d.leaf) {
+      chunk.nodes.push_back(d.node);
+      return RootSplit::Leaf;
+    }
+    chunk.node = d.node;
+    left = {t.begin, d.mid, t.depth + 1, d.child_order};
+    right = {d.mid, t.end, t.depth + 1, d.child_order};
+    return RootSplit::Split;
+  }
 
+ private:
   using Scratch = typename Splitter::Scratch;
 
   /// A node's decision: a leaf, or children [begin, mid) and [mid, end).
@@ -192,29 +220,6 @@ class TopDownBuilder {
     size_t mid = 0;
     int child_order = kRefsOrder;  ///< the order the children's references arrive in
   };
-
-  std::unique_ptr<BuildChunk> build_chunk(size_t begin, size_t end, int depth, int order) {
-    auto chunk = std::make_unique<BuildChunk>();
-    Scratch scratch;
-    if (Sink::kRecords || end - begin <= kTaskThreshold) {  // recording: one serial chunk, in pre-order
-      chunk->nodes.reserve(2 * (end - begin));
-      build_serial(chunk->nodes, scratch, begin, end, depth, order, kNoBuildNode);
-      chunk->size = chunk->nodes.size();
-      return chunk;
-    }
-    const Decision d = decide(scratch, begin, end, depth, order, 0, kNoBuildNode);
-    scratch = Scratch{};  // the children allocate their own: free the big buffers first
-    chunk->size = 1;
-    if (d.leaf) {  // a serial chunk of one node
-      chunk->nodes.push_back(d.node);
-      return chunk;
-    }
-    chunk->node = d.node;
-    par::parallel_invoke([&] { chunk->left = build_chunk(begin, d.mid, depth + 1, d.child_order); },
-                         [&] { chunk->right = build_chunk(d.mid, end, depth + 1, d.child_order); });
-    chunk->size += chunk->left->size + chunk->right->size;
-    return chunk;
-  }
 
   /// The serial recursion: appends the subtree in pre-order, returns its root's index.
   /// `parent` is the parent's index (recorded builds: the event ids are these indices).

@@ -15,7 +15,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 #include "structures/hierarchy_params.h"
 #include "check.h"
 #include "structure.h"

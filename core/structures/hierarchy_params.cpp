@@ -1,26 +1,34 @@
 #include "structures/hierarchy_params.h"
 
 #include "isa.h"
+#include "structures/bvh_builders.h"
 
 namespace accel {
 namespace {
 
+/// The builder parameter's choices, from the builders' table.
+std::vector<std::pair<std::string, BvhBuilderKind>> builder_choices() {
+  std::vector<std::pair<std::string, BvhBuilderKind>> choices;
+  for (const BvhBuilderInfo& row : bvh_builder_table()) choices.emplace_back(row.name, row.kind);
+  return choices;
+}
+
+/// "how the tree is built: A, B, ... or Z", from the builders' help phrases.
+std::string builder_help() {
+  const std::span<const BvhBuilderInfo> rows = bvh_builder_table();
+  std::string help = "how the tree is built: ";
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (k > 0) help += k + 1 == rows.size() ? ", or " : ", ";
+    help += rows[k].help;
+  }
+  return help;
+}
+
 ParamTable<HierarchyOptions> make_table(bool with_width) {
   using O = HierarchyOptions;
-  using K = BvhBuilderKind;
   auto table =
       ParamTable<O>()
-          .choice("builder", [](O& o) -> auto& { return o.build.builder; },
-                  std::vector<std::pair<std::string, K>>{{"median", K::Median},
-                                                         {"sah", K::Sah},
-                                                         {"binned_sah", K::BinnedSah},
-                                                         {"pca_sah", K::PcaSah},
-                                                         {"bottom_up", K::BottomUp},
-                                                         {"insertion", K::Insertion},
-                                                         {"sbvh", K::Sbvh}},
-                  "how the tree is built: top-down median split, SAH plane sweep on all axes, binned SAH, SAH sweep "
-                  "along the PCA axis, bottom-up agglomerative clustering, Goldsmith-Salmon insertion, or binned SAH "
-                  "with spatial splits (SBVH: a triangle may be in several leaves)")
+          .choice("builder", [](O& o) -> auto& { return o.build.builder; }, builder_choices(), builder_help())
           .choice("axis", [](O& o) -> auto& { return o.build.axis; },
                   std::vector<std::pair<std::string, MedianAxis>>{{"x", MedianAxis::X},
                                                                  {"round_robin", MedianAxis::RoundRobin},

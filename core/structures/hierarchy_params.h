@@ -3,7 +3,7 @@
 // (builder, axis, bins, sbvh_alpha, sbvh_budget, leaf_size, ct, ci), the traversal order, and
 // the BVH's node width.
 #include "params.h"
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

@@ -1,10 +1,10 @@
 // kd-tree build (lecture, kd-tree, "the procedure (top down)": choose an axis-aligned plane
 // to split the cell, distribute the geometry among the two children -- some polygons go to
 // both -- and recurse until the stopping criterion is met). This file assembles the tree: the
-// middle and median planes, the recursion with its guards and budgets, the parallel tasks and
-// their stitching into one pre-order. The SAH plane search is kd_sah_sweep.cpp, the sorted
-// event lists and their distribution kd_events.cpp, the clipping (perfect splits)
-// kd_clipping.cpp -- after Wald & Havran 2006, "On building fast kd-trees for ray tracing,
+// middle and median planes, the recursion with its guards and budgets, and what the
+// top-down driver (top_down_tasks.h) asks of a builder to run it in parallel tasks. The SAH
+// plane search is kd_sah_sweep.cpp, the sorted event lists and their distribution
+// kd_events.cpp, the clipping (perfect splits) kd_clipping.cpp -- after Wald & Havran 2006, "On building fast kd-trees for ray tracing,
 // and on doing that in O(N log N)".
 //
 // Index
@@ -12,7 +12,7 @@
 //   [SECTION] Builder: state and output
 //   [SECTION] Builder: split choice (middle, median; sah: kd_sah_sweep.cpp)
 //   [SECTION] Builder: recursion and tasks
-//   [SECTION] Builder: stitching and the whole build
+//   [SECTION] Builder: the driver's tasks and the whole build
 #include "structures/kd_builder.h"
 
 #include <algorithm>
@@ -56,11 +56,6 @@ using namespace kd;
 // [SECTION] Builder: state and output
 //-----------------------------------------------------------------------------
 
-/// Nodes of at least this many triangles have their two children built as tasks of their
-/// own; smaller ones build their whole subtree serially (a few hundred microseconds of work,
-/// far above the cost of a task).
-constexpr size_t kTaskMinPrims = 2048;
-
 /// What one thread needs to split nodes. The per-triangle arrays are indexed by triangle id
 /// and written for a node's triangles before they are read. A task uses its thread's
 /// workspace only between points where it never waits for other tasks, so a task stolen
@@ -82,19 +77,15 @@ struct NodeTask {
   size_t pending = 0;   // events the serial build would hold meanwhile: the above lists on the path
 };
 
-/// The part of the tree one task builds, in pre-order: node 0 is the task's node, above
-/// children and leaf offsets are relative to the part's own arrays until stitch() moves it
-/// into place. A node whose children were tasks of their own holds only itself, with the
-/// children's parts in `below` and `above`.
-struct Subtree {
-  std::vector<KdNode> nodes;
-  std::vector<uint32_t> prim_ids;
+/// What a chunk of the tree (top_down_tasks.h) counts besides its nodes.
+struct KdChunkStats {
   KdLeafReasons leaf_reasons;
   int depth = 0;  // deepest leaf
-  std::unique_ptr<Subtree> below, above;
-  size_t node_count = 0, prim_count = 0;    // stitch(): of the part with its children's parts
-  size_t node_offset = 0, prim_offset = 0;  // stitch(): where the part goes in KdTreeData
 };
+
+/// The part of the tree one task builds (top_down_tasks.h): in local pre-order, above
+/// children and leaf offsets relative to the chunk's own arrays until the stitching moves it.
+using Subtree = top_down::Chunk<KdNode, KdChunkStats>;
 
 /// One node's outcome: the split and the children's events, or the reason it is a leaf.
 /// (ChildEvents: the children's events and triangle counts.)
@@ -123,6 +114,16 @@ class KdBuilder {
   /// The last fraction reported.
   double progress_reached() const { return progress_.last(); }
 
+  // The top-down driver's interface (top_down_tasks.h).
+  using Node = KdNode;
+  using Task = NodeTask;
+  using Stats = KdChunkStats;
+  size_t refs(const NodeTask& t) const { return t.n; }
+  bool all_serial() const { return recorder_ || !parallel_; }
+  bool stopped();
+  void build_serial(NodeTask& t, Subtree& out);
+  top_down::RootSplit split_root(NodeTask& t, Subtree& out, NodeTask& left, NodeTask& right);
+
  private:
   Workspace& workspace();
   bool enter_node();
@@ -132,11 +133,10 @@ class KdBuilder {
   NodeTask child_task(NodeTask& t, Decision& d, bool above) const;
   template <class Sink>
   void build_serial(Workspace& ws, Subtree& out, NodeTask& t);
-  std::unique_ptr<Subtree> build_task(NodeTask t);
   void record_node(Workspace& ws, const NodeTask& t, uint32_t id);
   void record_split(const Workspace& ws, const NodeTask& t, const Decision& d, uint32_t id) const;
   void make_leaf(Workspace& ws, Subtree& out, NodeTask& t, size_t KdLeafReasons::*reason);
-  void stitch(Subtree& root);
+  void gather(const Subtree& root);
   double split_cost(const Aabb& box, const SplitChoice& s, size_t nl, size_t nr) const;
   int choose_axis(const Aabb& box, int depth) const;
   SplitChoice split_middle(const Aabb& box, int depth) const;
@@ -251,17 +251,17 @@ SplitChoice KdBuilder::split_median(Workspace& ws, const EventLists& events, con
 //-----------------------------------------------------------------------------
 
 void KdBuilder::make_leaf(Workspace& ws, Subtree& out, NodeTask& t, size_t KdLeafReasons::*reason) {
-  ++(out.leaf_reasons.*reason);
+  ++(out.stats.leaf_reasons.*reason);
   if (references_.fetch_add(t.n, std::memory_order_relaxed) + t.n > o_.reference_limit) {
     over_budget("triangle references", o_.reference_limit);
     return;
   }
-  const size_t offset = out.prim_ids.size();
+  const size_t offset = out.prims.size();
   for (const Event& e : t.events.axis[0])
-    if (e.type() != kEnd) out.prim_ids.push_back(e.prim());
-  std::sort(out.prim_ids.begin() + ptrdiff_t(offset), out.prim_ids.end());  // ascending: stable ties, tidy views
+    if (e.type() != kEnd) out.prims.push_back(e.prim());
+  std::sort(out.prims.begin() + ptrdiff_t(offset), out.prims.end());  // ascending: stable ties, tidy views
   out.nodes.push_back(KdNode::make_leaf(uint32_t(offset), uint32_t(t.n)));
-  out.depth = std::max(out.depth, t.depth);
+  out.stats.depth = std::max(out.stats.depth, t.depth);
   ws.pool.give(t.events);
   leaves_done_.add_share(t.share);  // the build stops at enter_node()'s cancel check
 }
@@ -430,11 +430,10 @@ void KdBuilder::build_serial(Workspace& ws, Subtree& out, NodeTask& t) {
     if (d.s.axis >= 0 || d.reason != &KdLeafReasons::few_prims) record_split(ws, t, d, id);
   }
   if (d.s.axis < 0) {
-    [[maybe_unused]] const size_t offset = out.prim_ids.size();
+    [[maybe_unused]] const size_t offset = out.prims.size();
     make_leaf(ws, out, t, d.reason);
     if constexpr (Sink::kRecords) {
-      if (!failed())
-        recorder_->leaf(id, leaf_reason(d.reason), out.prim_ids.data() + offset, out.prim_ids.size() - offset);
+      if (!failed()) recorder_->leaf(id, leaf_reason(d.reason), out.prims.data() + offset, out.prims.size() - offset);
     }
     return;
   }
@@ -451,104 +450,53 @@ void KdBuilder::build_serial(Workspace& ws, Subtree& out, NodeTask& t) {
   build_serial<Sink>(ws, out, right);
 }
 
-// A node of at least kTaskMinPrims triangles is a part of its own and builds its children as
-// two tasks; a smaller one builds its subtree serially. Which nodes are tasks depends on the
-// scene alone, and stitch() numbers the parts in pre-order, so the tree does not depend on
-// the thread count (nor on whether there is a task at all).
-std::unique_ptr<Subtree> KdBuilder::build_task(NodeTask t) {
-  auto out = std::make_unique<Subtree>();
+//-----------------------------------------------------------------------------
+// [SECTION] Builder: the driver's tasks and the whole build
+//-----------------------------------------------------------------------------
+
+// Before every task: an earlier failure (another task's budget) or a cancel.
+bool KdBuilder::stopped() {
+  if (failed()) return true;
+  if (!build_cancelled(control_)) return false;
+  fail(cancelled_error());
+  return true;
+}
+
+void KdBuilder::build_serial(NodeTask& t, Subtree& out) {
+  if (recorder_)
+    build_serial<BuildRecorder>(workspace(), out, t);
+  else
+    build_serial<NullBuildSink>(workspace(), out, t);
+}
+
+// A task's root: the node decided as the serial recursion decides it, its children handed
+// back as tasks. Which nodes are tasks depends on the scene alone, and the driver numbers
+// the chunks in pre-order, so the tree does not depend on the thread count (nor on whether
+// there is a task at all).
+top_down::RootSplit KdBuilder::split_root(NodeTask& t, Subtree& out, NodeTask& left, NodeTask& right) {
+  if (!enter_node()) return top_down::RootSplit::Stop;
   Workspace& ws = workspace();
-  if (recorder_) {
-    build_serial<BuildRecorder>(ws, *out, t);
-    return out;
-  }
-  if (!parallel_ || t.n < kTaskMinPrims) {
-    build_serial<NullBuildSink>(ws, *out, t);
-    return out;
-  }
-  if (!enter_node()) return out;
   Decision d;
   decide<NullBuildSink>(ws, t, d);
   if (d.s.axis < 0) {
-    make_leaf(ws, *out, t, d.reason);
-    return out;
+    make_leaf(ws, out, t, d.reason);
+    return failed() ? top_down::RootSplit::Stop : top_down::RootSplit::Leaf;
   }
-  if (!accept_split(ws, t, d)) return out;
-  NodeTask left = child_task(t, d, false);
-  NodeTask right = child_task(t, d, true);
-  out->nodes.push_back(KdNode::make_inner(d.s.axis, d.s.pos, 0));  // stitch() points it at `above`
+  if (!accept_split(ws, t, d)) return top_down::RootSplit::Stop;
+  left = child_task(t, d, false);
+  right = child_task(t, d, true);
+  out.node = KdNode::make_inner(d.s.axis, d.s.pos, 0);  // the stitching points it at the above child
   // `ws` is not touched from here on: tasks this thread steals while it waits use it.
-  par::parallel_invoke([&] { out->below = build_task(std::move(left)); },
-                       [&] { out->above = build_task(std::move(right)); });
-  return out;
+  return top_down::RootSplit::Split;
 }
 
-//-----------------------------------------------------------------------------
-// [SECTION] Builder: stitching and the whole build
-//-----------------------------------------------------------------------------
-
-namespace stitching {
-
-/// Sizes of every part with its children's parts, bottom-up.
-void count(Subtree& part) {
-  part.node_count = part.nodes.size();
-  part.prim_count = part.prim_ids.size();
-  if (!part.below) return;
-  count(*part.below);
-  count(*part.above);
-  part.node_count += part.below->node_count + part.above->node_count;
-  part.prim_count += part.below->prim_count + part.above->prim_count;
-}
-
-/// Pre-order offsets, top-down: a split part's below child follows it, its above child
-/// follows the below child's parts. The split node's above index is made relative to the
-/// part like every other, so moving a part is one rule for all its nodes.
-void place(Subtree& part, size_t node_offset, size_t prim_offset, std::vector<Subtree*>& parts) {
-  part.node_offset = node_offset;
-  part.prim_offset = prim_offset;
-  parts.push_back(&part);
-  if (!part.below) return;
-  const KdNode split = part.nodes[0];
-  part.nodes[0] = KdNode::make_inner(split.axis(), split.split(), NodeId(1 + part.below->node_count));
-  place(*part.below, node_offset + 1, prim_offset, parts);
-  place(*part.above, node_offset + 1 + part.below->node_count, prim_offset + part.below->prim_count, parts);
-}
-
-}  // namespace stitching
-
-// Moves the parts into out_ in pre-order: inner nodes' above indices shift by the part's
-// node offset, leaves' triangle offsets by its triangle offset (both fit: the totals are
-// within the budgets checked per node).
-void KdBuilder::stitch(Subtree& root) {
-  std::vector<Subtree*> parts;
-  stitching::count(root);
-  stitching::place(root, 0, 0, parts);
-  for (const Subtree* part : parts) {
+// The chunks' leaf reasons and depth, summed over the tree.
+void KdBuilder::gather(const Subtree& root) {
+  top_down::for_each_chunk(root, [&](const Subtree& part) {
     for (size_t KdLeafReasons::*r : {&KdLeafReasons::few_prims, &KdLeafReasons::max_depth, &KdLeafReasons::no_gain,
                                      &KdLeafReasons::no_progress, &KdLeafReasons::bad_refines, &KdLeafReasons::thin})
-      out_.leaf_reasons.*r += part->leaf_reasons.*r;
-    out_.depth = std::max(out_.depth, part->depth);
-  }
-  if (parts.size() == 1) {  // a serial build: already in place
-    out_.nodes = std::move(root.nodes);
-    out_.prim_ids = std::move(root.prim_ids);
-    return;
-  }
-  out_.nodes.resize(root.node_count);
-  out_.prim_ids.resize(root.prim_count);
-  par::parallel_for(size_t(0), parts.size(), [&](size_t i) {
-    const Subtree& part = *parts[i];
-    const uint32_t node_shift = uint32_t(part.node_offset) << 2, prim_shift = uint32_t(part.prim_offset);
-    KdNode* nodes = out_.nodes.data() + part.node_offset;
-    for (size_t k = 0; k < part.nodes.size(); ++k) {
-      KdNode node = part.nodes[k];
-      if (node.leaf())
-        node.payload += prim_shift;
-      else
-        node.bits += node_shift;
-      nodes[k] = node;
-    }
-    std::copy(part.prim_ids.begin(), part.prim_ids.end(), out_.prim_ids.begin() + ptrdiff_t(part.prim_offset));
+      out_.leaf_reasons.*r += part.stats.leaf_reasons.*r;
+    out_.depth = std::max(out_.depth, part.stats.depth);
   });
 }
 
@@ -597,17 +545,18 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
   root.n = prims.size();
   root.box = out_.root_box;
   root.share = 1.0;
-  std::unique_ptr<Subtree> tree = build_task(std::move(root));
+  std::unique_ptr<Subtree> tree = top_down::TopDownTasks<KdBuilder>(*this).build(root);
   if (failed()) {
     // Parallel tasks stop at the first budget any of them finds exceeded, which need not be
     // the one the serial order meets first; when the message is returned, that one is found
     // by building serially (only failed builds pay for it).
-    const bool had_tasks = parallel_ && prims.size() >= kTaskMinPrims;
+    const bool had_tasks = parallel_ && prims.size() >= top_down::kTaskMinRefs;
     if (had_tasks && exact_errors_ && !build_cancelled(control_))
       return KdBuilder(scene_, o_, control_, progress_.last(), false, true).run();
     return status_.error();
   }
-  stitch(*tree);
+  gather(*tree);
+  top_down::stitch(*tree, out_.nodes, &out_.prim_ids);
   ACCEL_CHECK(out_.depth <= kKdMaxDepth);  // the traversal's stack holds kKdMaxDepth entries
   if (recorder) recorder->done(out_.nodes.size());
   return std::move(out_);

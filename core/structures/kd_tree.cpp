@@ -10,6 +10,8 @@
 #include <cmath>
 #include <string>
 
+#include "structures/kd_builder.h"
+
 namespace accel {
 
 //-----------------------------------------------------------------------------

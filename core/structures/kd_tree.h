@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "structure.h"
-#include "structures/kd_builder.h"
+#include "structures/kd_node.h"
 
 namespace accel {
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "parallel.h"
+#include "structures/top_down_tasks.h"
 
 namespace accel {
 
@@ -228,8 +229,10 @@ class OctreeBuilder {
 
  private:
   // Below this many triangles a node's children are built in its own task: their subtrees
-  // are too small to pay for a task and a part of their own.
-  static constexpr size_t kParallelChildren = 2048;
+  // are too small to pay for a task and a part of their own. The top-down driver's
+  // threshold (top_down_tasks.h), whose pre-order chunks do not fit the octree's blocks of
+  // eight children: its parts are spliced in octant order instead (splice()).
+  static constexpr size_t kParallelChildren = top_down::kTaskMinRefs;
   // From this many triangles a node's child masks are computed in parallel.
   static constexpr size_t kParallelMasks = 16384;
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "isa.h"
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 #include "structures/hierarchy.h"
 
 namespace accel {

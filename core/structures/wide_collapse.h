@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "parallel.h"
-#include "structures/bvh_builders.h"
+#include "structures/bvh_build_types.h"
 
 namespace accel {
 

@@ -7,6 +7,7 @@
 
 #include "pseudo_code.h"
 #include "script.h"
+#include "structures/bvh_builders.h"
 #include "tools/build_playback.h"
 #include "viewer_test_support.h"
 
@@ -306,20 +307,29 @@ TEST(BuildCode, ListingsAndLines) {
   for (const std::string& name : accel::structure_names())
     EXPECT_NE(build_code_kind(name, {}), BuildCodeKind::Unknown) << name;
   EXPECT_EQ(build_code_kind("no_such_structure", {}), BuildCodeKind::Unknown);
-  EXPECT_EQ(build_code_kind("brute", {}), BuildCodeKind::Brute);
-  EXPECT_EQ(build_code_kind("octree", {}), BuildCodeKind::Octree);
-  EXPECT_EQ(build_code_kind("grid", {}), BuildCodeKind::Grid);
-  EXPECT_EQ(build_code_kind("kdtree", {"split=middle"}), BuildCodeKind::KdTree);
-  EXPECT_EQ(build_code_kind("bvh", {}), BuildCodeKind::BvhBinned);  // the default builder
-  EXPECT_EQ(build_code_kind("bvh", {"builder=pca_sah"}), BuildCodeKind::BvhPca);
-  EXPECT_EQ(build_code_kind("spheretree", {"builder=insertion"}), BuildCodeKind::BvhInsertion);
-  EXPECT_EQ(build_code_kind("bvh", {"builder=bottom_up"}), BuildCodeKind::BvhBottomUp);
-  EXPECT_EQ(build_code_kind("bvh", {"builder=sbvh"}), BuildCodeKind::BvhSpatial);
+  using F = accel::ConstructionFamily;
+  using K = accel::BvhBuilderKind;
+  const BuildCodeKind brute = build_code_of(F::Linear), grid = build_code_of(F::GridInsert),
+                      octree = build_code_of(F::Octree), kdtree = build_code_of(F::KdTree);
+  EXPECT_EQ(build_code_kind("brute", {}), brute);
+  EXPECT_EQ(build_code_kind("octree", {}), octree);
+  EXPECT_EQ(build_code_kind("grid", {}), grid);
+  EXPECT_EQ(build_code_kind("kdtree", {"split=middle"}), kdtree);
+  EXPECT_EQ(build_code_kind("bvh", {}), build_code_of(K::BinnedSah));  // the default builder
+  EXPECT_EQ(build_code_kind("bvh", {"builder=pca_sah"}), build_code_of(K::PcaSah));
+  EXPECT_EQ(build_code_kind("spheretree", {"builder=insertion"}), build_code_of(K::Insertion));
+  EXPECT_EQ(build_code_kind("bvh", {"builder=bottom_up"}), build_code_of(K::BottomUp));
+  EXPECT_EQ(build_code_kind("bvh", {"builder=sbvh"}), build_code_of(K::Sbvh));
+  // Every builder of the core's table has its label and a listing of its own.
+  std::vector<BuildCodeKind> kinds = {kdtree, octree, grid, brute};
+  for (const accel::BvhBuilderInfo& row : accel::bvh_builder_table()) {
+    const BuildCodeKind k = build_code_of(row.kind);
+    EXPECT_EQ(build_code_kind("bvh", {std::string("builder=") + row.name}), k) << row.name;
+    EXPECT_STREQ(build_code_label(k), row.label);
+    kinds.push_back(k);
+  }
   const BuildTrace t = sah_trace();
-  for (BuildCodeKind k : {BuildCodeKind::KdTree, BuildCodeKind::BvhSah, BuildCodeKind::BvhPca, BuildCodeKind::Octree,
-                          BuildCodeKind::Grid, BuildCodeKind::BvhMedian, BuildCodeKind::BvhBinned,
-                          BuildCodeKind::BvhBottomUp, BuildCodeKind::BvhInsertion, BuildCodeKind::BvhSpatial,
-                          BuildCodeKind::Brute}) {
+  for (const BuildCodeKind& k : kinds) {
     const PseudoCode& code = build_pseudo_code(k);
     ASSERT_EQ(code.lines.size(), code.anchors.size());
     EXPECT_EQ(build_code_line(k, nullptr), -1);
@@ -327,14 +337,13 @@ TEST(BuildCode, ListingsAndLines) {
     ASSERT_GE(done, 0) << code.title;
     EXPECT_EQ(code.anchors[size_t(done)], "done");
   }
-  const PseudoCode& kd = build_pseudo_code(BuildCodeKind::KdTree);
-  const int split = build_code_line(BuildCodeKind::KdTree, &t.events[5]);
+  const PseudoCode& kd = build_pseudo_code(kdtree);
+  const int split = build_code_line(kdtree, &t.events[5]);
   ASSERT_GE(split, 0);
   EXPECT_EQ(kd.anchors[size_t(split)], "split");
-  const int cands = build_code_line(BuildCodeKind::BvhSah, &t.events[3]);
-  EXPECT_EQ(build_pseudo_code(BuildCodeKind::BvhSah).anchors[size_t(cands)], "candidates");
-  EXPECT_EQ(build_code_line(BuildCodeKind::Octree, &t.events[6]),
-            build_code_line(BuildCodeKind::Octree, &t.events[1]));  // every Node on the build() line
+  const int cands = build_code_line(build_code_of(K::Sah), &t.events[3]);
+  EXPECT_EQ(build_pseudo_code(build_code_of(K::Sah)).anchors[size_t(cands)], "candidates");
+  EXPECT_EQ(build_code_line(octree, &t.events[6]), build_code_line(octree, &t.events[1]));  // every Node on the build() line
 }
 
 TEST(BuildScript, ParsesTheConstructionCommands) {
