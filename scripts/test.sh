@@ -10,13 +10,16 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="$(nproc 2>/dev/null || echo 2)"
 "$root/scripts/deps.sh"
+# Each phase's header says when it starts, so a CI log shows where the time goes.
+phase() { echo "== $1 (at ${SECONDS} s)"; }
 
-echo "== Release build and tests"
+phase "Release build and tests"
 "$root/scripts/build.sh"
+phase "Release tests"
 (cd "$root/build" && ctest --output-on-failure -j"$jobs")
 
 if [ "${ACCEL_SKIP_WEB:-0}" != 1 ] && command -v emcc >/dev/null; then
-  echo "== Web page (emscripten) and its browser test (headless Chromium)"
+  phase "Web page (emscripten) and its browser test (headless Chromium)"
   # With the kit's worked example built in: the browser test's student check runs it.
   "$root/scripts/build_web.sh" --student "$root/student/example"
   # Exit 77: no Chromium, so nothing was checked (skipped, as ctest counts it).
@@ -27,7 +30,7 @@ if [ "${ACCEL_SKIP_WEB:-0}" != 1 ] && command -v emcc >/dev/null; then
 fi
 
 if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
-  echo "== AddressSanitizer + UBSan build (clang, with the libFuzzer targets) and tests"
+  phase "AddressSanitizer + UBSan build (clang, with the libFuzzer targets) and tests"
   # -g1: line tables for the sanitizers' stack traces, without the full debug information.
   # clang: libFuzzer comes with it, so one build holds the tests, the CLI and tests/fuzz.
   cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACCEL_SANITIZE=ON -DACCEL_FUZZ=ON \
@@ -35,6 +38,7 @@ if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
         -DACCEL_BUILD_APP=OFF >/dev/null
   cmake --build "$root/build-asan" -j"$jobs"
+  phase "AddressSanitizer + UBSan tests"
   # Two hard-suite configurations are left to the Release pass: their builds over 3000
   # overlapping coplanar triangles take over a minute each under ASan, and the same code
   # (kd-tree, grid) runs here in the default configurations. The Moller-Trumbore failure
@@ -45,8 +49,9 @@ if [ "${ACCEL_SKIP_SANITIZERS:-0}" != 1 ]; then
      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
      ctest --output-on-failure -j"$jobs" \
        -E "HardCases.WatertightKernelPassesEveryCase/(kdtree_split_middle|grid_resolution_avgsize)|HardCasesReport.MollerFailuresAreCounted")
-  echo "== Fuzzing (each libFuzzer target for a bounded time, scripts/fuzz.sh)"
+  phase "Fuzzing (each libFuzzer target for a bounded time, scripts/fuzz.sh)"
   # New findings are printed with their input files (fix them, then add each input to
   # tests/fuzz/regressions/); the replay of the regressions above is what gates.
   ACCEL_FUZZ_BUILD="$root/build-asan" ACCEL_FUZZ_REPORT_ONLY=1 "$root/scripts/fuzz.sh" "${ACCEL_FUZZ_SECONDS:-20}"
 fi
+phase "done"

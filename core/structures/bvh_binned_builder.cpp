@@ -42,7 +42,7 @@ using namespace binned;
 /// one shared reference order, so chunks have no triangles of their own; progress counts the
 /// references placed.
 template <class Sink>
-class BinnedTasks {
+class BinnedTasks : public top_down::SinkTasks<Sink> {
  public:
   using Node = BuildNode;
   using Task = Range;
@@ -50,25 +50,23 @@ class BinnedTasks {
   using ChunkT = top_down::Chunk<BuildNode>;
 
   BinnedTasks(const BvhBuildOptions& o, Ref* refs, ProgressCounter& progress, Sink& sink)
-      : o_(o), refs_(refs), progress_(progress), sink_(sink) {}
+      : top_down::SinkTasks<Sink>(progress, sink), o_(o), refs_(refs) {}
 
   size_t refs(const Range& r) const { return r.size(); }
-  bool all_serial() const { return Sink::kRecords; }  // recording: one chunk, the event ids in pre-order
-  bool stopped() const { return progress_.stopped(); }
   void build_serial(Range& r, ChunkT& chunk) {
-    BinnedBuilder<Sink> builder(o_, refs_, sink_);
+    BinnedBuilder<Sink> builder(o_, refs_, this->sink_);
     chunk.nodes.reserve(Sink::kRecords ? 2 * r.size() / size_t(std::max(1, o_.leaf_size)) + 1 : r.size());
     builder.build_serial(r, chunk.nodes);
-    progress_.add(r.size());
+    this->progress_.add(r.size());
   }
   top_down::RootSplit split_root(Range& r, ChunkT& chunk, Range& left, Range& right) {
-    BinnedBuilder<Sink> builder(o_, refs_, sink_);
+    BinnedBuilder<Sink> builder(o_, refs_, this->sink_);
     chunk.node.box = r.box.aabb();
     if (!builder.split_node(r, left, right)) {  // only at the depth limit
       chunk.node.first = uint32_t(r.begin);
       chunk.node.count = uint32_t(r.size());
       chunk.nodes.push_back(chunk.node);
-      progress_.add(r.size());
+      this->progress_.add(r.size());
       return top_down::RootSplit::Leaf;
     }
     return top_down::RootSplit::Split;
@@ -77,8 +75,6 @@ class BinnedTasks {
  private:
   const BvhBuildOptions& o_;
   Ref* refs_;
-  ProgressCounter& progress_;
-  Sink& sink_;
 };
 
 }  // namespace

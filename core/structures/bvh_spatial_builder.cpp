@@ -523,7 +523,7 @@ class SpatialBuilder {
 /// in several leaves, so each chunk lists its leaves' triangles; progress counts the
 /// leaves' shares of the build (Task::weight).
 template <class Sink>
-class SpatialTasks {
+class SpatialTasks : public top_down::SinkTasks<Sink> {
  public:
   using Node = BuildNode;
   using Task = accel::Task;
@@ -531,22 +531,20 @@ class SpatialTasks {
   using ChunkT = top_down::Chunk<BuildNode>;
 
   SpatialTasks(const Scene& scene, const BvhBuildOptions& o, float root_area, ProgressCounter& progress, Sink& sink)
-      : scene_(scene), o_(o), root_area_(root_area), progress_(progress), sink_(sink) {}
+      : top_down::SinkTasks<Sink>(progress, sink), scene_(scene), o_(o), root_area_(root_area) {}
 
   size_t refs(const Task& t) const { return t.refs.size(); }
-  bool all_serial() const { return Sink::kRecords; }  // recording: one chunk, the event ids in pre-order
-  bool stopped() const { return progress_.stopped(); }
   void build_serial(Task& t, ChunkT& chunk) {
-    SpatialBuilder<Sink>(scene_, o_, root_area_, sink_).build_serial(t, chunk, &progress_);
+    SpatialBuilder<Sink>(scene_, o_, root_area_, this->sink_).build_serial(t, chunk, &this->progress_);
   }
   top_down::RootSplit split_root(Task& t, ChunkT& chunk, Task& left, Task& right) {
-    SpatialBuilder<Sink> builder(scene_, o_, root_area_, sink_);
+    SpatialBuilder<Sink> builder(scene_, o_, root_area_, this->sink_);
     chunk.node.box = t.range.box.aabb();
     if (!builder.decide(t, 0, kNoBuildNode, left, right)) {  // only at the depth limit
       chunk.node.count = uint32_t(t.refs.size());
       chunk.nodes.push_back(chunk.node);
       for (const Ref& r : t.refs) chunk.prims.push_back(r.prim);
-      progress_.add_share(t.weight);
+      this->progress_.add_share(t.weight);
       return top_down::RootSplit::Leaf;
     }
     return top_down::RootSplit::Split;
@@ -556,8 +554,6 @@ class SpatialTasks {
   const Scene& scene_;
   const BvhBuildOptions& o_;
   float root_area_;
-  ProgressCounter& progress_;
-  Sink& sink_;
 };
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include <memory>
 #include <vector>
 
+#include "build_control.h"
 #include "parallel.h"
 
 namespace accel::top_down {
@@ -115,6 +116,21 @@ class TopDownTasks {
   }
 
   Builder& builder_;
+};
+
+/// The part of the driver's interface most builders share: recording builds the whole tree
+/// as one chunk (its event ids are then the final pre-order indices), and a cancel seen by
+/// the progress counter stops the tasks.
+template <class Sink>
+class SinkTasks {
+ public:
+  SinkTasks(ProgressCounter& progress, Sink& sink) : progress_(progress), sink_(sink) {}
+  bool all_serial() const { return Sink::kRecords; }
+  bool stopped() const { return progress_.stopped(); }
+
+ protected:
+  ProgressCounter& progress_;
+  Sink& sink_;
 };
 
 /// Calls f(chunk) for every chunk, the task roots and the serial ones, in pre-order.
