@@ -24,7 +24,8 @@ if [ "${ACCEL_SKIP_WEB:-0}" != 1 ] && command -v emcc >/dev/null; then
   "$root/scripts/build_web.sh" --student "$root/student/example"
   # Exit 77: no Chromium, so nothing was checked (skipped, as ctest counts it).
   status=0
-  python3 "$root/tests/web/test_page.py" --web-dir "$root/build-web" --cli "$root/build/bin/accelviz-cli" \
+  # The folder to upload (site/), as a course website serves it.
+  python3 "$root/tests/web/test_page.py" --web-dir "$root/build-web/site" --cli "$root/build/bin/accelviz-cli" \
     --shared "$root/../shared" || status=$?
   [ "$status" -eq 0 ] || [ "$status" -eq 77 ] || exit "$status"
 fi

@@ -331,6 +331,7 @@ int main(int argc, char** argv) {
   accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   Options options;
   if (const auto code = parse_command_line(argc, argv, options)) return *code;
+  viz::browser::install_input_fetcher();  // the page: files next to it are fetched when opened
   const bool screenshot_mode = !options.screenshot.empty();
   const bool script_mode = !options.script.empty();
   const bool headless = screenshot_mode || script_mode;
