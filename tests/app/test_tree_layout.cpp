@@ -244,9 +244,9 @@ TEST(TreeLayout, ConstructionShowsTheNodesBuiltSoFar) {
   StructureRequest req;
   req.name = "bvh";
   req.params = {"width=2"};
-  auto rec = record_structure(*scene, req, nullptr);
+  auto rec = test::record_build(*scene, req);
   ASSERT_TRUE(rec.ok()) << rec.error().message;
-  accel::BuildReplay replay(*rec.value().trace);
+  accel::BuildReplay replay(rec.value().trace);
   // Part way: the nodes built so far, the step's node current and in the layout.
   replay.seek(replay.steps() / 3);
   {

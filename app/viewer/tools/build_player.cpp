@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/transport_controls.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -53,9 +55,12 @@ void BuildPlayer::construct(std::shared_ptr<const accel::Scene> scene, const Str
   error_.clear();
   auto control = control_;
   job_.start(
-      [scene, request, control](const std::atomic<bool>& cancel) -> accel::Result<RecordedBuild> {
+      [scene, request, control](const std::atomic<bool>& cancel) -> accel::Result<accel::RecordedBuild> {
         if (cancel) return accel::cancelled_error();
-        return record_structure(*scene, request, control.get());
+        auto choice = accel::parse_structure(request.name, request.params);
+        if (!choice) return choice.error();
+        return accel::build_structure_recorded(*choice.value().info, *scene, choice.value().params, request.kernel,
+                                               accel::BuildRecorder::kDefaultBudgetBytes, control.get());
       },
       synchronous);
   if (synchronous) poll();
@@ -72,11 +77,12 @@ void BuildPlayer::poll() {
   }
   scene_ = std::move(pending_scene_);
   request_ = pending_request_;
-  trace_ = result.value().trace;
-  attempts_ = result.value().attempts;
-  sah_ct_ = result.value().sah_ct;
-  sah_ci_ = result.value().sah_ci;
-  sah_prims_per_test_ = result.value().sah_prims_per_test;
+  trace_ = std::make_shared<const accel::BuildTrace>(std::move(result.value().trace));
+  // The SAH constants price the tree so far; a structure without them counts 1 each.
+  const accel::BuildStats stats = result.value().structure->build_stats();
+  sah_ct_ = stats.sah_ct > 0.0 ? stats.sah_ct : 1.0;
+  sah_ci_ = stats.sah_ci > 0.0 ? stats.sah_ci : 1.0;
+  sah_prims_per_test_ = std::max(1, stats.sah_prims_per_test);
   replay_ = std::make_unique<accel::BuildReplay>(*trace_);
   code_kind_ = build_code_kind(request_.name, request_.params);
   player_.load(trace_->events.size());
@@ -101,7 +107,6 @@ void BuildPlayer::reset() {
   trace_.reset();
   replay_.reset();
   scene_.reset();
-  attempts_.clear();
   player_.clear();
   view_ = BuildView{};
   upload_ = true;
@@ -162,38 +167,13 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     return;
   }
   ImGui::TextDisabled("%s (%s): %s", request_.name.c_str(), build_code_label(code_kind_), trace_->coverage().c_str());
-  if (attempts_.size() > 1) {
+  if (trace_->depth_limit < std::numeric_limits<int>::max()) {
     ImGui::SameLine();
-    ImGui::TextDisabled("(%zu attempts)", attempts_.size());
+    ImGui::TextDisabled("(re-recorded)");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("the step budget ran out: re-recorded with half the depth");
   }
 
-  BuildStepPlayer& p = player_;
-  if (ImGui::Button("|<")) { p.pause(); p.seek(0); }
-  ImGui::SameLine();
-  if (ImGui::Button("<")) { p.pause(); p.step_back(); }
-  ImGui::SameLine();
-  if (ImGui::Button(p.playing() ? "Pause" : "Play", ImVec2(4.0f * em, 0.0f))) p.toggle();
-  ImGui::SameLine();
-  if (ImGui::Button(">")) { p.pause(); p.step_forward(); }
-  ImGui::SameLine();
-  if (ImGui::Button(">|")) { p.pause(); p.jump_to_end(); }
-  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
-  int step = static_cast<int>(p.step());
-  ImGui::SetNextItemWidth(half);
-  char step_format[48];
-  std::snprintf(step_format, sizeof step_format, "step %%d of %zu", p.size());
-  if (ImGui::SliderInt("##bstep", &step, 0, static_cast<int>(p.size()), step_format, ImGuiSliderFlags_AlwaysClamp)) {
-    p.pause();
-    p.seek(static_cast<size_t>(step));
-  }
-  ImGui::SameLine();
-  float speed = static_cast<float>(p.speed());
-  ImGui::SetNextItemWidth(half);
-  if (ImGui::SliderFloat("##bspeed", &speed, static_cast<float>(BuildStepPlayer::kMinSpeed),
-                         static_cast<float>(BuildStepPlayer::kMaxSpeed), "speed %.3g steps/s",
-                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
-    p.set_speed(speed);
+  transport_controls(player_, {0, "nothing recorded"});
 
   const BuildEvent* e = replay_ ? replay_->current() : nullptr;
   if (e) {
@@ -208,7 +188,7 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     ImGui::TableHeadersRow();
     ImGui::TableNextRow();
     ImGui::TableSetColumnIndex(0);
-    ImGui::TextDisabled("step %zu", p.step());
+    ImGui::TextDisabled("step %zu", player_.step());
     const size_t values[3] = {replay_->live_nodes(), replay_->leaves(), replay_->references()};
     for (int i = 0; i < 3; ++i) {
       ImGui::TableSetColumnIndex(i + 1);

@@ -1,14 +1,15 @@
 #pragma once
 // The construction mode ("watch it being built"): records the current structure's build
-// (BuildRecorder, on a background Job with its own BuildControl: progress and cancel), plays
-// its steps (BuildStepPlayer), draws the partly built structure of the current step
-// (tools/build_playback.h) and shows the "Construction", "Construction steps" and
-// "Construction code" panels in the places of the traversal panels while the mode is on.
+// (accel::build_structure_recorded, on a background Job with its own BuildControl: progress
+// and cancel), plays its steps (BuildStepPlayer), draws the partly built structure of the
+// current step (tools/build_playback.h) and shows the "Construction", "Construction steps"
+// and "Construction code" panels in the places of the traversal panels while the mode is on.
 // Gets the scene and structure request passed in; App only wires it.
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "registry.h"
 #include "renderer.h"
 #include "result.h"
 #include "tools/build_playback.h"
@@ -72,14 +73,13 @@ class BuildPlayer {
  private:
   void cost_plot_widget();
 
-  Job<accel::Result<RecordedBuild>> job_;
+  Job<accel::Result<accel::RecordedBuild>> job_;
   std::shared_ptr<accel::BuildControl> control_;
   std::shared_ptr<const accel::Scene> scene_;          // the recorded build's scene
   std::shared_ptr<const accel::Scene> pending_scene_;  // of the recording in progress
   StructureRequest request_, pending_request_;
   std::shared_ptr<const accel::BuildTrace> trace_;
   std::unique_ptr<accel::BuildReplay> replay_;
-  std::vector<accel::RecordAttempt> attempts_;
   double sah_ct_ = 1.0, sah_ci_ = 1.0;  ///< the structure's SAH constants, for the cost so far
   int sah_prims_per_test_ = 1;           ///< and its triangles per leaf test (4: wide layouts)
   std::string error_;

@@ -7,6 +7,7 @@
 
 #include "panels.h"
 #include "rays_io.h"
+#include "tools/transport_controls.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -157,38 +158,9 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
   // Playback.
   accel::TracePlayer& p = ray_.player;
   const bool has = !p.empty();
-  ImGui::BeginDisabled(!has);
-  if (ImGui::Button("|<")) { p.pause(); p.seek(0); }
-  ImGui::SameLine();
-  if (ImGui::Button("<")) { p.pause(); p.step_back(); }
-  ImGui::SameLine();
-  if (ImGui::Button(p.playing() ? "Pause" : "Play", ImVec2(4.0f * em, 0.0f))) p.toggle();
-  ImGui::SameLine();
-  if (ImGui::Button(">")) { p.pause(); p.step_forward(); }
-  ImGui::SameLine();
-  if (ImGui::Button(">|")) { p.pause(); p.jump_to_end(); }
-  ImGui::SameLine();
-  if (ImGui::Button("Jump to hit")) p.jump_to_hit();
-  // Step and speed side by side.
-  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
-  int step = static_cast<int>(p.step()) + 1;
-  ImGui::SetNextItemWidth(half);
-  char step_format[48];
-  if (p.empty()) std::snprintf(step_format, sizeof step_format, "no trace");
-  else std::snprintf(step_format, sizeof step_format, "step %%d of %zu", p.size());
-  if (ImGui::SliderInt("##step", &step, 1, std::max(static_cast<int>(p.size()), 1), step_format,
-                       ImGuiSliderFlags_AlwaysClamp)) {
-    p.pause();
-    p.seek(static_cast<size_t>(step - 1));
-  }
-  ImGui::SameLine();
-  float speed = static_cast<float>(p.speed());
-  ImGui::SetNextItemWidth(half);
-  if (ImGui::SliderFloat("##speed", &speed, static_cast<float>(accel::TracePlayer::kMinSpeed),
-                         static_cast<float>(accel::TracePlayer::kMaxSpeed), "speed %.3g steps/s",
-                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
-    p.set_speed(speed);
-  ImGui::EndDisabled();
+  transport_controls(p, {1, "no trace"}, [&p] {
+    if (ImGui::Button("Jump to hit")) p.jump_to_hit();
+  });
 
   if (has) {
     // The current step, large and in its colour.
