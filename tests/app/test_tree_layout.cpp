@@ -6,12 +6,13 @@
 #include <map>
 #include <set>
 
+#include "built_structure.h"
 #include "registry.h"
 #include "tools/build_playback.h"
+#include "tools/debug_ray.h"
 #include "tools/tree_layout.h"
 #include "trace_player.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {

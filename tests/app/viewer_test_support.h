@@ -5,10 +5,10 @@
 #include <memory>
 #include <string>
 
+#include "built_structure.h"
 #include "ray_gen.h"
 #include "registry.h"
 #include "scene.h"
-#include "workbench.h"
 
 namespace viz::test {
 

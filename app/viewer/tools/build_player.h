@@ -9,12 +9,13 @@
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
+#include "job.h"
 #include "registry.h"
 #include "renderer.h"
 #include "result.h"
 #include "tools/build_playback.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 

@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "params.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -103,7 +104,7 @@ std::optional<StructureChoice> CompareTool::panel(const PanelPlace& where, const
       const CompareRow& r = rows[i];
       const bool current = built && r.structure == built->request.name &&
                            (r.params == built->request.params ||
-                            param_value(r.params, "traversal") == built->traversal);
+                            accel::param_value(r.params, "traversal") == built->traversal);
       ImGui::TableNextRow();
       if (current)
         ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg0, ImGui::ColorConvertFloat4ToU32(ImVec4(0.45f, 0.38f, 0.05f, 0.9f)));

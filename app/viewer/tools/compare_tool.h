@@ -10,9 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "job.h"
 #include "student/trace_diff.h"
+#include "tools/compare_model.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 

@@ -5,12 +5,13 @@
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
 #include "heatmap.h"
-#include "tools/heatmap_scale.h"
+#include "job.h"
 #include "ray_gen.h"
 #include "renderer.h"
+#include "tools/heatmap_scale.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 

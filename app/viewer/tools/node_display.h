@@ -4,10 +4,10 @@
 // GL buffers, and the mesh style; the main panel's Display section.
 #include <optional>
 
+#include "built_structure.h"
 #include "renderer.h"
 #include "structure_view.h"
 #include "tools/depth_filter.h"
-#include "workbench.h"
 
 namespace viz {
 

@@ -5,12 +5,13 @@
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
 #include "ray_gen.h"
 #include "renderer.h"
 #include "result.h"
+#include "tools/debug_ray.h"
 #include "tools/highlights.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 

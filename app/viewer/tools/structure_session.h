@@ -7,13 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "build_runner.h"
+#include "job.h"
 #include "panels.h"
 #include "presets.h"
 #include "renderer.h"
 #include "result.h"
 #include "scene.h"
 #include "tools/param_editor.h"
-#include "workbench.h"
 
 namespace viz {
 

@@ -5,11 +5,12 @@
 #include <memory>
 #include <string>
 
+#include "job.h"
 #include "ray_gen.h"
 #include "registry.h"
 #include "result.h"
+#include "tools/sweep_model.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 

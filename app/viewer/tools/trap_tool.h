@@ -10,9 +10,9 @@
 
 #include "accuracy.h"
 #include "scene.h"
+#include "tools/debug_ray.h"
 #include "traps.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 

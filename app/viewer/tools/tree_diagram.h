@@ -9,11 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "built_structure.h"
 #include "renderer.h"
 #include "result.h"
+#include "tools/debug_ray.h"
 #include "tools/tree_layout.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 

@@ -7,10 +7,10 @@
 #include <functional>
 
 #include "pseudo_code.h"
+#include "tools/debug_ray.h"
 #include "trace_player.h"
 #include "traps.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 
