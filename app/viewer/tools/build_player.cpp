@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <limits>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/structure_session.h"
 #include "tools/transport_controls.h"
 #include "tools/ui_colors.h"
 
@@ -322,6 +324,68 @@ void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
   ImGui::TextDisabled("%s", code.title.c_str());
   ui::code_listing("bcode", code.lines, line, mono, code_scrolled_);
   ImGui::End();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: build_player_verbs.cpp)
+
+KeyGroup BuildPlayer::key_bindings(ToolHost& host) {
+  std::vector<KeyBinding> rows = {
+      {GLFW_KEY_B, "B", "construction mode: record the current structure's build (again: back to the traversal)",
+       [this, &host](const KeyPress&) {
+         if (active())
+           set_active(false);
+         else if (host.session().current() && !recording())
+           host.construct();
+         return true;
+       }},
+  };
+  // PgUp / PgDn: the playlist's rows come first and leave them here without a playlist or
+  // with shift.
+  const std::vector<KeyBinding> transport =
+      transport_keys(player_, {"construction", GLFW_KEY_P, "P", GLFW_KEY_COMMA, GLFW_KEY_PERIOD, ", / .",
+                               GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, "PgUp / PgDn", GLFW_KEY_MINUS, GLFW_KEY_EQUAL,
+                               "- / =", " (with a playlist loaded: shift + PgUp / PgDn)"});
+  rows.insert(rows.end(), transport.begin(), transport.end());
+  return {"construction", rows};
+}
+
+std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
+  // The errors name the command: its message alone would not say which step failed.
+  auto need = [this](const char* verb) -> accel::Status {
+    if (auto st = need_trace(); !st) return accel::make_error(std::string(verb) + ": " + st.error().message);
+    return {};
+  };
+  return {
+      {CommandKind::Construct,
+       [&host, need](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         if (auto st = host.session().need_structure(); !st) return st;
+         host.construct();  // synchronous in script mode; in the window the playlist waits for it
+         if (!host.synchronous()) return {};
+         return need("construct");
+       }},
+      {CommandKind::BuildStep,
+       [this, &host, need](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         if (auto st = need("build-step"); !st) return st;
+         player_.pause();
+         const size_t from = player_.step();
+         step_clock(player_, c.step, static_cast<size_t>(c.ints[0]));
+         set_active(true);
+         host.walk_recorded(player_, from, h);
+         return {};
+       }},
+      {CommandKind::PrintBuildStep,
+       [this, need](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         if (auto st = need("print-build-step"); !st) return st;
+         print_script_line(step_line());
+         return {};
+       }},
+      {CommandKind::SahPlot,
+       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+         set_sah_plot(c.on);
+         return {};
+       }},
+  };
 }
 
 // ---------------------------------------------------------------------------------------

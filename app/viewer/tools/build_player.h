@@ -10,10 +10,12 @@
 #include <string>
 
 #include "built_structure.h"
+#include "commands.h"
 #include "job.h"
 #include "registry.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
 #include "tools/build_playback.h"
 #include "view_layout.h"
 
@@ -57,6 +59,11 @@ class BuildPlayer {
   const accel::BuildReplay* replay() const { return replay_.get(); }
   /// Applies the player's step to the replay and rebuilds the view when it changed.
   void update();
+
+  /// Its keys (B records or leaves the mode; play, step, first / last, speed) and script
+  /// verbs (construct, build-step, print-build-step, sah-plot); `host` gives the structure.
+  KeyGroup key_bindings(ToolHost& host);
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The "Construction" panel (controls, counters, cost plot) at the ray panel's place.
   void control_panel(const PanelPlace& place, const std::shared_ptr<const accel::Scene>& scene,

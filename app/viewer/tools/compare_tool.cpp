@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
 #include "params.h"
+#include "tools/ray_debugger.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -157,6 +159,29 @@ void CompareTool::builtin_lines() {
   const bool mine_right = d.mine_verdict == accel::HitVerdict::Correct;
   ImGui::TextColored(mine_right ? ImVec4(1, 1, 1, 1) : miss_text(), "%s", d.answers_line().c_str());
   ImGui::Separator();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: compare_verbs.cpp)
+
+KeyGroup CompareTool::key_bindings(ToolHost& host) {
+  return {"compare",
+          {{GLFW_KEY_C, "C", "Compare: the same ray through every structure and traversal order",
+            [this, &host](const KeyPress&) {
+              set_open(true);
+              host.start_compare();
+              return true;
+            }}}};
+}
+
+std::vector<VerbRun> CompareTool::script_verbs(ToolHost& host) {
+  return {{CommandKind::Compare, [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
+             if (auto st = host.ray().need_trace(); !st) return st;
+             host.start_compare();
+             set_open(true);
+             print_rows();
+             return {};
+           }}};
 }
 
 }  // namespace viz

@@ -6,9 +6,11 @@
 #include <string>
 
 #include "built_structure.h"
+#include "commands.h"
 #include "ray_gen.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
 #include "tools/debug_ray.h"
 #include "tools/highlights.h"
 #include "view_layout.h"
@@ -59,6 +61,11 @@ class RayDebugger {
   std::string step_line() const;
   /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
   std::string ray_line() const;
+
+  /// Its keys (play, step, jump to the hit, speed) and script verbs (the ray, stepping,
+  /// frames and the print-* of the ray); `host` gives the camera and the other tools.
+  KeyGroup key_bindings();
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// Remembers `view` as the saved viewpoint.
   void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 namespace viz {
@@ -59,6 +60,62 @@ void transport_controls(accel::PlaybackClock& clock, const TransportNumbers& num
                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
     clock.set_speed(speed);
   ImGui::EndDisabled();
+}
+
+std::vector<KeyBinding> transport_keys(accel::PlaybackClock& clock, const TransportKeys& keys) {
+  const std::string noun = keys.noun;
+  // Shift moves ten steps: holding it with a step key crosses a long recording quickly.
+  auto count = [](const KeyPress& k) -> size_t { return (k.mods & GLFW_MOD_SHIFT) ? 10 : 1; };
+  auto pausing = [&clock](std::function<void(const KeyPress&)> move) {
+    return [&clock, move](const KeyPress& k) {
+      clock.pause();
+      move(k);
+      return true;
+    };
+  };
+  const std::string steps = "one " + noun + " step back / forward (shift: 10)";
+  const std::string ends = "first / last " + noun + " step" + keys.ends_note;
+  const std::string speed = noun + " slower / faster";
+  return {
+      {keys.play, keys.play_label, "play / pause the " + noun,
+       [&clock](const KeyPress&) {
+         clock.toggle();
+         return true;
+       }},
+      {keys.back, keys.step_label, steps, pausing([&clock, count](const KeyPress& k) { clock.step_back(count(k)); })},
+      {keys.forward, keys.step_label, steps,
+       pausing([&clock, count](const KeyPress& k) { clock.step_forward(count(k)); })},
+      {keys.first, keys.ends_label, ends, pausing([&clock](const KeyPress&) { clock.seek(0); })},
+      {keys.last, keys.ends_label, ends, pausing([&clock](const KeyPress&) { clock.jump_to_end(); })},
+      {keys.slower, keys.speed_label, speed,
+       [&clock](const KeyPress&) {
+         clock.set_speed(clock.speed() / 1.5);
+         return true;
+       }},
+      {keys.faster, keys.speed_label, speed,
+       [&clock](const KeyPress&) {
+         clock.set_speed(clock.speed() * 1.5);
+         return true;
+       }},
+  };
+}
+
+void step_clock(accel::PlaybackClock& clock, StepMode mode, size_t count) {
+  switch (mode) {
+    case StepMode::Forward:
+      clock.step_forward(count);
+      break;
+    case StepMode::Back:
+      clock.step_back(count);
+      break;
+    case StepMode::End:
+      clock.jump_to_end();
+      break;
+    case StepMode::Hit:
+    case StepMode::Start:
+      clock.seek(0);
+      break;
+  }
 }
 
 }  // namespace viz
