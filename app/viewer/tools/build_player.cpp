@@ -275,39 +275,18 @@ void BuildPlayer::steps_panel(const PanelPlace& where) {
     ImGui::End();
     return;
   }
-  ImGui::Checkbox("follow", &follow_step_);
-  ImGui::SameLine();
-  ImGui::TextDisabled("click a step to go there");
-  ImGui::BeginChild("bsteps");
+  // Step K has applied events 0..K-1: the current row is the last one applied.
   const auto& events = trace_->events;
-  const float row_h = ImGui::GetTextLineHeightWithSpacing();
   const size_t applied = player_.step();
-  const size_t current = applied ? applied - 1 : ~size_t(0);
-  if (follow_step_ && applied != steps_scrolled_) {
-    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(applied) * row_h - 0.5f * ImGui::GetWindowHeight()));
-    steps_scrolled_ = applied;
+  const std::optional<size_t> current = applied ? std::optional<size_t>(applied - 1) : std::nullopt;
+  const auto clicked = step_list(events.size(), current, applied, steps_, [&](size_t i) {
+    return StepRow{events[i].depth, accel::describe_build_event(*trace_, events[i]), event_color(events[i])};
+  });
+  if (clicked) {
+    player_.pause();
+    player_.seek(*clicked + 1);
+    steps_.scrolled = *clicked + 1;
   }
-  ImGuiListClipper clipper;
-  clipper.Begin(static_cast<int>(events.size()), row_h);
-  while (clipper.Step()) {
-    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
-      const BuildEvent& e = events[static_cast<size_t>(i)];
-      char label[320];
-      std::snprintf(label, sizeof label, "%5d  %*s%s", i + 1, std::min<int>(e.depth, 24), "",
-                    accel::describe_build_event(*trace_, e).c_str());
-      const bool is_current = static_cast<size_t>(i) == current;
-      ImGui::PushStyleColor(ImGuiCol_Text, is_current ? ImVec4(0, 0, 0, 1) : event_color(e));
-      if (is_current) ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
-      if (ImGui::Selectable(label, is_current)) {
-        player_.pause();
-        player_.seek(static_cast<size_t>(i) + 1);
-        steps_scrolled_ = static_cast<size_t>(i) + 1;
-      }
-      if (is_current) ImGui::PopStyleColor();
-      ImGui::PopStyleColor();
-    }
-  }
-  ImGui::EndChild();
   ImGui::End();
 }
 

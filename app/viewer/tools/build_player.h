@@ -17,6 +17,7 @@
 #include "result.h"
 #include "tool_host.h"
 #include "tools/build_playback.h"
+#include "tools/transport_controls.h"
 #include "view_layout.h"
 
 struct ImFont;
@@ -99,8 +100,7 @@ class BuildPlayer {
   bool upload_ = false;
   size_t view_step_ = ~size_t(0);
   BuildView view_;
-  bool follow_step_ = true;
-  size_t steps_scrolled_ = ~size_t(0);
+  StepListState steps_;  // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;
   std::optional<HighlightBatches> gl_;
 };

@@ -278,42 +278,20 @@ void RayDebugger::steps_panel(const PanelPlace& where) {
     ImGui::End();
     return;
   }
-  ImGui::Checkbox("follow", &follow_step_);
-  ImGui::SameLine();
-  ImGui::TextDisabled("click a step to go there");
-  ImGui::BeginChild("steps");
-  const float row_h = ImGui::GetTextLineHeightWithSpacing();
   const size_t current = ray_.player.step();
-  if (follow_step_ && current != steps_scrolled_) {
-    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(current) * row_h - 0.5f * ImGui::GetWindowHeight()));
-    steps_scrolled_ = current;
+  const auto clicked = step_list(events.size(), current, current, steps_, [&](size_t i) {
+    const accel::TraceEvent& e = events[i];
+    const bool marked = marked_step_ && *marked_step_ == i;
+    // The marked step (a naive traversal's stop) in the trap window's colour.
+    std::string text = accel::describe_event(e);
+    if (marked) text += "   <- " + marked_note_;
+    return StepRow{e.depth, text, marked ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f) : event_color(e)};
+  });
+  if (clicked) {
+    ray_.player.pause();
+    ray_.player.seek(*clicked);
+    steps_.scrolled = *clicked;
   }
-  ImGuiListClipper clipper;
-  clipper.Begin(static_cast<int>(events.size()), row_h);
-  while (clipper.Step()) {
-    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
-      const accel::TraceEvent& e = events[static_cast<size_t>(i)];
-      char label[256];
-      const bool marked = marked_step_ && *marked_step_ == static_cast<size_t>(i);
-      std::snprintf(label, sizeof label, "%5d  %*s%s%s", i + 1, std::min<int>(e.depth, 24), "",
-                    accel::describe_event(e).c_str(), marked ? ("   <- " + marked_note_).c_str() : "");
-      // The marked step (a naive traversal's stop) in the trap window's colour.
-      const ImVec4 color = static_cast<size_t>(i) == current ? ImVec4(0, 0, 0, 1)
-                           : marked                          ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f)
-                                                             : event_color(e);
-      ImGui::PushStyleColor(ImGuiCol_Text, color);
-      if (static_cast<size_t>(i) == current)
-        ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
-      if (ImGui::Selectable(label, static_cast<size_t>(i) == current)) {
-        ray_.player.pause();
-        ray_.player.seek(static_cast<size_t>(i));
-        steps_scrolled_ = static_cast<size_t>(i);
-      }
-      if (static_cast<size_t>(i) == current) ImGui::PopStyleColor();
-      ImGui::PopStyleColor();
-    }
-  }
-  ImGui::EndChild();
   ImGui::End();
 }
 

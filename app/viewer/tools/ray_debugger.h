@@ -13,6 +13,7 @@
 #include "tool_host.h"
 #include "tools/debug_ray.h"
 #include "tools/highlights.h"
+#include "tools/transport_controls.h"
 #include "view_layout.h"
 
 struct ImFont;
@@ -99,8 +100,7 @@ class RayDebugger {
   bool dirty_ = true;                   // rebuild the highlights at the next update()
   bool upload_ = false;                 // rebuilt on the CPU, not yet on the GPU
   size_t highlight_step_ = ~size_t(0);  // the step highlights_ shows
-  bool follow_step_ = true;             // scroll the step list to the current step
-  size_t steps_scrolled_ = ~size_t(0);  // step the list was last scrolled to
+  StepListState steps_;                 // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;              // code line last scrolled into view
   bool shoot_from_saved_ = false;
   std::optional<size_t> marked_step_;

@@ -6,6 +6,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "tools/ui_colors.h"
+
 namespace viz {
 
 void transport_controls(accel::PlaybackClock& clock, const TransportNumbers& numbers,
@@ -60,6 +62,41 @@ void transport_controls(accel::PlaybackClock& clock, const TransportNumbers& num
                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
     clock.set_speed(speed);
   ImGui::EndDisabled();
+}
+
+std::optional<size_t> step_list(size_t rows, std::optional<size_t> current, size_t scroll_to, StepListState& state,
+                                const std::function<StepRow(size_t)>& row) {
+  ImGui::Checkbox("follow", &state.follow);
+  ImGui::SameLine();
+  ImGui::TextDisabled("click a step to go there");
+  ImGui::BeginChild("steps");
+  const float row_h = ImGui::GetTextLineHeightWithSpacing();
+  if (state.follow && scroll_to != state.scrolled) {
+    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(scroll_to) * row_h - 0.5f * ImGui::GetWindowHeight()));
+    state.scrolled = scroll_to;
+  }
+  std::optional<size_t> clicked;
+  ImGuiListClipper clipper;
+  clipper.Begin(static_cast<int>(rows), row_h);
+  while (clipper.Step()) {
+    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
+      const size_t r = static_cast<size_t>(i);
+      const StepRow step = row(r);
+      char number[32];
+      std::snprintf(number, sizeof number, "%5d  %*s", i + 1, std::min(step.depth, 24), "");
+      const std::string label = number + step.text;
+      const bool is_current = current == r;
+      ImGui::PushStyleColor(ImGuiCol_Text, is_current ? ImVec4(0, 0, 0, 1) : step.color);
+      if (is_current)
+        ImGui::PushStyleColor(ImGuiCol_Header,
+                              ImVec4(ui::kCurrentText.x, ui::kCurrentText.y, ui::kCurrentText.z, 0.95f));
+      if (ImGui::Selectable(label.c_str(), is_current)) clicked = r;
+      if (is_current) ImGui::PopStyleColor();
+      ImGui::PopStyleColor();
+    }
+  }
+  ImGui::EndChild();
+  return clicked;
 }
 
 std::vector<KeyBinding> transport_keys(accel::PlaybackClock& clock, const TransportKeys& keys) {

@@ -1,11 +1,15 @@
 #pragma once
 // The transport of the traversal's and the construction's players, over the PlaybackClock
 // both are, so the two cannot drift apart: the playback row of the "Debug ray" and
-// "Construction" panels, their keys, and the step commands' moves.
+// "Construction" panels, the steps list of their steps panels, their keys, and the step
+// commands' moves.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <imgui.h>
 
 #include "commands.h"
 #include "playback_clock.h"
@@ -27,6 +31,27 @@ struct TransportNumbers {
 /// but Play/Pause pauses first, so the step stays where it was put.
 void transport_controls(accel::PlaybackClock& clock, const TransportNumbers& numbers,
                         const std::function<void()>& more_buttons = {});
+
+/// One row of a steps list.
+struct StepRow {
+  int depth = 0;     ///< indentation: the node's depth (at most 24 shown)
+  std::string text;  ///< what happened at the step
+  ImVec4 color;      ///< its colour (the current row is black on the highlight instead)
+};
+
+/// A steps list's state: whether it follows the player, and the row it last scrolled to.
+struct StepListState {
+  bool follow = true;
+  size_t scrolled = ~size_t(0);
+};
+
+/// The body of a steps panel: the "follow" box, a hint, and a scrolling list of `rows`
+/// numbered rows (only the visible ones made, by `row`). Row `current` (none: no step yet)
+/// is highlighted; while following, the list scrolls row `scroll_to` to the middle whenever
+/// it changes. Returns the row clicked (the caller moves its player there and sets
+/// state.scrolled, so the list stays where the click was).
+std::optional<size_t> step_list(size_t rows, std::optional<size_t> current, size_t scroll_to, StepListState& state,
+                                const std::function<StepRow(size_t)>& row);
 
 /// A player's transport keys: GLFW keys and the help's names for them.
 struct TransportKeys {
