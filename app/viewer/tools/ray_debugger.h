@@ -5,12 +5,16 @@
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
+#include "commands.h"
 #include "ray_gen.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
+#include "tools/debug_ray.h"
 #include "tools/highlights.h"
+#include "tools/transport_controls.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 
@@ -59,6 +63,11 @@ class RayDebugger {
   /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
   std::string ray_line() const;
 
+  /// Its keys (play, step, jump to the hit, speed) and script verbs (the ray, stepping,
+  /// frames and the print-* of the ray); `host` gives the camera and the other tools.
+  KeyGroup key_bindings();
+  std::vector<VerbRun> script_verbs(ToolHost& host);
+
   /// Remembers `view` as the saved viewpoint.
   void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }
   /// The saved viewpoint, if any.
@@ -91,8 +100,7 @@ class RayDebugger {
   bool dirty_ = true;                   // rebuild the highlights at the next update()
   bool upload_ = false;                 // rebuilt on the CPU, not yet on the GPU
   size_t highlight_step_ = ~size_t(0);  // the step highlights_ shows
-  bool follow_step_ = true;             // scroll the step list to the current step
-  size_t steps_scrolled_ = ~size_t(0);  // step the list was last scrolled to
+  StepListState steps_;                 // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;              // code line last scrolled into view
   bool shoot_from_saved_ = false;
   std::optional<size_t> marked_step_;

@@ -11,11 +11,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
 #include "registry.h"
-#include "tools/build_playback.h"
+#include "tools/build_player.h"
+#include "tools/ray_debugger.h"
+#include "tools/structure_session.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -654,6 +657,36 @@ void TreeDiagram::grid_table() {
     }
   }
   ImGui::EndTable();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: tree_diagram_verbs.cpp)
+
+KeyGroup TreeDiagram::key_bindings(ToolHost& host) {
+  return {"tree", {{GLFW_KEY_T, "T", "the tree diagram", [this, &host](const KeyPress&) {
+                      toggle();
+                      host.relayout();  // the bottom dock appears or goes
+                      return true;
+                    }}}};
+}
+
+std::vector<VerbRun> TreeDiagram::script_verbs(ToolHost& host) {
+  return {{CommandKind::Tree,
+           [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+             if (on() != c.on) host.relayout();
+             set_on(c.on);
+             if (c.on) host.show_ui();
+             return {};
+           }},
+          {CommandKind::TreeSelect, [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+             if (auto st = host.session().need_structure(); !st)
+               return accel::make_error("tree-select: " + st.error().message);
+             update(host.session().current_ptr(), host.ray().ray(),
+                    host.build().active() ? host.build().replay() : nullptr);
+             if (auto st = select(static_cast<NodeId>(c.ints[0]), c.on); !st) return st;
+             host.show_ui();
+             return {};
+           }}};
 }
 
 }  // namespace viz

@@ -9,11 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "built_structure.h"
+#include "commands.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
+#include "tools/debug_ray.h"
 #include "tools/tree_layout.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -23,6 +26,11 @@ class TreeDiagram {
   bool on() const { return on_; }
   void set_on(bool on) { on_ = on; }
   void toggle() { on_ = !on_; }
+
+  /// Its key (T) and script verbs (tree, tree-select); `host` lays the panels out and gives
+  /// the structure, the ray and the construction.
+  KeyGroup key_bindings(ToolHost& host);
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// Follows this frame's structure, debug ray and construction replay (nullptr: the
   /// construction mode is off). Cheap when nothing changed: the layout is remade when the

@@ -6,6 +6,7 @@
 #include <string>
 #include <variant>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
@@ -333,6 +334,18 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
   }
   ImGui::Dummy(avail);
   ImGui::End();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys
+
+KeyGroup VarsPanel::key_bindings() {
+  return {"Variables",
+          {{GLFW_KEY_V, "V", "the Variables panel and the t-axis strip, together", [this](const KeyPress&) {
+              shown_ = !(shown_ && strip_shown_);
+              strip_shown_ = shown_;
+              return true;
+            }}}};
 }
 
 }  // namespace viz
