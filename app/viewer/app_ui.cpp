@@ -82,14 +82,8 @@ void App::main_panel() {
   WindowRect rect = layout_.main;
   if (!vars_column_) rect.size.y = layout_.vars.pos.y + layout_.vars.size.y - rect.pos.y;  // the whole column
   const PanelPlace where = place(rect);
-  ui::place(where);
   if (layout_apply_) ImGui::SetNextWindowCollapsed(lecture_mode_, ImGuiCond_Always);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("accelviz")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "accelviz")) return;
   ImGui::Text("frame %.1f ms (%.0f fps)", timing_.frame_ms, timing_.fps);
   ImGui::SameLine();
   ImGui::Checkbox("lecture (L)", &lecture_mode_);

@@ -62,7 +62,8 @@ void BuildPlayer::construct(std::shared_ptr<const accel::Scene> scene, const Str
         auto choice = accel::parse_structure(request.name, request.params);
         if (!choice) return choice.error();
         return accel::build_structure_recorded(*choice.value().info, *scene, choice.value().params, request.kernel,
-                                               accel::BuildRecorder::kDefaultBudgetBytes, control.get());
+                                               accel::BuildRecorder::kDefaultBudgetBytes, control.get(),
+                                               accel::recording_first_depth_limit(scene->triangle_count()));
       },
       synchronous);
   if (synchronous) poll();
@@ -80,6 +81,7 @@ void BuildPlayer::poll() {
   scene_ = std::move(pending_scene_);
   request_ = pending_request_;
   trace_ = std::make_shared<const accel::BuildTrace>(std::move(result.value().trace));
+  attempts_ = result.value().attempts.size();
   // The SAH constants price the tree so far; a structure without them counts 1 each.
   const accel::BuildStats stats = result.value().structure->build_stats();
   sah_ct_ = stats.sah_ct > 0.0 ? stats.sah_ct : 1.0;
@@ -109,9 +111,10 @@ void BuildPlayer::reset() {
   trace_.reset();
   replay_.reset();
   scene_.reset();
+  attempts_ = 0;
   player_.clear();
   view_ = BuildView{};
-  upload_ = true;
+  gl_.changed();
   error_.clear();
 }
 
@@ -135,7 +138,7 @@ void BuildPlayer::update() {
   view_step_ = player_.step();
   replay_->seek(player_.step());
   view_ = build_view(*trace_, *replay_, *scene_);
-  upload_ = true;
+  gl_.changed();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -144,13 +147,7 @@ void BuildPlayer::update() {
 void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<const accel::Scene>& scene,
                                 const StructureRequest& request) {
   const float em = ImGui::GetFontSize();
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Construction")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Construction")) return;
   if (recording()) {
     ImGui::TextColored(kCurrentText, "recording the build of %s ... %.1f s", pending_request_.name.c_str(),
                        recording_seconds());
@@ -169,9 +166,9 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     return;
   }
   ImGui::TextDisabled("%s (%s): %s", request_.name.c_str(), build_code_label(code_kind_), trace_->coverage().c_str());
-  if (trace_->depth_limit < std::numeric_limits<int>::max()) {
+  if (attempts_ > 1) {
     ImGui::SameLine();
-    ImGui::TextDisabled("(re-recorded)");
+    ImGui::TextDisabled("(%zu attempts)", attempts_);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("the step budget ran out: re-recorded with half the depth");
   }
 
@@ -263,13 +260,7 @@ void BuildPlayer::cost_plot_widget() {
 }
 
 void BuildPlayer::steps_panel(const PanelPlace& where) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Construction steps")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Construction steps")) return;
   if (!trace_ || trace_->events.empty()) {
     ImGui::TextDisabled("nothing recorded yet: Construct (B)");
     ImGui::End();
@@ -291,13 +282,7 @@ void BuildPlayer::steps_panel(const PanelPlace& where) {
 }
 
 void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Construction code")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Construction code")) return;
   const PseudoCode& code = build_pseudo_code(code_kind_);
   const int line = build_code_line(code_kind_, replay_ ? replay_->current() : nullptr);
   ImGui::TextDisabled("%s", code.title.c_str());
@@ -370,24 +355,8 @@ std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
 // ---------------------------------------------------------------------------------------
 // Drawing
 
-void BuildPlayer::init_gl() {
-  gl_.emplace();
-  upload_ = true;
-}
-
-void BuildPlayer::sync_gl() {
-  if (!gl_ || !upload_) return;
-  gl_->upload(view_.segments, view_.triangles, view_.lines);
-  upload_ = false;
-}
-
 void BuildPlayer::draw(Renderer& renderer) {
-  if (!gl_ || !active_) return;
-  gl_->draw(renderer);
-}
-
-void BuildPlayer::release_gl() {
-  gl_.reset();
+  if (active_) gl_.draw(renderer);
 }
 
 }  // namespace viz

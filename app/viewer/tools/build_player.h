@@ -74,10 +74,10 @@ class BuildPlayer {
   /// The "Construction code" panel in `mono`.
   void code_panel(const PanelPlace& place, ImFont* mono);
 
-  void init_gl();
-  void sync_gl();
+  void init_gl() { gl_.create(); }
+  void sync_gl() { gl_.sync(view_.segments, view_.triangles, view_.lines); }
   void draw(Renderer& renderer);
-  void release_gl();
+  void release_gl() { gl_.release(); }
 
  private:
   void cost_plot_widget();
@@ -88,6 +88,7 @@ class BuildPlayer {
   std::shared_ptr<const accel::Scene> pending_scene_;  // of the recording in progress
   StructureRequest request_, pending_request_;
   std::shared_ptr<const accel::BuildTrace> trace_;
+  size_t attempts_ = 0;  ///< recordings the trace took (more than 1: the step budget ran out)
   std::unique_ptr<accel::BuildReplay> replay_;
   double sah_ct_ = 1.0, sah_ci_ = 1.0;  ///< the structure's SAH constants, for the cost so far
   int sah_prims_per_test_ = 1;           ///< and its triangles per leaf test (4: wide layouts)
@@ -97,12 +98,11 @@ class BuildPlayer {
   bool active_ = false;
   bool sah_plot_ = true;
   bool dirty_ = true;
-  bool upload_ = false;
   size_t view_step_ = ~size_t(0);
   BuildView view_;
   StepListState steps_;  // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;
-  std::optional<HighlightBatches> gl_;
+  HighlightLayer gl_;  // the highlights on the GPU
 };
 
 }  // namespace viz

@@ -121,7 +121,7 @@ void RayDebugger::update(const accel::Scene& scene, const BuiltStructure* built)
   dirty_ = false;
   highlight_step_ = ray_.player.step();
   highlights_ = build_highlights(ray_, scene, built, options_);
-  upload_ = true;
+  gl_.changed();
 }
 
 accel::Status RayDebugger::need_ray() const {
@@ -142,13 +142,7 @@ std::string RayDebugger::ray_line() const { return accel::format_ray_line(ray_.r
 
 bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built) {
   const float em = ImGui::GetFontSize();
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Debug ray")) {
-    ImGui::End();
-    return false;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Debug ray")) return false;
   bool compare = false;
   if (!ray_.active) {
     ImGui::TextWrapped("Click into the scene to shoot a ray through that pixel.");
@@ -265,13 +259,7 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
 }
 
 void RayDebugger::steps_panel(const PanelPlace& where) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Traversal steps")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Traversal steps")) return;
   const auto& events = ray_.player.events();
   if (events.empty()) {
     ImGui::TextDisabled("no trace yet: click into the scene");
@@ -296,14 +284,8 @@ void RayDebugger::steps_panel(const PanelPlace& where) {
 }
 
 void RayDebugger::code_panel(const PanelPlace& where, const BuiltStructure* built, ImFont* mono) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
   const TraversalKind kind = built ? built->kind : TraversalKind::Unknown;
-  if (!ImGui::Begin("Pseudo code")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Pseudo code")) return;
   const PseudoCode& code = pseudo_code(kind);
   ImGui::TextDisabled("%s", code.title.c_str());
   ui::code_listing("code", code.lines, highlights_.code_line, mono, code_scrolled_);
@@ -430,25 +412,5 @@ std::vector<VerbRun> RayDebugger::script_verbs(ToolHost& host) {
 // ---------------------------------------------------------------------------------------
 // Drawing
 
-void RayDebugger::init_gl() {
-  gl_.emplace();
-  upload_ = true;
-}
-
-void RayDebugger::sync_gl() {
-  if (!gl_ || !upload_) return;
-  gl_->upload(highlights_.segments, highlights_.triangles, highlights_.lines);
-  upload_ = false;
-}
-
-void RayDebugger::draw(Renderer& renderer) {
-  if (!gl_) return;
-  // Highlights of the debug ray's current step (rebuilt only when the step changes).
-  gl_->draw(renderer);
-}
-
-void RayDebugger::release_gl() {
-  gl_.reset();
-}
 
 }  // namespace viz

@@ -85,20 +85,19 @@ class RayDebugger {
   void highlight_options();
 
   /// Creates the GL buffers (context current).
-  void init_gl();
+  void init_gl() { gl_.create(); }
   /// Uploads highlights rebuilt since the last frame (before the frame begins).
-  void sync_gl();
-  /// Draws the highlights of the current step.
-  void draw(Renderer& renderer);
+  void sync_gl() { gl_.sync(highlights_.segments, highlights_.triangles, highlights_.lines); }
+  /// Draws the highlights of the current step (rebuilt only when the step changes).
+  void draw(Renderer& renderer) { gl_.draw(renderer); }
   /// Releases the GL buffers.
-  void release_gl();
+  void release_gl() { gl_.release(); }
 
  private:
   DebugRay ray_;
   HighlightOptions options_;
   Highlights highlights_;
   bool dirty_ = true;                   // rebuild the highlights at the next update()
-  bool upload_ = false;                 // rebuilt on the CPU, not yet on the GPU
   size_t highlight_step_ = ~size_t(0);  // the step highlights_ shows
   StepListState steps_;                 // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;              // code line last scrolled into view
@@ -107,7 +106,7 @@ class RayDebugger {
   std::string marked_note_;
   std::optional<accel::PinholeCamera> saved_view_;
   float typed_ray_[6] = {0, 0, 5, 0, 0, -1};
-  std::optional<HighlightBatches> gl_;
+  HighlightLayer gl_;  // the highlights on the GPU
 };
 
 }  // namespace viz

@@ -252,7 +252,7 @@ accel::Status TreeDiagram::select(NodeId node, bool isolate) {
 
 void TreeDiagram::rebuild_highlight() {
   highlight_dirty_ = false;
-  upload_ = true;
+  gl_.changed();
   segments_.clear();
   lines_.clear();
   if (!on_ || selected_ == kNoNode || replay_mode_ || !structure_ || !shape_) return;
@@ -283,23 +283,9 @@ void TreeDiagram::rebuild_highlight() {
   append_node_segments(segments_, selected_view_, kSelected3D, 3.5f);
 }
 
-void TreeDiagram::init_gl() {
-  gl_.emplace();
-  upload_ = true;
-}
-
-void TreeDiagram::sync_gl() {
-  if (!gl_ || !upload_) return;
-  gl_->upload(segments_, {}, lines_);
-  upload_ = false;
-}
-
 void TreeDiagram::draw(Renderer& renderer) {
-  if (!gl_ || !on_ || (segments_.empty() && lines_.empty())) return;
-  gl_->draw(renderer);
+  if (on_ && !(segments_.empty() && lines_.empty())) gl_.draw(renderer);
 }
-
-void TreeDiagram::release_gl() { gl_.reset(); }
 
 // =======================================================================================
 // [SECTION] The window

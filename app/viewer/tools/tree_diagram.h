@@ -48,12 +48,12 @@ class TreeDiagram {
   /// The window at `place` (it docks along the bottom: the 3D view ends above it).
   void panel(const PanelPlace& place);
 
-  void init_gl();
+  void init_gl() { gl_.create(); }
   /// Uploads the selection's highlight when it changed.
-  void sync_gl();
+  void sync_gl() { gl_.sync(segments_, {}, lines_); }
   /// Draws the selected node (or isolated subtree) over the scene.
   void draw(Renderer& renderer);
-  void release_gl();
+  void release_gl() { gl_.release(); }
 
  private:
   void rebuild_layout();
@@ -104,10 +104,9 @@ class TreeDiagram {
   int hovered_ = -1;
   // 3D.
   bool highlight_dirty_ = true;
-  bool upload_ = false;
   std::vector<Segment> segments_;
   std::vector<ColorVertex> lines_;
-  std::optional<HighlightBatches> gl_;
+  HighlightLayer gl_;  // the highlights on the GPU
 };
 
 }  // namespace viz

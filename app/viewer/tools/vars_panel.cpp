@@ -194,13 +194,7 @@ void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* m
 
 void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel::TraceHighlight& h, TraversalKind kind,
                       ImFont* mono, const std::function<void()>& top_block) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Variables")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Variables")) return;
   if (top_block) top_block();
   const auto& events = ray.player.events();
   if (!ray.active || events.empty() || !h.valid) {
