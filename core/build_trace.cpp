@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <ostream>
 
 namespace accel {
@@ -237,6 +238,11 @@ Result<RecordedSteps> record_within_budget(const std::function<Status(BuildRecor
     }
     limit = std::min(limit, trace.max_depth_seen) / 2;
   }
+}
+
+int recording_first_depth_limit(size_t triangles) {
+  if (triangles <= kLargeRecordingTriangles) return std::numeric_limits<int>::max();
+  return std::max(1, static_cast<int>(std::ceil(std::log2(static_cast<double>(triangles)))) / 2);
 }
 
 // ----------------------------------------------------------------------------

@@ -236,4 +236,13 @@ struct RecordedSteps {
 Result<RecordedSteps> record_within_budget(const std::function<Status(BuildRecorder&)>& record,
                                            int first_depth_limit, size_t budget_bytes);
 
+/// Scenes with more triangles than this start recording at a depth limit
+/// (recording_first_depth_limit()).
+inline constexpr size_t kLargeRecordingTriangles = 200000;
+
+/// The first attempt's depth limit for a scene of `triangles`: every depth, or, above
+/// kLargeRecordingTriangles, half the depth a balanced binary tree over them would have
+/// (ceil(log2 N) / 2), so a huge scene is not recorded in full only to be recorded again.
+int recording_first_depth_limit(size_t triangles);
+
 }  // namespace accel

@@ -278,4 +278,23 @@ std::string ParamSet::to_string_all() const {
   return s;
 }
 
+std::vector<std::string> with_param(std::vector<std::string> params, const std::string& key, const std::string& value) {
+  const std::string prefix = key + "=";
+  for (std::string& p : params) {
+    if (p.starts_with(prefix)) {
+      p = prefix + value;
+      return params;
+    }
+  }
+  params.push_back(prefix + value);
+  return params;
+}
+
+std::string param_value(const std::vector<std::string>& params, const std::string& key, const std::string& fallback) {
+  const std::string prefix = key + "=";
+  for (const std::string& p : params)
+    if (p.starts_with(prefix)) return p.substr(prefix.size());
+  return fallback;
+}
+
 }  // namespace accel

@@ -97,6 +97,13 @@ Status validate_param(const ParamSpec& spec, const ParamValue& value, const std:
 /// Shortest "%g"-style text that reads back as exactly `v` ("2", "0.2", "1000").
 std::string format_param_number(double v);
 
+/// Replaces `key`'s value in a `key=value` list (appends it when absent): a front end's
+/// variation of a structure's parameters (the viewer's comparison and sweep).
+std::vector<std::string> with_param(std::vector<std::string> params, const std::string& key, const std::string& value);
+/// The value of `key` in a `key=value` list, or `fallback`.
+std::string param_value(const std::vector<std::string>& params, const std::string& key,
+                        const std::string& fallback = "");
+
 /// The one declaration of a structure's parameters over its options struct `Options`.
 /// Each entry binds a name to a field, given as a member pointer or as a callable that
 /// returns a reference to the field (`[](Options& o) -> auto& { return o.build.leaf_size; }`);

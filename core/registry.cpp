@@ -102,7 +102,8 @@ Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, co
 }
 
 Result<RecordedBuild> build_structure_recorded(const StructureInfo& info, const Scene& scene, const ParamSet& params,
-                                               Kernel kernel, size_t budget_bytes, BuildControl* control) {
+                                               Kernel kernel, size_t budget_bytes, BuildControl* control,
+                                               int first_depth_limit) {
   RecordedBuild out;
   auto steps = record_within_budget(
       [&](BuildRecorder& recorder) -> Status {
@@ -111,9 +112,10 @@ Result<RecordedBuild> build_structure_recorded(const StructureInfo& info, const 
         out.structure = std::move(built.value());
         return {};
       },
-      std::numeric_limits<int>::max(), budget_bytes);
+      first_depth_limit, budget_bytes);
   if (!steps) return steps.error();
   out.trace = std::move(steps.value().trace);
+  out.attempts = std::move(steps.value().attempts);
   return out;
 }
 

@@ -3,10 +3,12 @@
 // front ends show of them (label, what a node is called, which pseudo code applies), their
 // parameters, and a factory. Adding a structure means its files plus one entry in
 // registry.cpp; no front end compares a structure's name to a literal.
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "build_trace.h"
 #include "structure.h"
 
 namespace accel {
@@ -87,21 +89,24 @@ Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, co
                                                    const ParamSet& params, Kernel kernel = Kernel::Watertight,
                                                    BuildControl* control = nullptr,
                                                    BuildRecorder* recorder = nullptr);
-/// A build recorded for playback: the structure (exactly the one build_structure() makes)
-/// and its construction steps.
+/// A build recorded for playback: the structure (exactly the one build_structure() makes),
+/// its construction steps and how many recordings they took.
 struct RecordedBuild {
   std::unique_ptr<Structure> structure;
   BuildTrace trace;
+  std::vector<RecordAttempt> attempts;
 };
 /// Builds with every construction step recorded, keeping the steps within `budget_bytes`:
 /// when they do not fit, it records again with the depth limit halved (from the deepest node
 /// the builder made) until they do, so the top levels are complete and trace.coverage()
 /// says "recorded to depth D of E". Builders whose steps have no depth (bottom-up merges)
-/// keep the first steps that fit ("stopped at the step budget after K steps").
+/// keep the first steps that fit ("stopped at the step budget after K steps"). The first
+/// recording stops at `first_depth_limit` (the viewer's: recording_first_depth_limit()).
 Result<RecordedBuild> build_structure_recorded(const StructureInfo& info, const Scene& scene, const ParamSet& params,
                                                Kernel kernel = Kernel::Watertight,
                                                size_t budget_bytes = BuildRecorder::kDefaultBudgetBytes,
-                                               BuildControl* control = nullptr);
+                                               BuildControl* control = nullptr,
+                                               int first_depth_limit = std::numeric_limits<int>::max());
 
 /// The same from `key=value` strings, validated first (errors name the structure or the
 /// parameter and its valid range).

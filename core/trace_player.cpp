@@ -10,69 +10,14 @@ namespace accel {
 
 void TracePlayer::load(std::vector<TraceEvent> events, bool keep_step) {
   events_ = std::move(events);
-  if (!keep_step) {
-    reset();
-    return;
-  }
-  step_ = events_.empty() ? 0 : std::min(step_, events_.size() - 1);
-  if (at_end()) playing_ = false;
-}
-
-void TracePlayer::clear() {
-  events_.clear();
-  reset();
-}
-
-void TracePlayer::reset() {
-  step_ = 0;
-  playing_ = false;
-  carry_ = 0.0;
-}
-
-void TracePlayer::play() {
-  if (events_.empty()) return;
-  if (at_end()) step_ = 0;
-  playing_ = true;
-  carry_ = 0.0;
-}
-
-void TracePlayer::set_speed(double steps_per_second) {
-  // NaN compares false both ways: treat it as the default.
-  if (!(steps_per_second == steps_per_second)) steps_per_second = kDefaultSpeed;
-  speed_ = std::clamp(steps_per_second, kMinSpeed, kMaxSpeed);
-}
-
-bool TracePlayer::advance(double seconds) {
-  if (!playing_ || events_.empty() || !(seconds > 0.0)) return false;
-  carry_ += seconds * speed_;
-  const double whole = std::floor(carry_);
-  carry_ -= whole;
-  const size_t before = step_;
-  if (whole >= 1.0) step_forward(whole >= double(events_.size()) ? events_.size() : size_t(whole));
-  if (at_end()) {
-    playing_ = false;
-    carry_ = 0.0;
-  }
-  return step_ != before;
-}
-
-bool TracePlayer::step_forward(size_t n) {
-  if (events_.empty()) return false;
-  const size_t last = events_.size() - 1;
-  return seek(n >= last - step_ ? last : step_ + n);
-}
-
-bool TracePlayer::step_back(size_t n) { return seek(n >= step_ ? 0 : step_ - n); }
-
-bool TracePlayer::seek(size_t step) {
-  const size_t clamped = events_.empty() ? 0 : std::min(step, events_.size() - 1);
-  const bool changed = clamped != step_;
-  step_ = clamped;
-  return changed;
+  if (keep_step)
+    resize(events_.size());
+  else
+    restart(events_.size());
 }
 
 bool TracePlayer::jump_to_hit() {
-  playing_ = false;
+  pause();
   return seek(hit_step());
 }
 

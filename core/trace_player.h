@@ -2,7 +2,7 @@
 // Playback of a recorded traversal (TraceRecorder's events) for the viewer's animation, and
 // what each step shows. Both are plain logic with no GL, so the tests drive them without a
 // window:
-//   TracePlayer       time -> step: play/pause, speed, single steps, jump to the hit
+//   TracePlayer       time -> step (a PlaybackClock over the events), jump to the hit
 //   trace_highlight() events + step -> current node and its t interval, tested triangles,
 //                     skipped nodes with reasons, closest hit, pending stack/queue contents
 // The events come from the structure's one real traversal (intersect_traced); nothing here
@@ -12,49 +12,26 @@
 #include <span>
 #include <vector>
 
+#include "playback_clock.h"
 #include "trace.h"
 
 namespace accel {
 
-/// Steps through a recorded trace. The current step is an index into the events, in
-/// [0, size() - 1] (0 when there are none): the event at that index has just happened.
-class TracePlayer {
+/// Steps through a recorded trace: a PlaybackClock over its events (play, pause, speed,
+/// single steps, seek), plus the trace and the jump to the hit. The current step is an index
+/// into the events, in [0, size() - 1] (0 when there are none): the event at that index has
+/// just happened.
+class TracePlayer : public PlaybackClock {
  public:
-  /// Default and limits of the playback speed, in steps per second.
-  static constexpr double kDefaultSpeed = 4.0;
-  static constexpr double kMinSpeed = 0.25;
-  static constexpr double kMaxSpeed = 2000.0;
-
   /// Replaces the trace. keep_step = false: back to step 0, paused. keep_step = true (the
   /// same ray replayed on a rebuilt structure): the step index stays, clamped to the new
   /// trace's last step, and playing goes on.
   void load(std::vector<TraceEvent> events, bool keep_step = false);
   /// Drops the trace (size() = 0, step 0, paused).
-  void clear();
+  void clear() { load({}); }
   /// Step 0, paused.
-  void reset();
+  void reset() { restart(events_.size()); }
 
-  /// Starts playing; at the last step it starts over from step 0.
-  void play();
-  void pause() { playing_ = false; }
-  void toggle() { playing_ ? pause() : play(); }
-  bool playing() const { return playing_; }
-
-  /// Steps per second, clamped to [kMinSpeed, kMaxSpeed].
-  void set_speed(double steps_per_second);
-  double speed() const { return speed_; }
-
-  /// Advances by `seconds` of playing time (nothing while paused). Whole steps are taken,
-  /// the remainder carried to the next call; playing stops at the last step. Returns true
-  /// when the step changed.
-  bool advance(double seconds);
-  /// Moves `n` steps forward / back, clamped to the trace. Returns true when the step changed.
-  bool step_forward(size_t n = 1);
-  bool step_back(size_t n = 1);
-  /// Goes to `step`, clamped. Returns true when the step changed.
-  bool seek(size_t step);
-  /// Goes to the last step (the Done event).
-  bool jump_to_end() { return seek(size() ? size() - 1 : 0); }
   /// Goes to hit_step(). Pauses.
   bool jump_to_hit();
 
@@ -62,20 +39,13 @@ class TracePlayer {
   /// reported by Done, or the Done event on a miss (or the last event without a Done).
   size_t hit_step() const;
 
-  size_t step() const { return step_; }
   size_t size() const { return events_.size(); }
-  bool empty() const { return events_.empty(); }
-  bool at_end() const { return events_.empty() || step_ + 1 >= events_.size(); }
   /// The current event, or nullptr without a trace.
-  const TraceEvent* current() const { return events_.empty() ? nullptr : &events_[step_]; }
+  const TraceEvent* current() const { return events_.empty() ? nullptr : &events_[step()]; }
   const std::vector<TraceEvent>& events() const { return events_; }
 
  private:
   std::vector<TraceEvent> events_;
-  size_t step_ = 0;
-  bool playing_ = false;
-  double speed_ = kDefaultSpeed;
-  double carry_ = 0.0;  ///< fraction of a step accumulated by advance()
 };
 
 /// A ray/triangle test of the current node.

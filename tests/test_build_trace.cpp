@@ -375,5 +375,15 @@ TEST(BuildTraceJson, OneLinePerStepAfterAHeader) {
   EXPECT_NE(text.find("\"kind\":\"collapse\""), std::string::npos);
 }
 
+// The viewer's first recording of a huge scene stops at half a balanced tree's depth, so it
+// is not recorded in full only to be recorded again; smaller scenes record every depth.
+TEST(RecordingFirstDepthLimit, HalfTheBalancedDepthAboveTheLargeSceneSize) {
+  EXPECT_EQ(recording_first_depth_limit(0), std::numeric_limits<int>::max());
+  EXPECT_EQ(recording_first_depth_limit(kLargeRecordingTriangles), std::numeric_limits<int>::max());
+  EXPECT_EQ(recording_first_depth_limit(kLargeRecordingTriangles + 1), 9);  // ceil(log2 200001) = 18
+  EXPECT_EQ(recording_first_depth_limit(size_t(1) << 20), 10);
+  EXPECT_EQ(recording_first_depth_limit(size_t(10'000'000)), 12);  // ceil(log2 1e7) = 24
+}
+
 }  // namespace
 }  // namespace accel

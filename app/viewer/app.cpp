@@ -1,5 +1,5 @@
-// App, part 1: lifecycle, the per-frame update (session events, input, shortcuts) and
-// drawing. The tools do the work; App passes each what it needs from the others.
+// App, part 1: lifecycle and the rows, the per-frame update (session events, input, the
+// keys) and drawing. The tools do the work; App passes each what it needs from the others.
 #include "app.h"
 
 #include <algorithm>
@@ -9,8 +9,10 @@
 #include <imgui.h>
 
 #include "bench_chart_panel.h"
+#include "check.h"
 #include "registry.h"
 #include "scene2d.h"
+#include "script_verbs.h"
 
 namespace viz {
 namespace {
@@ -26,7 +28,25 @@ float aspect_of(glm::ivec2 size) { return static_cast<float>(size.x) / static_ca
 // ---------------------------------------------------------------------------------------
 // Lifecycle
 
-App::App() = default;
+App::App() {
+  ToolHost& host = *this;
+  // The order a key press is offered in: the playlist's PgDn / PgUp before the
+  // construction's, which have them without a playlist or with shift.
+  key_groups_ = {
+      global_keys(),        ray_.key_bindings(),      compare_.key_bindings(host),  heatmap_.key_bindings(),
+      vars_.key_bindings(), tree_.key_bindings(host), playlist_.key_bindings(host), build_.key_bindings(host)};
+  for (std::vector<VerbRun> rows :
+       {global_verbs(), session_.script_verbs(host), ray_.script_verbs(host), blackboard_verbs(),
+        nodes_.script_verbs(host), heatmap_.script_verbs(host), compare_.script_verbs(host), sweep_.script_verbs(host),
+        build_.script_verbs(host), tree_.script_verbs(host), trap_.script_verbs(host), playlist_.script_verbs(host),
+        recorder_.script_verbs(), bench_chart_script_verbs(chart_, host)}) {
+    for (VerbRun& row : rows) {
+      ACCEL_CHECK(!runs_.count(row.kind));  // one tool runs each kind
+      runs_[row.kind] = std::move(row.run);
+    }
+  }
+  for (const ScriptVerb& verb : script_verbs()) ACCEL_CHECK(runs_.count(verb.kind));  // every verb runs
+}
 
 App::~App() { shutdown(); }
 
@@ -272,6 +292,8 @@ void App::reset_for_playlist() {
   // Going back replays from the first state: what a state may have changed returns to the
   // viewer's defaults first (the scene, structure and ray come from the states themselves).
   panels_ = Panels{};
+  vars_.set_shown(true);
+  vars_.set_strip_shown(true);
   ui_visible_ = true;
   tree_.set_on(false);
   heatmap_.set_on(false);
@@ -302,6 +324,24 @@ void App::run_playlist(ScriptHost* host) {
     sync_session();
     if (!host) return;
   }
+}
+
+void App::walk_recorded(accel::PlaybackClock& clock, size_t from, ScriptHost& host) {
+  if (!recorder_.recording()) return;
+  // A recording holds one frame per step: walk there one step and one frame at a time.
+  const size_t to = clock.step();
+  while (from != to) {
+    from = from < to ? from + 1 : from - 1;
+    clock.seek(from);
+    host.render(1);
+  }
+}
+
+void App::settle_camera(ScriptHost& host) {
+  // The camera as it will be drawn: framing waits for the first draw (it needs the aspect
+  // ratio), but a ray shot before that must use the framed camera too. The frames lay the
+  // panels out (the 3D view's rectangle) and frame a new scene.
+  host.render(layout_frames_ + 1);
 }
 
 accel::Status App::toggle_recording() {
@@ -352,7 +392,7 @@ void App::update(float dt) {
   ray_.set_marked_step(trap_.marked_step(), "a naive traversal stops here");
   // The Variables panel shares the left column with the controls in the traversal mode
   // only; when it comes or goes the controls change height: lay out again.
-  const bool vars_column = panels_.vars && !build_.active() && !build_.recording();
+  const bool vars_column = vars_.shown() && !build_.active() && !build_.recording();
   if (vars_column != vars_column_) {
     vars_column_ = vars_column;
     layout_frames_ = 2;
@@ -383,7 +423,7 @@ void App::update(float dt) {
       WindowRect vars_rect = layout_.vars;
       if (lecture_mode_ && tree_.on())
         vars_rect.size.y = std::max(layout_.tree.pos.y - vars_rect.pos.y - layout_.main.pos.y, 6.0f * ImGui::GetFontSize());
-      if (panels_.vars)
+      if (vars_.shown())
         vars_.panel(place(vars_rect), ray_.ray(), ray_.step_highlight(),
                     shown ? shown->kind : TraversalKind::Unknown, mono,
                     [&] { trap_.block(ray_.ray(), ray_.player()); });
@@ -405,14 +445,14 @@ void App::update(float dt) {
       WindowRect rect = layout_.tree;
       // In lecture mode the controls are collapsed: the tree takes the whole width and the
       // Variables panel the column above it (its larger font needs the room more).
-      if ((!panels_.main && !panels_.vars) || lecture_mode_) {
+      if ((!panels_.main && !vars_.shown()) || lecture_mode_) {
         rect.size.x += rect.pos.x - layout_.main.pos.x;
         rect.pos.x = layout_.main.pos.x;
       }
       tree_.panel(place(rect));
     }
     bench_chart_window(chart_, layout_.chart.pos, layout_.chart.size, layout_apply_);
-    if (panels_.strip && !build_.active()) traversal_numbers();
+    if (vars_.strip_shown() && !build_.active()) traversal_numbers();
   }
   status_overlay();
   sync_session();  // the panels may have loaded a scene or switched the structure
@@ -458,65 +498,30 @@ void App::update_shortcuts() {
   keys.swap(pressed_keys_);
   // Typing "f" into the OBJ path field must not reframe the scene.
   if (ImGui::GetIO().WantCaptureKeyboard) return;
-  accel::TracePlayer& p = ray_.player();
-  BuildStepPlayer& b = build_.player();
-  for (const KeyPress& k : keys) {
-    const size_t n = (k.mods & GLFW_MOD_SHIFT) ? 10 : 1;
-    switch (k.key) {
-      case GLFW_KEY_F: frame_scene(); break;
-      case GLFW_KEY_D: (void)set_mode_2d(!mode_2d()); break;  // 2D / 3D; a failed load shows in the panel
-      case GLFW_KEY_ESCAPE: board_.clear(); break;
-      case GLFW_KEY_H: ui_visible_ = !ui_visible_; break;
-      case GLFW_KEY_L: lecture_mode_ = !lecture_mode_; break;
-      case GLFW_KEY_SPACE: p.toggle(); break;
-      case GLFW_KEY_RIGHT: p.pause(); p.step_forward(n); break;
-      case GLFW_KEY_LEFT: p.pause(); p.step_back(n); break;
-      case GLFW_KEY_HOME: p.pause(); p.seek(0); break;
-      case GLFW_KEY_END: p.pause(); p.jump_to_end(); break;
-      case GLFW_KEY_J: p.jump_to_hit(); break;
-      case GLFW_KEY_RIGHT_BRACKET: p.set_speed(p.speed() * 1.5); break;
-      case GLFW_KEY_LEFT_BRACKET: p.set_speed(p.speed() / 1.5); break;
-      case GLFW_KEY_C: compare_.set_open(true); start_compare(); break;
-      case GLFW_KEY_M: heatmap_.cycle(); break;
-      case GLFW_KEY_V:  // the traversal's variables and the t-axis strip together
-        panels_.vars = !(panels_.vars && panels_.strip);
-        panels_.strip = panels_.vars;
-        break;
-      case GLFW_KEY_T:
-        tree_.toggle();
-        layout_frames_ = 2;  // the bottom dock appears or goes: lay the panels out again
-        break;
-      // The construction mode: B records (again: back to the traversal), P . , PgUp PgDn - = step it.
-      case GLFW_KEY_B:
-        if (build_.active()) build_.set_active(false);
-        else if (session_.current() && !build_.recording()) construct();
-        break;
-      case GLFW_KEY_P: b.toggle(); break;
-      case GLFW_KEY_PERIOD: b.pause(); b.step_forward(n); break;
-      case GLFW_KEY_COMMA: b.pause(); b.step_back(n); break;
-      // A presenter's clicker sends PgDn / PgUp (some: the up and down arrows): with a
-      // playlist they move between its states; shift keeps them for the construction.
-      case GLFW_KEY_PAGE_UP:
-        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.prev_index());
-        else { b.pause(); b.seek(0); }
-        break;
-      case GLFW_KEY_PAGE_DOWN:
-        if (playlist_.loaded() && !(k.mods & GLFW_MOD_SHIFT)) go_to_state(playlist_.next_index());
-        else { b.pause(); b.jump_to_end(); }
-        break;
-      case GLFW_KEY_UP:
-        if (playlist_.loaded()) go_to_state(playlist_.prev_index());
-        break;
-      case GLFW_KEY_DOWN:
-        if (playlist_.loaded()) go_to_state(playlist_.next_index());
-        break;
-      case GLFW_KEY_R: (void)toggle_recording(); break;  // the notice says what happened
-      case GLFW_KEY_F12: recorder_.request_screenshot(); break;
-      case GLFW_KEY_EQUAL: b.set_speed(b.speed() * 1.5); break;
-      case GLFW_KEY_MINUS: b.set_speed(b.speed() / 1.5); break;
-      default: break;
-    }
-  }
+  for (const KeyPress& k : keys) dispatch_key(key_groups_, k);
+}
+
+KeyGroup App::global_keys() {
+  auto act = [](std::function<void()> fn) {
+    return [fn](const KeyPress&) {
+      fn();
+      return true;
+    };
+  };
+  return {"viewer",
+          {
+              {GLFW_KEY_F, "F", "frame the scene", act([this] { frame_scene(); })},
+              // A failed load shows in the panel.
+              {GLFW_KEY_D, "D", "the blackboard (2D mode) on and off", act([this] { (void)set_mode_2d(!mode_2d()); })},
+              {GLFW_KEY_ESCAPE, "Esc", "blackboard: forget the corners placed so far", act([this] { board_.clear(); })},
+              {GLFW_KEY_H, "H", "hide / show the panels", act([this] { ui_visible_ = !ui_visible_; })},
+              {GLFW_KEY_L, "L", "lecture mode: large fonts, high contrast, controls collapsed",
+               act([this] { lecture_mode_ = !lecture_mode_; })},
+              // The notice says what happened.
+              {GLFW_KEY_R, "R", "start / stop recording a GIF or MP4", act([this] { (void)toggle_recording(); })},
+              {GLFW_KEY_F12, "F12", "screenshot: writes a numbered accelviz_NNNN.png and says where",
+               act([this] { recorder_.request_screenshot(); })},
+          }};
 }
 
 // ---------------------------------------------------------------------------------------

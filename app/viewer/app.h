@@ -1,15 +1,22 @@
 #pragma once
 // App: the viewer's lifecycle, window layout, input dispatch and script dispatch. The
-// tools (app/viewer/tools/) own their state, panels and drawing; App only passes each the
-// little it needs from the others (the current structure, the camera, the view rectangle).
-// main.cpp owns the window and ImGui's backends and calls, per frame, update() between
-// ImGui::NewFrame() and ImGui::Render(), then draw(). Scripts (--script) go through execute().
+// tools (app/viewer/tools/) own their state, panels and drawing, and declare their keys and
+// script verbs as rows (commands.h); App keeps the global ones, concatenates the rest and
+// dispatches, and passes each tool the little it needs from the others (ToolHost: the
+// current structure, the camera, the view rectangle). main.cpp owns the window and ImGui's
+// backends and calls, per frame, update() between ImGui::NewFrame() and ImGui::Render(),
+// then draw(). Scripts (--script) go through execute().
 //
-//   app.cpp         lifecycle, per-frame update, input, drawing, session events
-//   app_ui.cpp      the window layout, the main panel and the lecture mode
-//   app_script.cpp  the script commands (one table, calling tool methods)
-//   app_blackboard.cpp  the 2D mode (issue #32): a 2D scene seen from above, edited with the mouse
+//   app.cpp         lifecycle, the rows, per-frame update, input and the global keys, drawing,
+//                   session events
+//   app_ui.cpp      the window layout, the main panel (its help made from the key rows), the
+//                   panels shown, the lecture mode
+//   app_script.cpp  script dispatch (by the verb rows' kind) and the global verbs
+//   app_blackboard.cpp  the 2D mode (issue #32): a 2D scene seen from above, edited with the
+//                   mouse, and its verbs
+//   app_state.cpp   the state as a script (save-state, --restore)
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,11 +25,13 @@
 
 #include "bench_chart.h"
 #include "camera.h"
+#include "commands.h"
 #include "input.h"
 #include "panels.h"
 #include "renderer.h"
 #include "result.h"
 #include "script.h"
+#include "tool_host.h"
 #include "tools/blackboard_editor.h"
 #include "tools/build_player.h"
 #include "tools/compare_tool.h"
@@ -51,26 +60,8 @@ struct Fonts {
   ImFont* mono_large = nullptr;
 };
 
-/// What the script runner needs from main(): rendering and the window.
-class ScriptHost {
- public:
-  virtual ~ScriptHost() = default;
-  /// Resizes the window (and waits until the framebuffer has the new size).
-  virtual accel::Status resize(int width, int height) = 0;
-  /// Renders `frames` complete frames (update, draw, ImGui).
-  virtual void render(int frames) = 0;
-  /// Renders and writes the finished frame to `path` (PNG).
-  virtual accel::Status screenshot(const std::string& path) = 0;
-  /// Renders `frames` frames, waiting for the GPU after each; returns the mean milliseconds.
-  virtual double measure_frames(int frames) = 0;
-  /// Framebuffer size in pixels.
-  virtual glm::ivec2 framebuffer_size() const = 0;
-  /// The OpenGL renderer (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
-  virtual std::string gl_renderer() const = 0;
-};
-
 /// The viewer: its tools, the camera, the window layout.
-class App {
+class App : private ToolHost {
  public:
   App();
   ~App();
@@ -113,16 +104,19 @@ class App {
   /// The builds' memory budget in bytes (0: the default); rebuilds the current structure.
   void set_memory_limit(size_t bytes) { session_.set_memory_limit(bytes); }
 
-  /// Runs one script command; rendering commands go through `host`. Errors are the
-  /// message only (the caller adds "SCRIPT:LINE: ").
+  /// Runs one script command through the run row of its kind; rendering commands go
+  /// through `host`. Errors are the message only (the caller adds "SCRIPT:LINE: ").
   accel::Status execute(const ScriptCommand& command, ScriptHost& host);
+  /// The key rows, App's global ones first, in the order a press is offered to them: what
+  /// the help and `accelviz --list keys` show. Needs no GL.
+  const std::vector<KeyGroup>& key_groups() const { return key_groups_; }
 
   /// The scene currently shown.
   const accel::Scene& scene() const { return session_.scene(); }
 
   /// Loads a lecture playlist (playlist.h) and queues its first state, which runs once the
   /// window is up (execute() in a script runs it at once). Errors "FILE:LINE: ...". Needs no GL.
-  accel::Status load_playlist(const std::string& path);
+  accel::Status load_playlist(const std::string& path) override;
 
   /// Switches to structure `name` with its key=value `params` (the command line's
   /// --structure and --param; checked as a script's `structure` line is). Needs no GL.
@@ -149,32 +143,48 @@ class App {
   accel::Status load_bench(const std::string& path) { return load_bench_into(chart_, path); }
 
  private:
-  // ---- app.cpp
-  void sync_session();
-  accel::Status apply_preset(const Preset& preset);
-  void shoot_at_pixel(float px, float py, bool from_saved_view);
-  void set_ray(const accel::Ray& ray, const std::string& origin);
-  void start_compare();
-  accel::Status start_sweep();
-  accel::Status load_trap(const std::string& name);
+  // ---- ToolHost: what the tools' rows ask of App
+  StructureSession& session() override { return session_; }
+  RayDebugger& ray() override { return ray_; }
+  BuildPlayer& build() override { return build_; }
+  bool synchronous() const override { return synchronous_; }
+  accel::Status loaded() const override { return synchronous_ ? session_.need_structure() : accel::Status{}; }
+  void sync_session() override;
+  void relayout() override { layout_frames_ = 2; }
+  void show_ui() override { ui_visible_ = true; }
+  void settle_camera(ScriptHost& host) override;
+  glm::ivec4 view_area() const override { return view_; }
+  glm::ivec2 framebuffer() const override { return framebuffer_; }
+  void walk_recorded(accel::PlaybackClock& clock, size_t from, ScriptHost& host) override;
+  void set_ray(const accel::Ray& ray, const std::string& origin) override;
+  void shoot_at_pixel(float px, float py, bool from_saved_view) override;
+  void start_compare() override;
+  accel::Status start_sweep() override;
+  void construct() override { build_.construct(session_.scene_ptr(), session_.current_request(), synchronous_); }
+  HeatmapView heatmap_view() const override;
+  accel::Status apply_preset(const Preset& preset) override;
+  accel::Status load_trap(const std::string& name) override;
   // The playlist: go to a state (queued; the viewer reset first when going back), run the
   // queued commands (`host` null: one per frame in the window, only when no build runs).
-  void go_to_state(size_t index);
-  void run_playlist(ScriptHost* host);
+  void go_to_state(size_t index) override;
+  void run_playlist(ScriptHost* host) override;
+
+  // ---- app.cpp
+  /// App's own keys: frame, 2D, hide the panels, lecture mode, record, screenshot, Esc.
+  KeyGroup global_keys();
   void reset_for_playlist();
-  void walk_recorded(size_t from, size_t to, const std::function<void(size_t)>& seek, ScriptHost& host);
   accel::Status toggle_recording();
-  /// After a command that loads a scene or starts a build: in script mode the structure
-  /// must be there; in the window it builds in the background (the playlist waits for it).
-  accel::Status loaded() const { return synchronous_ ? session_.need_structure() : accel::Status{}; }
-  void construct() { build_.construct(session_.scene_ptr(), session_.current_request(), synchronous_); }
   void switch_structure(const StructureChoice& choice) { session_.switch_structure(choice.name, choice.params); }
-  HeatmapView heatmap_view() const;
   void frame_scene() { frame_requested_ = true; }
   void update_camera_input();
   void update_shortcuts();
   void update_window_title();
   glm::ivec2 view_size() const { return {view_.z, view_.w}; }
+
+  // ---- app_script.cpp
+  /// App's own verbs: size, camera, panel, large, colors, screenshot, save-state,
+  /// print-frame-time.
+  std::vector<VerbRun> global_verbs();
 
   // ---- app_blackboard.cpp: the 2D mode
   /// 2D: the blackboard (the current 2D scene, else an empty one); 3D: back to the last 3D scene.
@@ -198,9 +208,13 @@ class App {
   void draw_board(bool grid);
   /// What the camera frames: the scene's box, or a 10 x 10 board for an empty 2D scene.
   accel::Aabb frame_box() const;
+  /// The 2D mode's script verbs (mode, scene2d, add2d, ray2d, save2d).
+  std::vector<VerbRun> blackboard_verbs();
 
   // ---- app_ui.cpp
   void apply_lecture_mode();
+  /// `panel NAME on|off`: one panel ("all": every one) shown or hidden.
+  void set_panel(const std::string& name, bool on);
   void layout_windows();
   PanelPlace place(const WindowRect& rect, bool docks = true);
   void main_panel();
@@ -231,6 +245,10 @@ class App {
   std::string board_path_ = "blackboard.scene2d";     // the Scene section's save field
   std::string board_status_;                          // what the last save said
 
+  // ---- The rows: keys in the order a press is offered, script runs by kind
+  std::vector<KeyGroup> key_groups_;
+  std::map<CommandKind, std::function<accel::Status(const ScriptCommand&, ScriptHost&)>> runs_;
+
   // ---- Camera, input and the 3D view
   Camera camera_;
   bool frame_requested_ = true;
@@ -251,7 +269,7 @@ class App {
   int layout_frames_ = 2;      // frames left that (re)apply the layout
   glm::vec2 layout_size_{0.0f};
   struct Panels {
-    bool main = true, ray = true, steps = true, code = true, legend = true, vars = true, strip = true;
+    bool main = true, ray = true, steps = true, code = true, legend = true;
   } panels_;
   bool ui_visible_ = true;
   bool lecture_mode_ = false;  // large fonts, high contrast
@@ -265,10 +283,6 @@ class App {
   GLFWwindow* window_ = nullptr;
   std::string window_title_;  // as last set
   KeyCallback previous_key_callback_ = nullptr;  // ImGui's, which ours chains to
-  struct KeyPress {
-    int key;
-    int mods;
-  };
   std::vector<KeyPress> pressed_keys_;  // GLFW keys pressed (or repeated) since the last update()
   std::optional<Renderer> renderer_;
   std::optional<ColorBatch> board_lines_;  // the 2D mode's grid, corners and dragged ray

@@ -1,5 +1,6 @@
-// App, part 2: the window layout, the main panel (each section belongs to a tool), the
-// status overlay and the lecture mode.
+// App, part 2: the window layout, the panels shown, the main panel (each section belongs
+// to a tool; the keys' help is made from their rows), the status overlay and the lecture
+// mode.
 #include <algorithm>
 #include <cmath>
 
@@ -49,20 +50,40 @@ void App::layout_windows() {
   layout_ = compute_layout(display, ImGui::GetFontSize(), lecture_mode_, panels_.main);
 }
 
+void App::set_panel(const std::string& name, bool on) {
+  if (name == "all")
+    ui_visible_ = on;
+  else if (name == "scene")
+    panels_.main = on;
+  else if (name == "ray")
+    panels_.ray = on;
+  else if (name == "steps")
+    panels_.steps = on;
+  else if (name == "code")
+    panels_.code = on;
+  else if (name == "compare")
+    compare_.set_open(on);
+  else if (name == "sweep")
+    sweep_.set_open(on);
+  else if (name == "legend")
+    panels_.legend = on;
+  else if (name == "vars")
+    vars_.set_shown(on);
+  else if (name == "strip")
+    vars_.set_strip_shown(on);
+  else if (name == "trap")
+    trap_.set_open(on);
+  if (on && name != "all") ui_visible_ = true;
+}
+
 PanelPlace App::place(const WindowRect& rect, bool docks) { return {rect, layout_apply_, docks ? &dock_ : nullptr}; }
 
 void App::main_panel() {
   WindowRect rect = layout_.main;
   if (!vars_column_) rect.size.y = layout_.vars.pos.y + layout_.vars.size.y - rect.pos.y;  // the whole column
   const PanelPlace where = place(rect);
-  ui::place(where);
   if (layout_apply_) ImGui::SetNextWindowCollapsed(lecture_mode_, ImGuiCond_Always);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("accelviz")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "accelviz")) return;
   ImGui::Text("frame %.1f ms (%.0f fps)", timing_.frame_ms, timing_.fps);
   ImGui::SameLine();
   ImGui::Checkbox("lecture (L)", &lecture_mode_);
@@ -129,17 +150,9 @@ void App::main_panel() {
     ImGui::TextDisabled("left drag: orbit   right drag: pan   wheel: zoom");
     ImGui::TextDisabled("click: shoot a ray through that pixel");
     ImGui::TextDisabled("shift-click: from the saved view at that point");
-    ImGui::TextDisabled("space: play/pause   left/right: step (shift: 10)");
-    ImGui::TextDisabled("home/end: first/last step   J: jump to hit");
-    ImGui::TextDisabled("[ ]: slower/faster   C: compare   M: heat map");
-    ImGui::TextDisabled("V: variables panel and t-axis strip");
-    ImGui::TextDisabled("T: tree diagram (click a node, wheel: zoom, drag: pan)");
-    ImGui::TextDisabled("F: frame scene   H: hide panels   L: lecture mode");
-    ImGui::TextDisabled("B: construct (again: traversal)   P: play/pause build");
-    ImGui::TextDisabled(", .: build step (shift: 10)   PgUp/PgDn: first/last");
-    ImGui::TextDisabled("- =: build slower/faster");
-    ImGui::TextDisabled("playlist: PgDn/PgUp or down/up: next/previous state");
-    ImGui::TextDisabled("R: record GIF/MP4   F12: screenshot");
+    ImGui::TextDisabled("tree diagram: click a node, wheel: zoom, drag: pan");
+    // The keys from the tools' rows, as they are dispatched.
+    for (const std::string& line : keys_help_lines(key_groups_)) ImGui::TextDisabled("%s", line.c_str());
   }
   ImGui::End();
 }

@@ -31,6 +31,7 @@
 #include "scene.h"
 #include "screenshot.h"
 #include "script.h"
+#include "script_verbs.h"
 #include "warm_start.h"
 
 namespace {
@@ -51,6 +52,7 @@ struct Options {
   int msaa = 4;                 ///< multisample anti-aliasing samples (0 = off)
   size_t memory_limit = 0;      ///< the builds' memory budget in bytes (0 = the default)
   std::string restore;          ///< a state file to reopen (--restore); empty = none
+  std::string list;             ///< --list: keys, keys-summary or commands; empty = none
 };
 
 constexpr int kMinSize = 64;
@@ -125,7 +127,11 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
       ->capture_default_str();
   cli.add_option("--script", options.script,
                  "run the viewer commands of this file (size, scene, structure, camera, ray-at-pixel, step, "
-                 "screenshot, print-hit, ...; see app/viewer/script.h), then exit");
+                 "screenshot, print-hit, ...; --list commands prints them all), then exit");
+  cli.add_option("--list", options.list,
+                 "print a Markdown table made from the tools' rows and exit: keys (every key), keys-summary (each "
+                 "tool's keys) or commands (the script commands); docs/viewer.md and README.md hold them")
+      ->check(CLI::IsMember({"keys", "keys-summary", "commands"}));
   cli.add_option("--bench-json", options.bench_json,
                  "open the speed-against-error chart of this accelviz-cli bench --out-json file");
   cli.add_option("--playlist", options.playlist,
@@ -328,9 +334,17 @@ int run_script(const std::string& script_name, const std::vector<viz::ScriptComm
 }  // namespace
 
 int main(int argc, char** argv) {
-  accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   Options options;
   if (const auto code = parse_command_line(argc, argv, options)) return *code;
+  if (!options.list.empty()) {  // the rows need no window: an App without GL has them
+    const viz::App app;
+    const std::string table = options.list == "commands"       ? viz::verbs_markdown(viz::script_verbs())
+                              : options.list == "keys-summary" ? viz::keys_summary_markdown(app.key_groups())
+                                                               : viz::keys_markdown(app.key_groups());
+    std::fputs(table.c_str(), stdout);
+    return 0;
+  }
+  accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   viz::browser::install_input_fetcher();  // the page: files next to it are fetched when opened
   const bool screenshot_mode = !options.screenshot.empty();
   const bool script_mode = !options.script.empty();

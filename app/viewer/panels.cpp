@@ -107,6 +107,17 @@ void note_docked(const PanelPlace& where) {
   viz::note_docked(*where.dock, ImGui::GetIO().DisplaySize.x, {pos.x, pos.y}, {size.x, size.y});
 }
 
+bool begin_panel(const PanelPlace& where, const char* title) {
+  place(where);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  if (!ImGui::Begin(title)) {
+    ImGui::End();
+    return false;
+  }
+  note_docked(where);
+  return true;
+}
+
 void code_listing(const char* id, const std::vector<std::string>& lines, int current, ImFont* mono,
                   int& scrolled) {
   ImGui::BeginChild(id, ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);

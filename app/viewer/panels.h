@@ -60,6 +60,10 @@ void place(const PanelPlace& place);
 /// Inside a window's Begin/End: notes the window in place.dock (when given), so a window
 /// along the left or right edge narrows the 3D view.
 void note_docked(const PanelPlace& place);
+/// A tool's panel: placed (place()), its background slightly translucent, begun, and noted
+/// docked. False when it is collapsed (its End() already called): draw nothing. True: draw
+/// the contents, then ImGui::End().
+bool begin_panel(const PanelPlace& place, const char* title);
 /// The body of a pseudo-code panel: a scrolling child `id` listing `lines` in `mono` (may be
 /// null), line `current` (-1: none) highlighted and kept in view; `scrolled` remembers the
 /// line last scrolled to (the panel's state), so the user may scroll away until it changes.

@@ -15,6 +15,7 @@
 // edge vertices with per-instance min/max/depth/leaf/count; the depth range and leaves-only
 // filters are uniforms the vertex shader applies, so changing them uploads nothing.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -246,6 +247,35 @@ class HighlightBatches {
   SegmentBatch segments_;
   ColorBatch triangles_{GL_TRIANGLES};
   ColorBatch lines_{GL_LINES};
+};
+
+/// A tool's highlights on the GPU and whether they need uploading: the lifecycle the ray
+/// debugger, the construction player and the tree diagram share. The tool rebuilds its
+/// geometry on the CPU and says changed(); sync() uploads it before the next frame.
+class HighlightLayer {
+ public:
+  /// The GL context is up: make the buffers (the next sync() uploads).
+  void create() {
+    batches_.emplace();
+    changed_ = true;
+  }
+  /// The geometry changed: upload it at the next sync().
+  void changed() { changed_ = true; }
+  void sync(std::span<const Segment> segments, std::span<const ColorVertex> triangles,
+            std::span<const ColorVertex> lines) {
+    if (!batches_ || !changed_) return;
+    batches_->upload(segments, triangles, lines);
+    changed_ = false;
+  }
+  void draw(Renderer& renderer) const {
+    if (batches_) batches_->draw(renderer);
+  }
+  /// Before the GL context goes.
+  void release() { batches_.reset(); }
+
+ private:
+  std::optional<HighlightBatches> batches_;
+  bool changed_ = false;
 };
 
 }  // namespace viz

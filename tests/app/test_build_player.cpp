@@ -1,5 +1,6 @@
 // The construction mode's logic (tools/build_playback.h): the step player, recording with
-// the depth-limit retry on a truncated trace, the step line, the cost plot, what a step
+// the depth-limit retry on a truncated trace (accel::record_within_budget, under the
+// accel::build_structure_recorded the mode calls), the step line, the cost plot, what a step
 // draws, the construction pseudo code, and the script commands.
 #include <gtest/gtest.h>
 
@@ -27,6 +28,9 @@ accel::Scene two_triangles() {
   return accel::Scene({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {3, 0, 0}, {2, 1, 0}}, {{0, 1, 2}, {3, 4, 5}},
                       "two");
 }
+
+// The first recording records every depth (accel::record_within_budget's first attempt).
+constexpr int kEveryDepth = std::numeric_limits<int>::max();
 
 Aabb box(Vec3 lo, Vec3 hi) {
   Aabb b;
@@ -106,28 +110,29 @@ accel::Status fake_tree(BuildRecorder& r, int depth) {
 }
 
 TEST(RecordWithRetry, CompleteWhenTheBudgetSuffices) {
-  auto rec = record_with_retry([](BuildRecorder& r) { return fake_tree(r, 6); }, 64);
+  auto rec = accel::record_within_budget([](BuildRecorder& r) { return fake_tree(r, 6); }, kEveryDepth,
+                                        BuildRecorder::kDefaultBudgetBytes);
   ASSERT_TRUE(rec.ok());
   ASSERT_EQ(rec.value().attempts.size(), 1u);
   EXPECT_EQ(rec.value().attempts[0].depth_limit, std::numeric_limits<int>::max());
-  EXPECT_FALSE(rec.value().trace->truncated);
-  EXPECT_EQ(rec.value().trace->coverage(), "complete");
+  EXPECT_FALSE(rec.value().trace.truncated);
+  EXPECT_EQ(rec.value().trace.coverage(), "complete");
   // scene box, 127 nodes, 63 splits, 64 leaves, done
-  EXPECT_EQ(rec.value().trace->events.size(), 1u + 127 + 63 + 64 + 1);
+  EXPECT_EQ(rec.value().trace.events.size(), 1u + 127 + 63 + 64 + 1);
 }
 
 TEST(RecordWithRetry, HalvesTheDepthOnATruncatedTrace) {
   // Room for 60 steps: the whole tree (256 steps) does not fit; to depth 3 (scene box, 15
   // nodes + 15 splits, 16 unrecorded nodes at depth 4, done = 48 steps) it does.
   const size_t budget = 60 * sizeof(BuildEvent) + 2048 * sizeof(uint32_t);
-  auto rec = record_with_retry([](BuildRecorder& r) { return fake_tree(r, 6); }, 64, budget);
+  auto rec = accel::record_within_budget([](BuildRecorder& r) { return fake_tree(r, 6); }, kEveryDepth, budget);
   ASSERT_TRUE(rec.ok());
   const auto& a = rec.value().attempts;
   ASSERT_EQ(a.size(), 2u);
   EXPECT_TRUE(a[0].truncated);
   EXPECT_EQ(a[1].depth_limit, 3);  // 6 / 2
   EXPECT_FALSE(a[1].truncated);
-  const BuildTrace& t = *rec.value().trace;
+  const BuildTrace& t = rec.value().trace;
   EXPECT_EQ(t.coverage(), "recorded to depth 3 of 6");
   EXPECT_EQ(t.events.size(), 48u);
   EXPECT_EQ(t.events.back().kind, BuildEventKind::Done);
@@ -136,19 +141,20 @@ TEST(RecordWithRetry, HalvesTheDepthOnATruncatedTrace) {
 TEST(RecordWithRetry, StopsAtDepthZero) {
   // Two steps of room: even the root level is too much; the last attempt (depth 0) is kept.
   const size_t budget = 2 * sizeof(BuildEvent) + 16;
-  auto rec = record_with_retry([](BuildRecorder& r) { return fake_tree(r, 4); }, 16, budget);
+  auto rec = accel::record_within_budget([](BuildRecorder& r) { return fake_tree(r, 4); }, kEveryDepth, budget);
   ASSERT_TRUE(rec.ok());
   const auto& a = rec.value().attempts;
   ASSERT_EQ(a.size(), 4u);  // all, 4/2 = 2, 1, 0
   EXPECT_EQ(a[1].depth_limit, 2);
   EXPECT_EQ(a[2].depth_limit, 1);
   EXPECT_EQ(a[3].depth_limit, 0);
-  EXPECT_TRUE(rec.value().trace->truncated);
-  EXPECT_NE(rec.value().trace->coverage().find("stopped at the step budget"), std::string::npos);
+  EXPECT_TRUE(rec.value().trace.truncated);
+  EXPECT_NE(rec.value().trace.coverage().find("stopped at the step budget"), std::string::npos);
 }
 
 TEST(RecordWithRetry, ErrorsPassThrough) {
-  auto rec = record_with_retry([](BuildRecorder&) -> accel::Status { return accel::make_error("boom"); }, 1);
+  auto rec = accel::record_within_budget([](BuildRecorder&) -> accel::Status { return accel::make_error("boom"); },
+                                        kEveryDepth, BuildRecorder::kDefaultBudgetBytes);
   ASSERT_FALSE(rec.ok());
   EXPECT_EQ(rec.error().message, "boom");
 }
@@ -157,9 +163,9 @@ TEST(RecordStructure, BruteForceHasFourSteps) {
   const accel::Scene scene = two_triangles();
   StructureRequest request;
   request.name = "brute";
-  auto rec = record_structure(scene, request, nullptr);
+  auto rec = test::record_build(scene, request);
   ASSERT_TRUE(rec.ok()) << rec.error().message;
-  const BuildTrace& t = *rec.value().trace;
+  const BuildTrace& t = rec.value().trace;
   ASSERT_EQ(t.events.size(), 4u);
   EXPECT_EQ(build_step_line(t, 0), "build step 0/4: nothing built yet");
   EXPECT_EQ(build_step_line(t, 1), "build step 1/4: scene box computed");
@@ -192,7 +198,7 @@ TEST(RecordStructure, BruteForceHasFourSteps) {
 TEST(RecordStructure, UnknownStructureIsAnError) {
   StructureRequest request;
   request.name = "nope";
-  auto rec = record_structure(two_triangles(), request, nullptr);
+  auto rec = test::record_build(two_triangles(), request);
   ASSERT_FALSE(rec.ok());
   EXPECT_NE(rec.error().message.find("unknown structure 'nope'"), std::string::npos);
 }

@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "build_control.h"
+#include "build_runner.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {

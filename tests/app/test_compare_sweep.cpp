@@ -5,9 +5,11 @@
 #include <memory>
 #include <set>
 
+#include "params.h"
 #include "registry.h"
+#include "tools/compare_model.h"
+#include "tools/sweep_model.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {
@@ -40,7 +42,7 @@ TEST(Workbench, CompareRunsEveryStructureAndTraversalOnOneRay) {
     if (r.current) {
       ++current_rows;
       EXPECT_EQ(r.label, "bvh (dfs)");
-      EXPECT_EQ(param_value(r.params, "leaf_size"), "2");  // the current parameters kept
+      EXPECT_EQ(accel::param_value(r.params, "leaf_size"), "2");  // the current parameters kept
     }
   }
   EXPECT_EQ(current_rows, 1);

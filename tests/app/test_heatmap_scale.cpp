@@ -4,10 +4,10 @@
 
 #include <numeric>
 
+#include "built_structure.h"
 #include "ray_gen.h"
 #include "tools/heatmap_scale.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {

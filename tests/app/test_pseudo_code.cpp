@@ -3,10 +3,10 @@
 
 #include <set>
 
+#include "built_structure.h"
 #include "pseudo_code.h"
 #include "registry.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {

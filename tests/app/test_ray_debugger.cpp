@@ -3,10 +3,12 @@
 
 #include <memory>
 
+#include "built_structure.h"
+#include "params.h"
 #include "registry.h"
+#include "tools/debug_ray.h"
 #include "tools/highlights.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {
@@ -28,10 +30,10 @@ TEST(Workbench, BuildErrorsNameTheParameter) {
   req.name = "nope";
   req.params = {};
   EXPECT_FALSE(build_structure_now(scene, req).ok());
-  EXPECT_EQ(with_param({"a=1", "b=2"}, "b", "3"), (std::vector<std::string>{"a=1", "b=3"}));
-  EXPECT_EQ(with_param({"a=1"}, "c", "x"), (std::vector<std::string>{"a=1", "c=x"}));
-  EXPECT_EQ(param_value({"a=1", "traversal=dfs"}, "traversal"), "dfs");
-  EXPECT_EQ(param_value({"a=1"}, "traversal", "ordered"), "ordered");
+  EXPECT_EQ(accel::with_param({"a=1", "b=2"}, "b", "3"), (std::vector<std::string>{"a=1", "b=3"}));
+  EXPECT_EQ(accel::with_param({"a=1"}, "c", "x"), (std::vector<std::string>{"a=1", "c=x"}));
+  EXPECT_EQ(accel::param_value({"a=1", "traversal=dfs"}, "traversal"), "dfs");
+  EXPECT_EQ(accel::param_value({"a=1"}, "traversal", "ordered"), "ordered");
 }
 
 TEST(Workbench, RayReplayAfterRebuildKeepsTheStep) {

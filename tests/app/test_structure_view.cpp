@@ -3,11 +3,11 @@
 
 #include <cmath>
 
+#include "built_structure.h"
 #include "registry.h"
 #include "structure_view.h"
 #include "tools/depth_filter.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {

@@ -6,10 +6,11 @@
 #include <cmath>
 #include <variant>
 
+#include "built_structure.h"
+#include "tools/debug_ray.h"
 #include "tools/traversal_numbers.h"
 #include "traps.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {

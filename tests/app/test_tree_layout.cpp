@@ -6,12 +6,13 @@
 #include <map>
 #include <set>
 
+#include "built_structure.h"
 #include "registry.h"
 #include "tools/build_playback.h"
+#include "tools/debug_ray.h"
 #include "tools/tree_layout.h"
 #include "trace_player.h"
 #include "viewer_test_support.h"
-#include "workbench.h"
 
 namespace viz {
 namespace {
@@ -244,9 +245,9 @@ TEST(TreeLayout, ConstructionShowsTheNodesBuiltSoFar) {
   StructureRequest req;
   req.name = "bvh";
   req.params = {"width=2"};
-  auto rec = record_structure(*scene, req, nullptr);
+  auto rec = test::record_build(*scene, req);
   ASSERT_TRUE(rec.ok()) << rec.error().message;
-  accel::BuildReplay replay(*rec.value().trace);
+  accel::BuildReplay replay(rec.value().trace);
   // Part way: the nodes built so far, the step's node current and in the layout.
   replay.seek(replay.steps() / 3);
   {

@@ -5,7 +5,9 @@
 #include <memory>
 #include <string>
 
+#include "built_structure.h"
 #include "ray_gen.h"
+#include "registry.h"
 #include "scene.h"
 
 namespace viz::test {
@@ -23,6 +25,14 @@ inline accel::Ray sphere_ray() {
   r.org = accel::Vec3(0.13f, 0.21f, 5.0f);
   r.dir = glm::normalize(accel::Vec3(-0.02f, -0.03f, -1.0f));
   return r;
+}
+
+/// The build of `request` over `scene` with its steps recorded, as the construction mode
+/// records it (accel::build_structure_recorded).
+inline accel::Result<accel::RecordedBuild> record_build(const accel::Scene& scene, const StructureRequest& request) {
+  auto choice = accel::parse_structure(request.name, request.params);
+  if (!choice) return choice.error();
+  return accel::build_structure_recorded(*choice.value().info, scene, choice.value().params, request.kernel);
 }
 
 }  // namespace viz::test

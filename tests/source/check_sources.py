@@ -3,7 +3,11 @@
 
   * no source file in core/ or app/ is over 700 lines (one lecture algorithm per file);
   * nothing in app/ compares a structure's name to a literal: what a front end needs of a
-    structure comes from its registry entry (core/registry.h).
+    structure comes from its registry entry (core/registry.h);
+  * the viewer's tools own their keys and script verbs (issue #42, app/viewer/commands.h):
+    app/viewer/app.cpp and app_script.cpp dispatch through the rows and hold no switch over
+    keys, no key a tool binds (a GLFW_KEY_ named in app/viewer/tools/), and no verb or
+    command kind a tool declares (the rows of the *_verbs.cpp files).
 
     python3 tests/source/check_sources.py [REPO]
 
@@ -21,6 +25,64 @@ def structure_names(repo):
     """The registered names, read from core/registry.cpp's entries."""
     text = open(os.path.join(repo, 'core', 'registry.cpp'), encoding='utf-8').read()
     return re.findall(r'^\s*\{"([a-z_]+)",', text, re.M)
+
+
+# The files that dispatch keys and script commands: only App's global ones may be named there.
+DISPATCHERS = ('app/viewer/app.cpp', 'app/viewer/app_script.cpp')
+KEY = re.compile(r'\bGLFW_KEY_\w+')
+VERB_ROW = re.compile(r'\{\s*"([a-z0-9][a-z0-9-]*)",\s*CommandKind::(\w+)')
+KIND = re.compile(r'\bCommandKind::(\w+)')
+
+
+def code_of(line):
+    """A line without its // comment (a comment may name a key or a verb)."""
+    return line.split('//')[0]
+
+
+def tool_rows(repo):
+    """The keys bound in app/viewer/tools/, and the verbs and command kinds of the tools' rows."""
+    keys, verbs, kinds = set(), set(), set()
+    viewer = os.path.join(repo, 'app', 'viewer')
+    for folder, _, files in os.walk(viewer):
+        for name in files:
+            if not SOURCE.search(name):
+                continue
+            text = open(os.path.join(folder, name), encoding='utf-8').read()
+            code = '\n'.join(code_of(line) for line in text.split('\n'))
+            if os.path.basename(folder) == 'tools':
+                keys.update(KEY.findall(code))
+            if name.endswith('_verbs.cpp'):
+                verbs.update(verb for verb, _ in VERB_ROW.findall(code))
+                kinds.update(KIND.findall(code))
+    return keys, verbs, kinds
+
+
+def dispatch_problems(repo):
+    """Per-tool keys and verbs in App's dispatchers."""
+    keys, verbs, kinds = tool_rows(repo)
+    if not keys or not verbs:
+        return [f'{repo}/app/viewer: found no tool keys ({len(keys)}) or verbs ({len(verbs)}): the check reads nothing']
+    # A verb as a row ({"tree", ...}) or compared (verb == "tree"); a word like "nodes" as a
+    # label is no verb.
+    alternatives = '|'.join(map(re.escape, sorted(verbs)))
+    verb_use = re.compile(rf'(?:\{{\s*|[=!]=\s*)"({alternatives})"|"({alternatives})"\s*[=!]=')
+    problems = []
+    for rel in DISPATCHERS:
+        path = os.path.join(repo, rel)
+        if not os.path.exists(path):
+            continue
+        for number, line in enumerate(open(path, encoding='utf-8').read().split('\n'), 1):
+            code = code_of(line)
+            if re.search(r'\bcase\s+GLFW_KEY_', code):
+                problems.append(f'{rel}:{number}: a switch over keys (dispatch through the rows: commands.h)')
+            for key in sorted(set(KEY.findall(code)) & keys):
+                problems.append(f'{rel}:{number}: {key} is a tool\'s key (its rows belong in the tool)')
+            for verb in (a or b for a, b in verb_use.findall(code)):
+                problems.append(f'{rel}:{number}: "{verb}" is a tool\'s script verb (its rows belong in the tool)')
+            for kind in sorted(set(KIND.findall(code)) & kinds):
+                problems.append(f'{rel}:{number}: CommandKind::{kind} is a tool\'s command (its run row belongs in '
+                                'the tool)')
+    return problems
 
 
 def main():
@@ -48,6 +110,7 @@ def main():
                         if compare.search(line.split('//')[0]):
                             problems.append(f'{rel}:{number}: compares a structure name to a literal '
                                             '(take it from the registry entry)')
+    problems += dispatch_problems(repo)
     for p in problems:
         print(p)
     print(f'{len(names)} structures, {len(problems)} problems', file=sys.stderr)

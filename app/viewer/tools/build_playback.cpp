@@ -3,10 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-
-#include "params.h"
-#include "registry.h"
 
 namespace viz {
 
@@ -16,86 +12,7 @@ using accel::BuildTrace;
 using accel::kNoBuildNode;
 
 // ---------------------------------------------------------------------------------------
-// Player
-
-void BuildStepPlayer::load(size_t steps) {
-  size_ = steps;
-  step_ = 0;
-  playing_ = false;
-  carry_ = 0.0;
-}
-
-void BuildStepPlayer::play() {
-  if (size_ == 0) return;
-  if (at_end()) step_ = 0;
-  playing_ = true;
-  carry_ = 0.0;
-}
-
-void BuildStepPlayer::set_speed(double s) { speed_ = std::clamp(s, kMinSpeed, kMaxSpeed); }
-
-bool BuildStepPlayer::advance(double seconds) {
-  if (!playing_ || seconds <= 0.0) return false;
-  carry_ += seconds * speed_;
-  const double whole = std::floor(carry_);
-  carry_ -= whole;
-  const size_t before = step_;
-  step_ = static_cast<size_t>(std::min(static_cast<double>(size_), static_cast<double>(step_) + whole));
-  if (at_end()) playing_ = false;
-  return step_ != before;
-}
-
-bool BuildStepPlayer::step_forward(size_t n) { return seek(n > size_ - step_ ? size_ : step_ + n); }
-
-bool BuildStepPlayer::step_back(size_t n) { return seek(n > step_ ? 0 : step_ - n); }
-
-bool BuildStepPlayer::seek(size_t step) {
-  step = std::min(step, size_);
-  const bool changed = step != step_;
-  step_ = step;
-  return changed;
-}
-
-// ---------------------------------------------------------------------------------------
-// Recording
-
-accel::Result<RecordedBuild> record_with_retry(const RecordFn& record, size_t triangles, size_t budget_bytes) {
-  int limit = std::numeric_limits<int>::max();
-  if (triangles > kLargeSceneTriangles)
-    limit = std::max(1, static_cast<int>(std::ceil(std::log2(static_cast<double>(triangles)))) / 2);
-  auto steps = accel::record_within_budget(record, limit, budget_bytes);
-  if (!steps) return steps.error();
-  RecordedBuild out;
-  out.attempts = std::move(steps.value().attempts);
-  out.trace = std::make_shared<const BuildTrace>(std::move(steps.value().trace));
-  return out;
-}
-
-accel::Result<RecordedBuild> record_structure(const accel::Scene& scene, const StructureRequest& request,
-                                              accel::BuildControl* control, size_t budget_bytes) {
-  auto choice = accel::parse_structure(request.name, request.params);
-  if (!choice) return choice.error();
-  double ct = 1.0, ci = 1.0;
-  int per_test = 1;
-  auto recorded = record_with_retry(
-      [&](accel::BuildRecorder& recorder) -> accel::Status {
-        auto s = accel::build_structure(*choice.value().info, scene, choice.value().params, request.kernel, control,
-                                        &recorder);
-        if (!s) return s.error();
-        const accel::BuildStats stats = s.value()->build_stats();
-        if (stats.sah_ct > 0.0) ct = stats.sah_ct;
-        if (stats.sah_ci > 0.0) ci = stats.sah_ci;
-        per_test = std::max(1, stats.sah_prims_per_test);
-        return {};
-      },
-      scene.triangle_count(), budget_bytes);
-  if (recorded) {
-    recorded.value().sah_ct = ct;
-    recorded.value().sah_ci = ci;
-    recorded.value().sah_prims_per_test = per_test;
-  }
-  return recorded;
-}
+// Steps
 
 std::string build_step_line(const BuildTrace& trace, size_t applied) {
   applied = std::min(applied, trace.events.size());

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/structure_session.h"
+#include "tools/transport_controls.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -53,9 +57,13 @@ void BuildPlayer::construct(std::shared_ptr<const accel::Scene> scene, const Str
   error_.clear();
   auto control = control_;
   job_.start(
-      [scene, request, control](const std::atomic<bool>& cancel) -> accel::Result<RecordedBuild> {
+      [scene, request, control](const std::atomic<bool>& cancel) -> accel::Result<accel::RecordedBuild> {
         if (cancel) return accel::cancelled_error();
-        return record_structure(*scene, request, control.get());
+        auto choice = accel::parse_structure(request.name, request.params);
+        if (!choice) return choice.error();
+        return accel::build_structure_recorded(*choice.value().info, *scene, choice.value().params, request.kernel,
+                                               accel::BuildRecorder::kDefaultBudgetBytes, control.get(),
+                                               accel::recording_first_depth_limit(scene->triangle_count()));
       },
       synchronous);
   if (synchronous) poll();
@@ -72,11 +80,13 @@ void BuildPlayer::poll() {
   }
   scene_ = std::move(pending_scene_);
   request_ = pending_request_;
-  trace_ = result.value().trace;
-  attempts_ = result.value().attempts;
-  sah_ct_ = result.value().sah_ct;
-  sah_ci_ = result.value().sah_ci;
-  sah_prims_per_test_ = result.value().sah_prims_per_test;
+  trace_ = std::make_shared<const accel::BuildTrace>(std::move(result.value().trace));
+  attempts_ = result.value().attempts.size();
+  // The SAH constants price the tree so far; a structure without them counts 1 each.
+  const accel::BuildStats stats = result.value().structure->build_stats();
+  sah_ct_ = stats.sah_ct > 0.0 ? stats.sah_ct : 1.0;
+  sah_ci_ = stats.sah_ci > 0.0 ? stats.sah_ci : 1.0;
+  sah_prims_per_test_ = std::max(1, stats.sah_prims_per_test);
   replay_ = std::make_unique<accel::BuildReplay>(*trace_);
   code_kind_ = build_code_kind(request_.name, request_.params);
   player_.load(trace_->events.size());
@@ -101,10 +111,10 @@ void BuildPlayer::reset() {
   trace_.reset();
   replay_.reset();
   scene_.reset();
-  attempts_.clear();
+  attempts_ = 0;
   player_.clear();
   view_ = BuildView{};
-  upload_ = true;
+  gl_.changed();
   error_.clear();
 }
 
@@ -128,7 +138,7 @@ void BuildPlayer::update() {
   view_step_ = player_.step();
   replay_->seek(player_.step());
   view_ = build_view(*trace_, *replay_, *scene_);
-  upload_ = true;
+  gl_.changed();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -137,13 +147,7 @@ void BuildPlayer::update() {
 void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<const accel::Scene>& scene,
                                 const StructureRequest& request) {
   const float em = ImGui::GetFontSize();
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Construction")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Construction")) return;
   if (recording()) {
     ImGui::TextColored(kCurrentText, "recording the build of %s ... %.1f s", pending_request_.name.c_str(),
                        recording_seconds());
@@ -162,38 +166,13 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     return;
   }
   ImGui::TextDisabled("%s (%s): %s", request_.name.c_str(), build_code_label(code_kind_), trace_->coverage().c_str());
-  if (attempts_.size() > 1) {
+  if (attempts_ > 1) {
     ImGui::SameLine();
-    ImGui::TextDisabled("(%zu attempts)", attempts_.size());
+    ImGui::TextDisabled("(%zu attempts)", attempts_);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("the step budget ran out: re-recorded with half the depth");
   }
 
-  BuildStepPlayer& p = player_;
-  if (ImGui::Button("|<")) { p.pause(); p.seek(0); }
-  ImGui::SameLine();
-  if (ImGui::Button("<")) { p.pause(); p.step_back(); }
-  ImGui::SameLine();
-  if (ImGui::Button(p.playing() ? "Pause" : "Play", ImVec2(4.0f * em, 0.0f))) p.toggle();
-  ImGui::SameLine();
-  if (ImGui::Button(">")) { p.pause(); p.step_forward(); }
-  ImGui::SameLine();
-  if (ImGui::Button(">|")) { p.pause(); p.jump_to_end(); }
-  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
-  int step = static_cast<int>(p.step());
-  ImGui::SetNextItemWidth(half);
-  char step_format[48];
-  std::snprintf(step_format, sizeof step_format, "step %%d of %zu", p.size());
-  if (ImGui::SliderInt("##bstep", &step, 0, static_cast<int>(p.size()), step_format, ImGuiSliderFlags_AlwaysClamp)) {
-    p.pause();
-    p.seek(static_cast<size_t>(step));
-  }
-  ImGui::SameLine();
-  float speed = static_cast<float>(p.speed());
-  ImGui::SetNextItemWidth(half);
-  if (ImGui::SliderFloat("##bspeed", &speed, static_cast<float>(BuildStepPlayer::kMinSpeed),
-                         static_cast<float>(BuildStepPlayer::kMaxSpeed), "speed %.3g steps/s",
-                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
-    p.set_speed(speed);
+  transport_controls(player_, {0, "nothing recorded"});
 
   const BuildEvent* e = replay_ ? replay_->current() : nullptr;
   if (e) {
@@ -208,7 +187,7 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     ImGui::TableHeadersRow();
     ImGui::TableNextRow();
     ImGui::TableSetColumnIndex(0);
-    ImGui::TextDisabled("step %zu", p.step());
+    ImGui::TextDisabled("step %zu", player_.step());
     const size_t values[3] = {replay_->live_nodes(), replay_->leaves(), replay_->references()};
     for (int i = 0; i < 3; ++i) {
       ImGui::TableSetColumnIndex(i + 1);
@@ -281,62 +260,29 @@ void BuildPlayer::cost_plot_widget() {
 }
 
 void BuildPlayer::steps_panel(const PanelPlace& where) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Construction steps")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Construction steps")) return;
   if (!trace_ || trace_->events.empty()) {
     ImGui::TextDisabled("nothing recorded yet: Construct (B)");
     ImGui::End();
     return;
   }
-  ImGui::Checkbox("follow", &follow_step_);
-  ImGui::SameLine();
-  ImGui::TextDisabled("click a step to go there");
-  ImGui::BeginChild("bsteps");
+  // Step K has applied events 0..K-1: the current row is the last one applied.
   const auto& events = trace_->events;
-  const float row_h = ImGui::GetTextLineHeightWithSpacing();
   const size_t applied = player_.step();
-  const size_t current = applied ? applied - 1 : ~size_t(0);
-  if (follow_step_ && applied != steps_scrolled_) {
-    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(applied) * row_h - 0.5f * ImGui::GetWindowHeight()));
-    steps_scrolled_ = applied;
+  const std::optional<size_t> current = applied ? std::optional<size_t>(applied - 1) : std::nullopt;
+  const auto clicked = step_list(events.size(), current, applied, steps_, [&](size_t i) {
+    return StepRow{events[i].depth, accel::describe_build_event(*trace_, events[i]), event_color(events[i])};
+  });
+  if (clicked) {
+    player_.pause();
+    player_.seek(*clicked + 1);
+    steps_.scrolled = *clicked + 1;
   }
-  ImGuiListClipper clipper;
-  clipper.Begin(static_cast<int>(events.size()), row_h);
-  while (clipper.Step()) {
-    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
-      const BuildEvent& e = events[static_cast<size_t>(i)];
-      char label[320];
-      std::snprintf(label, sizeof label, "%5d  %*s%s", i + 1, std::min<int>(e.depth, 24), "",
-                    accel::describe_build_event(*trace_, e).c_str());
-      const bool is_current = static_cast<size_t>(i) == current;
-      ImGui::PushStyleColor(ImGuiCol_Text, is_current ? ImVec4(0, 0, 0, 1) : event_color(e));
-      if (is_current) ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
-      if (ImGui::Selectable(label, is_current)) {
-        player_.pause();
-        player_.seek(static_cast<size_t>(i) + 1);
-        steps_scrolled_ = static_cast<size_t>(i) + 1;
-      }
-      if (is_current) ImGui::PopStyleColor();
-      ImGui::PopStyleColor();
-    }
-  }
-  ImGui::EndChild();
   ImGui::End();
 }
 
 void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Construction code")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Construction code")) return;
   const PseudoCode& code = build_pseudo_code(code_kind_);
   const int line = build_code_line(code_kind_, replay_ ? replay_->current() : nullptr);
   ImGui::TextDisabled("%s", code.title.c_str());
@@ -345,26 +291,72 @@ void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: build_player_verbs.cpp)
+
+KeyGroup BuildPlayer::key_bindings(ToolHost& host) {
+  std::vector<KeyBinding> rows = {
+      {GLFW_KEY_B, "B", "construction mode: record the current structure's build (again: back to the traversal)",
+       [this, &host](const KeyPress&) {
+         if (active())
+           set_active(false);
+         else if (host.session().current() && !recording())
+           host.construct();
+         return true;
+       }},
+  };
+  // PgUp / PgDn: the playlist's rows come first and leave them here without a playlist or
+  // with shift.
+  const std::vector<KeyBinding> transport =
+      transport_keys(player_, {"construction", GLFW_KEY_P, "P", GLFW_KEY_COMMA, GLFW_KEY_PERIOD, ", / .",
+                               GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, "PgUp / PgDn", GLFW_KEY_MINUS, GLFW_KEY_EQUAL,
+                               "- / =", " (with a playlist loaded: shift + PgUp / PgDn)"});
+  rows.insert(rows.end(), transport.begin(), transport.end());
+  return {"construction", rows};
+}
+
+std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
+  // The errors name the command: its message alone would not say which step failed.
+  auto need = [this](const char* verb) -> accel::Status {
+    if (auto st = need_trace(); !st) return accel::make_error(std::string(verb) + ": " + st.error().message);
+    return {};
+  };
+  return {
+      {CommandKind::Construct,
+       [&host, need](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         if (auto st = host.session().need_structure(); !st) return st;
+         host.construct();  // synchronous in script mode; in the window the playlist waits for it
+         if (!host.synchronous()) return {};
+         return need("construct");
+       }},
+      {CommandKind::BuildStep,
+       [this, &host, need](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         if (auto st = need("build-step"); !st) return st;
+         player_.pause();
+         const size_t from = player_.step();
+         step_clock(player_, c.step, static_cast<size_t>(c.ints[0]));
+         set_active(true);
+         host.walk_recorded(player_, from, h);
+         return {};
+       }},
+      {CommandKind::PrintBuildStep,
+       [this, need](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         if (auto st = need("print-build-step"); !st) return st;
+         print_script_line(step_line());
+         return {};
+       }},
+      {CommandKind::SahPlot,
+       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+         set_sah_plot(c.on);
+         return {};
+       }},
+  };
+}
+
+// ---------------------------------------------------------------------------------------
 // Drawing
 
-void BuildPlayer::init_gl() {
-  gl_.emplace();
-  upload_ = true;
-}
-
-void BuildPlayer::sync_gl() {
-  if (!gl_ || !upload_) return;
-  gl_->upload(view_.segments, view_.triangles, view_.lines);
-  upload_ = false;
-}
-
 void BuildPlayer::draw(Renderer& renderer) {
-  if (!gl_ || !active_) return;
-  gl_->draw(renderer);
-}
-
-void BuildPlayer::release_gl() {
-  gl_.reset();
+  if (active_) gl_.draw(renderer);
 }
 
 }  // namespace viz

@@ -1,19 +1,24 @@
 #pragma once
 // The construction mode ("watch it being built"): records the current structure's build
-// (BuildRecorder, on a background Job with its own BuildControl: progress and cancel), plays
-// its steps (BuildStepPlayer), draws the partly built structure of the current step
-// (tools/build_playback.h) and shows the "Construction", "Construction steps" and
-// "Construction code" panels in the places of the traversal panels while the mode is on.
+// (accel::build_structure_recorded, on a background Job with its own BuildControl: progress
+// and cancel), plays its steps (BuildStepPlayer), draws the partly built structure of the
+// current step (tools/build_playback.h) and shows the "Construction", "Construction steps"
+// and "Construction code" panels in the places of the traversal panels while the mode is on.
 // Gets the scene and structure request passed in; App only wires it.
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
+#include "commands.h"
+#include "job.h"
+#include "registry.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
 #include "tools/build_playback.h"
+#include "tools/transport_controls.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 
@@ -56,6 +61,11 @@ class BuildPlayer {
   /// Applies the player's step to the replay and rebuilds the view when it changed.
   void update();
 
+  /// Its keys (B records or leaves the mode; play, step, first / last, speed) and script
+  /// verbs (construct, build-step, print-build-step, sah-plot); `host` gives the structure.
+  KeyGroup key_bindings(ToolHost& host);
+  std::vector<VerbRun> script_verbs(ToolHost& host);
+
   /// The "Construction" panel (controls, counters, cost plot) at the ray panel's place.
   void control_panel(const PanelPlace& place, const std::shared_ptr<const accel::Scene>& scene,
                      const StructureRequest& request);
@@ -64,22 +74,22 @@ class BuildPlayer {
   /// The "Construction code" panel in `mono`.
   void code_panel(const PanelPlace& place, ImFont* mono);
 
-  void init_gl();
-  void sync_gl();
+  void init_gl() { gl_.create(); }
+  void sync_gl() { gl_.sync(view_.segments, view_.triangles, view_.lines); }
   void draw(Renderer& renderer);
-  void release_gl();
+  void release_gl() { gl_.release(); }
 
  private:
   void cost_plot_widget();
 
-  Job<accel::Result<RecordedBuild>> job_;
+  Job<accel::Result<accel::RecordedBuild>> job_;
   std::shared_ptr<accel::BuildControl> control_;
   std::shared_ptr<const accel::Scene> scene_;          // the recorded build's scene
   std::shared_ptr<const accel::Scene> pending_scene_;  // of the recording in progress
   StructureRequest request_, pending_request_;
   std::shared_ptr<const accel::BuildTrace> trace_;
+  size_t attempts_ = 0;  ///< recordings the trace took (more than 1: the step budget ran out)
   std::unique_ptr<accel::BuildReplay> replay_;
-  std::vector<accel::RecordAttempt> attempts_;
   double sah_ct_ = 1.0, sah_ci_ = 1.0;  ///< the structure's SAH constants, for the cost so far
   int sah_prims_per_test_ = 1;           ///< and its triangles per leaf test (4: wide layouts)
   std::string error_;
@@ -88,13 +98,11 @@ class BuildPlayer {
   bool active_ = false;
   bool sah_plot_ = true;
   bool dirty_ = true;
-  bool upload_ = false;
   size_t view_step_ = ~size_t(0);
   BuildView view_;
-  bool follow_step_ = true;
-  size_t steps_scrolled_ = ~size_t(0);
+  StepListState steps_;  // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;
-  std::optional<HighlightBatches> gl_;
+  HighlightLayer gl_;  // the highlights on the GPU
 };
 
 }  // namespace viz

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
+#include "params.h"
+#include "tools/ray_debugger.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -103,7 +106,7 @@ std::optional<StructureChoice> CompareTool::panel(const PanelPlace& where, const
       const CompareRow& r = rows[i];
       const bool current = built && r.structure == built->request.name &&
                            (r.params == built->request.params ||
-                            param_value(r.params, "traversal") == built->traversal);
+                            accel::param_value(r.params, "traversal") == built->traversal);
       ImGui::TableNextRow();
       if (current)
         ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg0, ImGui::ColorConvertFloat4ToU32(ImVec4(0.45f, 0.38f, 0.05f, 0.9f)));
@@ -156,6 +159,29 @@ void CompareTool::builtin_lines() {
   const bool mine_right = d.mine_verdict == accel::HitVerdict::Correct;
   ImGui::TextColored(mine_right ? ImVec4(1, 1, 1, 1) : miss_text(), "%s", d.answers_line().c_str());
   ImGui::Separator();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: compare_verbs.cpp)
+
+KeyGroup CompareTool::key_bindings(ToolHost& host) {
+  return {"compare",
+          {{GLFW_KEY_C, "C", "Compare: the same ray through every structure and traversal order",
+            [this, &host](const KeyPress&) {
+              set_open(true);
+              host.start_compare();
+              return true;
+            }}}};
+}
+
+std::vector<VerbRun> CompareTool::script_verbs(ToolHost& host) {
+  return {{CommandKind::Compare, [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
+             if (auto st = host.ray().need_trace(); !st) return st;
+             host.start_compare();
+             set_open(true);
+             print_rows();
+             return {};
+           }}};
 }
 
 }  // namespace viz

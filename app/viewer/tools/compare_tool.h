@@ -10,9 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "commands.h"
+#include "job.h"
 #include "student/trace_diff.h"
+#include "tool_host.h"
+#include "tools/compare_model.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -52,6 +55,10 @@ class CompareTool {
   void wait() { job_.wait(); }
 
   /// Whether the window is shown.
+  /// Its key (C) and script verb (compare); `host` gives the debug ray and starts the run.
+  KeyGroup key_bindings(ToolHost& host);
+  std::vector<VerbRun> script_verbs(ToolHost& host);
+
   bool open() const { return open_; }
   /// Shows or hides the window.
   void set_open(bool open) { open_ = open; }

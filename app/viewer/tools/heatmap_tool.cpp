@@ -4,11 +4,13 @@
 #include <cfloat>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
 #include "registry.h"
 #include "structure_view.h"
+#include "tools/structure_session.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -261,5 +263,65 @@ void HeatmapTool::draw(Renderer& renderer, const HeatmapView& view) {
 }
 
 void HeatmapTool::release_gl() { texture_.reset(); }
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: heatmap_verbs.cpp)
+
+KeyGroup HeatmapTool::key_bindings() {
+  return {"heat map",
+          {{GLFW_KEY_M, "M", "heat map: off, nodes visited, triangles tested, off", [this](const KeyPress&) {
+              cycle();
+              return true;
+            }}}};
+}
+
+std::vector<VerbRun> HeatmapTool::script_verbs(ToolHost& host) {
+  // A change the image depends on: computed now in script mode, from the camera as drawn.
+  auto recompute = [this, &host](ScriptHost& h) -> accel::Status {
+    host.settle_camera(h);
+    if (auto st = host.session().need_structure(); !st) return st;
+    compute_now(host.heatmap_view());
+    return {};
+  };
+  return {
+      {CommandKind::Heatmap,
+       [this, recompute](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         set_on(c.name != "off");
+         if (!on()) return {};
+         accel::CostMetric metric = accel::CostMetric::NodesVisited;
+         accel::parse_cost_metric(c.name, &metric);  // checked by the parser
+         set_metric(metric);
+         return recompute(h);
+       }},
+      {CommandKind::HeatmapScale,
+       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+         HeatmapScale scale;
+         scale.fixed = c.on;
+         scale.lo = c.values[0];
+         scale.hi = c.values[1];
+         set_scale(scale);
+         return {};
+       }},
+      {CommandKind::HeatmapDiff,
+       [this, recompute](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         std::optional<StructureRequest> other;
+         if (c.on) {
+           other.emplace();
+           other->name = c.name;
+           other->params = c.params;
+         }
+         set_difference(other);
+         if (!on()) return {};
+         if (auto st = recompute(h); !st) return st;
+         if (!error().empty()) return accel::make_error(error());
+         return {};
+       }},
+      {CommandKind::PrintHeatmap,
+       [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         print_script_line(summary());
+         return {};
+       }},
+  };
+}
 
 }  // namespace viz

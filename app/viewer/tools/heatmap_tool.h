@@ -5,12 +5,15 @@
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
+#include "commands.h"
 #include "heatmap.h"
-#include "tools/heatmap_scale.h"
+#include "job.h"
 #include "ray_gen.h"
 #include "renderer.h"
+#include "tool_host.h"
+#include "tools/heatmap_scale.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -58,6 +61,11 @@ class HeatmapTool {
   bool computing() const { return on_ && job_.busy(); }
   /// Size of the image being computed.
   glm::ivec2 computing_size() const { return running_.size; }
+
+  /// Its key (M: cycle the metric) and script verbs (heatmap, heatmap-scale, heatmap-diff,
+  /// print-heatmap); `host` gives the view and the structure.
+  KeyGroup key_bindings();
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The main panel's "Cost heat map" section.
   void section();

@@ -4,8 +4,9 @@
 // plain vertex lists the ray debugger uploads. Owns nothing.
 #include <vector>
 
+#include "built_structure.h"
 #include "structure_view.h"
-#include "workbench.h"
+#include "tools/debug_ray.h"
 
 namespace viz {
 

@@ -4,10 +4,12 @@
 // GL buffers, and the mesh style; the main panel's Display section.
 #include <optional>
 
+#include "built_structure.h"
+#include "commands.h"
 #include "renderer.h"
 #include "structure_view.h"
+#include "tool_host.h"
 #include "tools/depth_filter.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -40,6 +42,9 @@ class NodeDisplay {
   size_t drawn_nodes() const { return show_nodes_ ? drawn_nodes_ : 0; }
   /// The depth controls (for tests and the status line).
   const DepthSettings& depth_settings() const { return depth_; }
+
+  /// Its script verbs (show, mesh, empty-cells, nodes, opacity); `host` gives the structure.
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The Display section; `built` is the structure shown. True when "empty cells" was
   /// toggled (then the session must list them in its next builds too).

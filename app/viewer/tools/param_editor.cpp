@@ -6,6 +6,8 @@
 
 #include <imgui.h>
 
+#include "params.h"
+
 namespace viz {
 
 void ParamEditor::set(const StructureRequest& request) {
@@ -18,7 +20,7 @@ void ParamEditor::set(const StructureRequest& request) {
   // Requests come validated (scripts, compare rows, the editor itself); a value that does
   // not parse keeps the default rather than half-applying.
   for (const auto& spec : entry.params) {
-    const std::string value = param_value(request.params, spec.name);
+    const std::string value = accel::param_value(request.params, spec.name);
     if (!value.empty()) (void)params_.set(spec.name, value);
   }
   kernel_ = request.kernel;

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "built_structure.h"
 #include "registry.h"
-#include "workbench.h"
 
 namespace viz {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "tools/ui_colors.h"
@@ -90,6 +91,52 @@ std::optional<size_t> PlaylistTool::section() {
   }
   if (!error_.empty()) ImGui::TextColored(ui::miss_text(), "%s", error_.c_str());
   return clicked;
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: playlist_verbs.cpp)
+
+KeyGroup PlaylistTool::key_bindings(ToolHost& host) {
+  // A presenter's clicker sends PgDn / PgUp (some: the down and up arrows). Shift leaves
+  // PgDn / PgUp to the construction's rows, as does having no playlist.
+  auto move = [this, &host](bool forward, bool shift_passes) {
+    return [this, &host, forward, shift_passes](const KeyPress& k) {
+      if (!loaded() || (shift_passes && (k.mods & GLFW_MOD_SHIFT))) return false;
+      host.go_to_state(forward ? next_index() : prev_index());
+      return true;
+    };
+  };
+  const char* keys = "PgDn / PgUp, down / up";
+  const char* help = "with a playlist: next / previous state (a presenter's clicker sends these)";
+  return {"playlist",
+          {{GLFW_KEY_PAGE_DOWN, keys, help, move(true, true)},
+           {GLFW_KEY_PAGE_UP, keys, help, move(false, true)},
+           {GLFW_KEY_DOWN, keys, help, move(true, false)},
+           {GLFW_KEY_UP, keys, help, move(false, false)}}};
+}
+
+std::vector<VerbRun> PlaylistTool::script_verbs(ToolHost& host) {
+  auto move = [this, &host](bool forward) {
+    return [this, &host, forward](const ScriptCommand&, ScriptHost& h) -> accel::Status {
+      if (!loaded()) return accel::make_error("no playlist loaded (use playlist FILE first)");
+      host.go_to_state(forward ? next_index() : prev_index());
+      host.run_playlist(&h);
+      return {};
+    };
+  };
+  return {{CommandKind::Playlist,
+           [&host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+             if (auto st = host.load_playlist(c.name); !st) return st;
+             host.run_playlist(&h);
+             return {};
+           }},
+          {CommandKind::Next, move(true)},
+          {CommandKind::Prev, move(false)},
+          {CommandKind::PrintState, [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
+             if (!loaded()) return accel::make_error("print-state: no playlist loaded");
+             print_script_line(state_line());
+             return {};
+           }}};
 }
 
 }  // namespace viz

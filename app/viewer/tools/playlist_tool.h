@@ -8,8 +8,10 @@
 #include <optional>
 #include <string>
 
+#include "commands.h"
 #include "playlist.h"
 #include "result.h"
+#include "tool_host.h"
 #include "view_layout.h"
 
 namespace viz {
@@ -47,6 +49,11 @@ class PlaylistTool {
   const std::string& error() const { return error_; }
   /// "state K/N: TITLE" (print-state).
   std::string state_line() const { return viz::state_line(playlist_, cursor_.current()); }
+
+  /// Its keys (PgDn / PgUp and down / up while a playlist is loaded: a presenter's clicker)
+  /// and script verbs (playlist, next, prev, print-state); `host` moves between states.
+  KeyGroup key_bindings(ToolHost& host);
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The title overlay, for a few seconds after a move (at the top centre of `view`, window
   /// coordinates x, y, w, h), and the last error until the next move.

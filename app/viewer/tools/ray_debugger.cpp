@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
 #include "rays_io.h"
+#include "tools/build_player.h"
+#include "tools/structure_session.h"
+#include "tools/transport_controls.h"
+#include "tools/traversal_numbers.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -116,7 +121,7 @@ void RayDebugger::update(const accel::Scene& scene, const BuiltStructure* built)
   dirty_ = false;
   highlight_step_ = ray_.player.step();
   highlights_ = build_highlights(ray_, scene, built, options_);
-  upload_ = true;
+  gl_.changed();
 }
 
 accel::Status RayDebugger::need_ray() const {
@@ -137,13 +142,7 @@ std::string RayDebugger::ray_line() const { return accel::format_ray_line(ray_.r
 
 bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built) {
   const float em = ImGui::GetFontSize();
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Debug ray")) {
-    ImGui::End();
-    return false;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Debug ray")) return false;
   bool compare = false;
   if (!ray_.active) {
     ImGui::TextWrapped("Click into the scene to shoot a ray through that pixel.");
@@ -157,38 +156,9 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
   // Playback.
   accel::TracePlayer& p = ray_.player;
   const bool has = !p.empty();
-  ImGui::BeginDisabled(!has);
-  if (ImGui::Button("|<")) { p.pause(); p.seek(0); }
-  ImGui::SameLine();
-  if (ImGui::Button("<")) { p.pause(); p.step_back(); }
-  ImGui::SameLine();
-  if (ImGui::Button(p.playing() ? "Pause" : "Play", ImVec2(4.0f * em, 0.0f))) p.toggle();
-  ImGui::SameLine();
-  if (ImGui::Button(">")) { p.pause(); p.step_forward(); }
-  ImGui::SameLine();
-  if (ImGui::Button(">|")) { p.pause(); p.jump_to_end(); }
-  ImGui::SameLine();
-  if (ImGui::Button("Jump to hit")) p.jump_to_hit();
-  // Step and speed side by side.
-  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
-  int step = static_cast<int>(p.step()) + 1;
-  ImGui::SetNextItemWidth(half);
-  char step_format[48];
-  if (p.empty()) std::snprintf(step_format, sizeof step_format, "no trace");
-  else std::snprintf(step_format, sizeof step_format, "step %%d of %zu", p.size());
-  if (ImGui::SliderInt("##step", &step, 1, std::max(static_cast<int>(p.size()), 1), step_format,
-                       ImGuiSliderFlags_AlwaysClamp)) {
-    p.pause();
-    p.seek(static_cast<size_t>(step - 1));
-  }
-  ImGui::SameLine();
-  float speed = static_cast<float>(p.speed());
-  ImGui::SetNextItemWidth(half);
-  if (ImGui::SliderFloat("##speed", &speed, static_cast<float>(accel::TracePlayer::kMinSpeed),
-                         static_cast<float>(accel::TracePlayer::kMaxSpeed), "speed %.3g steps/s",
-                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp))
-    p.set_speed(speed);
-  ImGui::EndDisabled();
+  transport_controls(p, {1, "no trace"}, [&p] {
+    if (ImGui::Button("Jump to hit")) p.jump_to_hit();
+  });
 
   if (has) {
     // The current step, large and in its colour.
@@ -289,67 +259,33 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
 }
 
 void RayDebugger::steps_panel(const PanelPlace& where) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Traversal steps")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Traversal steps")) return;
   const auto& events = ray_.player.events();
   if (events.empty()) {
     ImGui::TextDisabled("no trace yet: click into the scene");
     ImGui::End();
     return;
   }
-  ImGui::Checkbox("follow", &follow_step_);
-  ImGui::SameLine();
-  ImGui::TextDisabled("click a step to go there");
-  ImGui::BeginChild("steps");
-  const float row_h = ImGui::GetTextLineHeightWithSpacing();
   const size_t current = ray_.player.step();
-  if (follow_step_ && current != steps_scrolled_) {
-    ImGui::SetScrollY(std::max(0.0f, static_cast<float>(current) * row_h - 0.5f * ImGui::GetWindowHeight()));
-    steps_scrolled_ = current;
+  const auto clicked = step_list(events.size(), current, current, steps_, [&](size_t i) {
+    const accel::TraceEvent& e = events[i];
+    const bool marked = marked_step_ && *marked_step_ == i;
+    // The marked step (a naive traversal's stop) in the trap window's colour.
+    std::string text = accel::describe_event(e);
+    if (marked) text += "   <- " + marked_note_;
+    return StepRow{e.depth, text, marked ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f) : event_color(e)};
+  });
+  if (clicked) {
+    ray_.player.pause();
+    ray_.player.seek(*clicked);
+    steps_.scrolled = *clicked;
   }
-  ImGuiListClipper clipper;
-  clipper.Begin(static_cast<int>(events.size()), row_h);
-  while (clipper.Step()) {
-    for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
-      const accel::TraceEvent& e = events[static_cast<size_t>(i)];
-      char label[256];
-      const bool marked = marked_step_ && *marked_step_ == static_cast<size_t>(i);
-      std::snprintf(label, sizeof label, "%5d  %*s%s%s", i + 1, std::min<int>(e.depth, 24), "",
-                    accel::describe_event(e).c_str(), marked ? ("   <- " + marked_note_).c_str() : "");
-      // The marked step (a naive traversal's stop) in the trap window's colour.
-      const ImVec4 color = static_cast<size_t>(i) == current ? ImVec4(0, 0, 0, 1)
-                           : marked                          ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f)
-                                                             : event_color(e);
-      ImGui::PushStyleColor(ImGuiCol_Text, color);
-      if (static_cast<size_t>(i) == current)
-        ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(kCurrentText.x, kCurrentText.y, kCurrentText.z, 0.95f));
-      if (ImGui::Selectable(label, static_cast<size_t>(i) == current)) {
-        ray_.player.pause();
-        ray_.player.seek(static_cast<size_t>(i));
-        steps_scrolled_ = static_cast<size_t>(i);
-      }
-      if (static_cast<size_t>(i) == current) ImGui::PopStyleColor();
-      ImGui::PopStyleColor();
-    }
-  }
-  ImGui::EndChild();
   ImGui::End();
 }
 
 void RayDebugger::code_panel(const PanelPlace& where, const BuiltStructure* built, ImFont* mono) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
   const TraversalKind kind = built ? built->kind : TraversalKind::Unknown;
-  if (!ImGui::Begin("Pseudo code")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Pseudo code")) return;
   const PseudoCode& code = pseudo_code(kind);
   ImGui::TextDisabled("%s", code.title.c_str());
   ui::code_listing("code", code.lines, highlights_.code_line, mono, code_scrolled_);
@@ -368,27 +304,113 @@ void RayDebugger::highlight_options() {
 }
 
 // ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: ray_debugger_verbs.cpp)
+
+KeyGroup RayDebugger::key_bindings() {
+  std::vector<KeyBinding> rows = transport_keys(
+      ray_.player, {"traversal", GLFW_KEY_SPACE, "space", GLFW_KEY_LEFT, GLFW_KEY_RIGHT, "left / right", GLFW_KEY_HOME,
+                    GLFW_KEY_END, "Home / End", GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET, "[ / ]"});
+  // The jump to the hit after the transport's first / last step rows.
+  rows.insert(rows.begin() + 5, {GLFW_KEY_J, "J", "jump to the hit", [this](const KeyPress&) {
+                                   ray_.player.jump_to_hit();
+                                   return true;
+                                 }});
+  return {"traversal", rows};
+}
+
+std::vector<VerbRun> RayDebugger::script_verbs(ToolHost& host) {
+  // print-hit, print-step, print-ray: one line, once there is what it describes.
+  using Need = accel::Status (RayDebugger::*)() const;
+  using Line = std::string (RayDebugger::*)() const;
+  auto print = [this](Need need, Line line) {
+    return [this, need, line](const ScriptCommand&, ScriptHost&) -> accel::Status {
+      if (auto st = (this->*need)(); !st) return st;
+      print_script_line((this->*line)());
+      return {};
+    };
+  };
+  return {
+      {CommandKind::RayAtPixel,
+       [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         host.settle_camera(h);
+         const glm::ivec2 fb = host.framebuffer();
+         const glm::ivec4 view = host.view_area();
+         const float x = c.values[0], y = c.values[1];
+         if (x < 0.0f || y < 0.0f || x >= static_cast<float>(fb.x) || y >= static_cast<float>(fb.y)) {
+           char msg[128];
+           std::snprintf(msg, sizeof msg, "ray-at-pixel: (%g, %g) is outside the %dx%d window", static_cast<double>(x),
+                         static_cast<double>(y), fb.x, fb.y);
+           return accel::make_error(msg);
+         }
+         if (x < static_cast<float>(view.x) || x >= static_cast<float>(view.x + view.z)) {
+           char msg[160];
+           std::snprintf(msg, sizeof msg,
+                         "ray-at-pixel: x = %g is under a panel; the 3D view spans x = %d..%d (or: panel off)",
+                         static_cast<double>(x), view.x, view.x + view.z - 1);
+           return accel::make_error(msg);
+         }
+         // Pixel centres: "X Y" names the pixel, as a click into it does.
+         host.shoot_at_pixel(x + 0.5f, y + 0.5f, shoot_from_saved_);
+         return {};
+       }},
+      {CommandKind::Ray,
+       [&host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+         accel::Ray r;
+         r.org = {c.values[0], c.values[1], c.values[2]};
+         r.dir = {c.values[3], c.values[4], c.values[5]};
+         r.tmin = c.values[6];
+         r.tmax = c.values[7];
+         host.set_ray(r, "script");
+         return {};
+       }},
+      {CommandKind::Step,
+       [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         if (auto st = need_trace(); !st) return st;
+         accel::TracePlayer& p = ray_.player;
+         p.pause();
+         host.build().set_active(false);  // stepping the ray: back to the traversal's panels
+         const size_t from = p.step();
+         if (c.step == StepMode::Hit)
+           p.jump_to_hit();
+         else
+           step_clock(p, c.step, static_cast<size_t>(c.ints[0]));
+         host.walk_recorded(p, from, h);
+         return {};
+       }},
+      {CommandKind::Frames,
+       [this](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+         if (auto st = need_trace(); !st) return st;
+         constexpr size_t kMaxFrames = 5000;
+         accel::TracePlayer& p = ray_.player;
+         const size_t first = p.step(), last = p.size() - 1;
+         if (last - first + 1 > kMaxFrames)
+           return accel::make_error("frames: " + std::to_string(last - first + 1) + " steps remain; at most " +
+                                    std::to_string(kMaxFrames) + " frames (step closer to the end first)");
+         for (size_t s = first; s <= last; ++s) {
+           p.seek(s);
+           char path[4096];
+           std::snprintf(path, sizeof path, "%s%04zu.png", c.name.c_str(), s);
+           if (auto st = h.screenshot(path); !st) return st;
+         }
+         return {};
+       }},
+      {CommandKind::PrintHit, print(&RayDebugger::need_ray, &RayDebugger::hit_line)},
+      {CommandKind::PrintStep, print(&RayDebugger::need_trace, &RayDebugger::step_line)},
+      {CommandKind::PrintRay, print(&RayDebugger::need_ray, &RayDebugger::ray_line)},
+      {CommandKind::PrintVars,
+       [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         if (auto st = need_trace(); !st) return accel::make_error("print-vars: " + st.error().message);
+         const BuiltStructure* built = host.session().current();
+         const auto& events = ray_.player.events();
+         print_script_line(vars_line(ray_.vars, events, accel::trace_highlight(events, ray_.player.step()),
+                                     built ? built->kind : TraversalKind::Unknown));
+         return {};
+       }},
+  };
+}
+
+// ---------------------------------------------------------------------------------------
 // Drawing
 
-void RayDebugger::init_gl() {
-  gl_.emplace();
-  upload_ = true;
-}
-
-void RayDebugger::sync_gl() {
-  if (!gl_ || !upload_) return;
-  gl_->upload(highlights_.segments, highlights_.triangles, highlights_.lines);
-  upload_ = false;
-}
-
-void RayDebugger::draw(Renderer& renderer) {
-  if (!gl_) return;
-  // Highlights of the debug ray's current step (rebuilt only when the step changes).
-  gl_->draw(renderer);
-}
-
-void RayDebugger::release_gl() {
-  gl_.reset();
-}
 
 }  // namespace viz

@@ -5,12 +5,16 @@
 #include <optional>
 #include <string>
 
+#include "built_structure.h"
+#include "commands.h"
 #include "ray_gen.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
+#include "tools/debug_ray.h"
 #include "tools/highlights.h"
+#include "tools/transport_controls.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 
@@ -59,6 +63,11 @@ class RayDebugger {
   /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
   std::string ray_line() const;
 
+  /// Its keys (play, step, jump to the hit, speed) and script verbs (the ray, stepping,
+  /// frames and the print-* of the ray); `host` gives the camera and the other tools.
+  KeyGroup key_bindings();
+  std::vector<VerbRun> script_verbs(ToolHost& host);
+
   /// Remembers `view` as the saved viewpoint.
   void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }
   /// The saved viewpoint, if any.
@@ -76,30 +85,28 @@ class RayDebugger {
   void highlight_options();
 
   /// Creates the GL buffers (context current).
-  void init_gl();
+  void init_gl() { gl_.create(); }
   /// Uploads highlights rebuilt since the last frame (before the frame begins).
-  void sync_gl();
-  /// Draws the highlights of the current step.
-  void draw(Renderer& renderer);
+  void sync_gl() { gl_.sync(highlights_.segments, highlights_.triangles, highlights_.lines); }
+  /// Draws the highlights of the current step (rebuilt only when the step changes).
+  void draw(Renderer& renderer) { gl_.draw(renderer); }
   /// Releases the GL buffers.
-  void release_gl();
+  void release_gl() { gl_.release(); }
 
  private:
   DebugRay ray_;
   HighlightOptions options_;
   Highlights highlights_;
   bool dirty_ = true;                   // rebuild the highlights at the next update()
-  bool upload_ = false;                 // rebuilt on the CPU, not yet on the GPU
   size_t highlight_step_ = ~size_t(0);  // the step highlights_ shows
-  bool follow_step_ = true;             // scroll the step list to the current step
-  size_t steps_scrolled_ = ~size_t(0);  // step the list was last scrolled to
+  StepListState steps_;                 // the steps list: following the step, where it scrolled to
   int code_scrolled_ = -2;              // code line last scrolled into view
   bool shoot_from_saved_ = false;
   std::optional<size_t> marked_step_;
   std::string marked_note_;
   std::optional<accel::PinholeCamera> saved_view_;
   float typed_ray_[6] = {0, 0, 5, 0, 0, -1};
-  std::optional<HighlightBatches> gl_;
+  HighlightLayer gl_;  // the highlights on the GPU
 };
 
 }  // namespace viz

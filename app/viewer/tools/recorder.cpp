@@ -141,4 +141,27 @@ std::string Recorder::notice() const {
   return clock_seconds() < notice_until_ ? notice_ : std::string();
 }
 
+// ---------------------------------------------------------------------------------------
+// Script verbs (their GL-free half: recorder_verbs.cpp)
+
+std::vector<VerbRun> Recorder::script_verbs() {
+  return {{CommandKind::Record,
+           [this](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+             RecordOptions o;
+             o.fps = c.ints[0];
+             o.ui = c.on;
+             o.width = static_cast<int>(c.values[0]);
+             o.height = static_cast<int>(c.values[1]);
+             if (auto st = start(c.name, o); !st) return st;
+             h.render(1);  // the first frame: the animation as it stands
+             if (!recording()) return accel::make_error("record: " + notice());
+             return {};
+           }},
+          {CommandKind::RecordStop, [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
+             if (auto st = stop(); !st) return st;
+             print_script_line(notice());  // "wrote PATH (N frames)"
+             return {};
+           }}};
+}
+
 }  // namespace viz

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "commands.h"
 #include "result.h"
 #include "video_writer.h"
 
@@ -42,6 +43,9 @@ class Recorder {
   /// (`view` is its rectangle, x, y from the top-left, framebuffer pixels), true after the
   /// panels (`framebuffer` is the whole size). Records or saves what is due.
   void capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer);
+
+  /// Its script verbs (record, record stop).
+  std::vector<VerbRun> script_verbs();
 
   /// The main panel's "Recording" section; true when Record / Stop was pressed (the
   /// caller starts or stops with the section's path and options).

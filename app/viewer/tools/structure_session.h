@@ -7,13 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "build_runner.h"
+#include "commands.h"
+#include "job.h"
 #include "panels.h"
 #include "presets.h"
 #include "renderer.h"
 #include "result.h"
 #include "scene.h"
+#include "tool_host.h"
 #include "tools/param_editor.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -110,6 +113,10 @@ class StructureSession {
   const std::string& requested_name() const { return requested_.name; }
   /// "accelviz - SCENE - STRUCTURE".
   std::string window_title() const;
+
+  /// Its script verbs (scene, preset, structure, kernel, memory-limit, print-stats,
+  /// trace-rays); `host` syncs the other tools after a change.
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The Scene section; its camera buttons are returned (`has_saved_view` shows "Go to saved").
   SceneActions scene_section(bool has_saved_view);

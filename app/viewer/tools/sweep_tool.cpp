@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/structure_session.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -199,6 +200,19 @@ void SweepTool::panel(const PanelPlace& where) {
   plot(trace_title.c_str(), &SweepPoint::trace_ms, ImVec4(1.0f, 0.7f, 0.2f, 1.0f), ImVec2(o.x + plot_w + em, o.y));
   ImGui::Dummy(ImVec2(avail.x, plot_h));
   ImGui::End();
+}
+
+// ---------------------------------------------------------------------------------------
+// Script verbs (their GL-free half: sweep_verbs.cpp)
+
+std::vector<VerbRun> SweepTool::script_verbs(ToolHost& host) {
+  return {{CommandKind::Sweep, [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+             if (auto st = host.session().need_structure(); !st) return st;
+             if (auto st = configure(host.session().editor_info(), c.name, c.values[0], c.values[1], c.ints[0]); !st)
+               return st;
+             host.settle_camera(h);
+             return host.start_sweep();
+           }}};
 }
 
 }  // namespace viz

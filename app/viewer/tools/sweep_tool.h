@@ -5,11 +5,14 @@
 #include <memory>
 #include <string>
 
+#include "commands.h"
+#include "job.h"
 #include "ray_gen.h"
 #include "registry.h"
 #include "result.h"
+#include "tool_host.h"
+#include "tools/sweep_model.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -29,6 +32,9 @@ class SweepTool {
   /// The main panel's "Parameter sweep" section; true when "Run sweep" was pressed.
   bool section(const accel::StructureInfo& info);
   /// Whether the window is shown.
+  /// Its script verb (sweep); `host` gives the structure and starts the run.
+  std::vector<VerbRun> script_verbs(ToolHost& host);
+
   bool open() const { return open_; }
   /// Shows or hides the window.
   void set_open(bool open) { open_ = open; }

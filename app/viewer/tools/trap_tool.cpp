@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/ray_debugger.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -97,6 +98,22 @@ void TrapTool::block(const DebugRay& ray, accel::TracePlayer& player) {
     }
   }
   ImGui::Separator();
+}
+
+// ---------------------------------------------------------------------------------------
+// Script verbs (their GL-free half: trap_verbs.cpp)
+
+std::vector<VerbRun> TrapTool::script_verbs(ToolHost& host) {
+  return {{CommandKind::Trap,
+           [&host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
+             h.render(1);  // the current layout, so the scene is framed into the 3D view
+             return host.load_trap(c.name);
+           }},
+          {CommandKind::PrintNaive, [&host](const ScriptCommand&, ScriptHost&) -> accel::Status {
+             if (auto st = host.ray().need_trace(); !st) return accel::make_error("print-naive: " + st.error().message);
+             print_script_line(accel::naive_line(accel::naive_first_leaf_hit(host.ray().ray().player.events())));
+             return {};
+           }}};
 }
 
 }  // namespace viz

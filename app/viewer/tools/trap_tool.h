@@ -9,10 +9,12 @@
 #include <string>
 
 #include "accuracy.h"
+#include "commands.h"
 #include "scene.h"
+#include "tool_host.h"
+#include "tools/debug_ray.h"
 #include "traps.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -36,6 +38,9 @@ class TrapTool {
   std::string naive_line() const { return accel::naive_line(naive_); }
   /// The step the steps list marks ("naive stop"), or nothing.
   std::optional<size_t> marked_step() const;
+
+  /// Its script verbs (trap, print-naive); `host` loads the trap's scene and ray.
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
   std::string section() const;

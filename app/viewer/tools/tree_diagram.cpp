@@ -11,11 +11,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
 #include "registry.h"
-#include "tools/build_playback.h"
+#include "tools/build_player.h"
+#include "tools/ray_debugger.h"
+#include "tools/structure_session.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -249,7 +252,7 @@ accel::Status TreeDiagram::select(NodeId node, bool isolate) {
 
 void TreeDiagram::rebuild_highlight() {
   highlight_dirty_ = false;
-  upload_ = true;
+  gl_.changed();
   segments_.clear();
   lines_.clear();
   if (!on_ || selected_ == kNoNode || replay_mode_ || !structure_ || !shape_) return;
@@ -280,23 +283,9 @@ void TreeDiagram::rebuild_highlight() {
   append_node_segments(segments_, selected_view_, kSelected3D, 3.5f);
 }
 
-void TreeDiagram::init_gl() {
-  gl_.emplace();
-  upload_ = true;
-}
-
-void TreeDiagram::sync_gl() {
-  if (!gl_ || !upload_) return;
-  gl_->upload(segments_, {}, lines_);
-  upload_ = false;
-}
-
 void TreeDiagram::draw(Renderer& renderer) {
-  if (!gl_ || !on_ || (segments_.empty() && lines_.empty())) return;
-  gl_->draw(renderer);
+  if (on_ && !(segments_.empty() && lines_.empty())) gl_.draw(renderer);
 }
-
-void TreeDiagram::release_gl() { gl_.reset(); }
 
 // =======================================================================================
 // [SECTION] The window
@@ -654,6 +643,36 @@ void TreeDiagram::grid_table() {
     }
   }
   ImGui::EndTable();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and script verbs (their GL-free half: tree_diagram_verbs.cpp)
+
+KeyGroup TreeDiagram::key_bindings(ToolHost& host) {
+  return {"tree", {{GLFW_KEY_T, "T", "the tree diagram", [this, &host](const KeyPress&) {
+                      toggle();
+                      host.relayout();  // the bottom dock appears or goes
+                      return true;
+                    }}}};
+}
+
+std::vector<VerbRun> TreeDiagram::script_verbs(ToolHost& host) {
+  return {{CommandKind::Tree,
+           [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+             if (on() != c.on) host.relayout();
+             set_on(c.on);
+             if (c.on) host.show_ui();
+             return {};
+           }},
+          {CommandKind::TreeSelect, [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+             if (auto st = host.session().need_structure(); !st)
+               return accel::make_error("tree-select: " + st.error().message);
+             update(host.session().current_ptr(), host.ray().ray(),
+                    host.build().active() ? host.build().replay() : nullptr);
+             if (auto st = select(static_cast<NodeId>(c.ints[0]), c.on); !st) return st;
+             host.show_ui();
+             return {};
+           }}};
 }
 
 }  // namespace viz

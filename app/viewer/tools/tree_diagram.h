@@ -9,11 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "built_structure.h"
+#include "commands.h"
 #include "renderer.h"
 #include "result.h"
+#include "tool_host.h"
+#include "tools/debug_ray.h"
 #include "tools/tree_layout.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 namespace viz {
 
@@ -23,6 +26,11 @@ class TreeDiagram {
   bool on() const { return on_; }
   void set_on(bool on) { on_ = on; }
   void toggle() { on_ = !on_; }
+
+  /// Its key (T) and script verbs (tree, tree-select); `host` lays the panels out and gives
+  /// the structure, the ray and the construction.
+  KeyGroup key_bindings(ToolHost& host);
+  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// Follows this frame's structure, debug ray and construction replay (nullptr: the
   /// construction mode is off). Cheap when nothing changed: the layout is remade when the
@@ -40,12 +48,12 @@ class TreeDiagram {
   /// The window at `place` (it docks along the bottom: the 3D view ends above it).
   void panel(const PanelPlace& place);
 
-  void init_gl();
+  void init_gl() { gl_.create(); }
   /// Uploads the selection's highlight when it changed.
-  void sync_gl();
+  void sync_gl() { gl_.sync(segments_, {}, lines_); }
   /// Draws the selected node (or isolated subtree) over the scene.
   void draw(Renderer& renderer);
-  void release_gl();
+  void release_gl() { gl_.release(); }
 
  private:
   void rebuild_layout();
@@ -96,10 +104,9 @@ class TreeDiagram {
   int hovered_ = -1;
   // 3D.
   bool highlight_dirty_ = true;
-  bool upload_ = false;
   std::vector<Segment> segments_;
   std::vector<ColorVertex> lines_;
-  std::optional<HighlightBatches> gl_;
+  HighlightLayer gl_;  // the highlights on the GPU
 };
 
 }  // namespace viz

@@ -6,6 +6,7 @@
 #include <string>
 #include <variant>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
@@ -193,13 +194,7 @@ void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* m
 
 void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel::TraceHighlight& h, TraversalKind kind,
                       ImFont* mono, const std::function<void()>& top_block) {
-  ui::place(where);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  if (!ImGui::Begin("Variables")) {
-    ImGui::End();
-    return;
-  }
-  ui::note_docked(where);
+  if (!ui::begin_panel(where, "Variables")) return;
   if (top_block) top_block();
   const auto& events = ray.player.events();
   if (!ray.active || events.empty() || !h.valid) {
@@ -333,6 +328,18 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
   }
   ImGui::Dummy(avail);
   ImGui::End();
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys
+
+KeyGroup VarsPanel::key_bindings() {
+  return {"Variables",
+          {{GLFW_KEY_V, "V", "the Variables panel and the t-axis strip, together", [this](const KeyPress&) {
+              shown_ = !(shown_ && strip_shown_);
+              strip_shown_ = shown_;
+              return true;
+            }}}};
 }
 
 }  // namespace viz

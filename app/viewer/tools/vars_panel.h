@@ -6,11 +6,12 @@
 // (tools/traversal_numbers.h selects it); neither recomputes the structure's work.
 #include <functional>
 
+#include "commands.h"
 #include "pseudo_code.h"
+#include "tools/debug_ray.h"
 #include "trace_player.h"
 #include "traps.h"
 #include "view_layout.h"
-#include "workbench.h"
 
 struct ImFont;
 
@@ -18,6 +19,14 @@ namespace viz {
 
 class VarsPanel {
  public:
+  /// The Variables window and the t-axis strip shown (`panel vars|strip on|off`, key V).
+  bool shown() const { return shown_; }
+  bool strip_shown() const { return strip_shown_; }
+  void set_shown(bool on) { shown_ = on; }
+  void set_strip_shown(bool on) { strip_shown_ = on; }
+  /// Its key (V: the window and the strip together).
+  KeyGroup key_bindings();
+
   /// The "Variables" window for `ray` at `highlight`'s step, traversal `kind`; `mono`
   /// (may be null) for the numbers. `top_block` (optional) draws first inside the window
   /// (the lecture trap's answers).
@@ -29,6 +38,10 @@ class VarsPanel {
              const accel::NaiveAnswer* naive);
   /// Height of the strip at font size `em` (window units).
   static float strip_height(float em) { return 5.6f * em; }
+
+ private:
+  bool shown_ = true;
+  bool strip_shown_ = true;
 };
 
 }  // namespace viz
