@@ -277,14 +277,11 @@ double KdBuilder::split_cost(const Aabb& box, const SplitChoice& s, size_t nl, s
   return (nl == 0 || nr == 0) ? c * (1.0 - o_.empty_bonus) : c;
 }
 
-/// The checks at every node: an earlier failure, a cancel, the node budget (reserving the
-/// node: the serial build's test "nodes made >= limit" before making one).
+/// The checks at every node: an earlier failure or a cancel (stopped(), the driver's check
+/// before a task), then the node budget (reserving the node: the serial build's test
+/// "nodes made >= limit" before making one).
 bool KdBuilder::enter_node() {
-  if (failed()) return false;
-  if (build_cancelled(control_)) {
-    fail(cancelled_error());
-    return false;
-  }
+  if (stopped()) return false;
   if (nodes_.fetch_add(1, std::memory_order_relaxed) >= node_cap_) {
     over_budget("nodes", node_cap_);
     return false;
