@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """The web page's test: drives accelviz.html in headless Chromium over the DevTools protocol.
 
-    python3 tests/web/test_page.py --web-dir build-web --cli build/bin/accelviz-cli \
+    python3 tests/web/test_page.py --web-dir build-web/site --cli build/bin/accelviz-cli \
         [--shared ../shared] [--only NAME] [--keep] [-v]
 
 Serves --web-dir on 127.0.0.1 (a free port), writes its viewer scripts into
 WEB_DIR/test-scripts/ (removed at the end unless --keep) and opens one page per script.
-Prints 'PASS: name', 'FAIL: name: why' (details indented below it) or 'SKIP: name: why' per
-check, then 'N passed, N failed'. Exit 0 when none failed, 1 otherwise, 77 (skipped) when the
-web folder has no accelviz.html or Chromium is missing, 2 on bad arguments.
+Prints 'PASS: name (seconds)', 'FAIL: name: why' (details indented below it) or
+'SKIP: name: why' per check, then 'N passed, N failed'. Exit 0 when none failed, 1
+otherwise, 77 (skipped) when the web folder has no accelviz.html or Chromium is missing, 2
+on bad arguments.
 
 Checks (--only takes the short name or the full one; repeatable):
   loads        'loads'               the page alone logs 'accelviz: ready', no error
@@ -742,8 +743,8 @@ class Tester:
                 self.report_fail(name, traceback.format_exc().rstrip())
             else:
                 self.passed += 1
-                print('PASS: %s' % name + (' (%.1f s)' % (time.monotonic() - t0)
-                                           if self.args.verbose else ''), flush=True)
+                # The time too: the CI log shows where the browser test's minutes go.
+                print('PASS: %s (%.1f s)' % (name, time.monotonic() - t0), flush=True)
 
     def report_fail(self, name, why):
         self.failed += 1
