@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "from_chars_real.h"
+#include "input_files.h"
 
 namespace accel {
 
@@ -64,6 +65,7 @@ Error TokenLines::error(const std::string& what) const {
 }
 
 Result<std::string> read_text_file(const std::string& path, const std::string& what) {
+  if (Status fetched = fetch_missing_input(path); !fetched) return fetched.error();  // the page: from its folder
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
     return make_error(path + ": cannot open " + what + " for reading: Is a directory");

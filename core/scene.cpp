@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "geometry.h"
+#include "input_files.h"
 #include "parallel.h"
 #include "scene2d.h"
 
@@ -92,6 +93,7 @@ bool is_mesh_format(const std::string& path) {
 Result<Scene> load_scene(const std::string& spec) {
   constexpr std::string_view prefix = "procedural:";
   if (spec.rfind(prefix, 0) == 0) return make_procedural_scene(std::string_view(spec).substr(prefix.size()));
+  if (Status fetched = fetch_missing_input(spec); !fetched) return fetched.error();  // the page: from its folder
   if (is_mesh_format(spec)) return load_mesh(spec);
   if (spec.size() > std::strlen(kScene2dExtension) && spec.ends_with(kScene2dExtension)) return load_scene2d(spec);
   return load_obj(spec);

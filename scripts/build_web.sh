@@ -2,9 +2,9 @@
 # Builds accelviz as a web page into build-web/ with Debian's emscripten: accelviz.html,
 # page.js, accelviz.js, accelviz.wasm and accelviz.data (shaders, scenes/, fonts and the
 # small meshes of ../shared). Any static file server can serve the folder as it is
-# (scripts/run_web.sh does). Dear ImGui is compiled from Debian's source package, fetched
-# once with apt-get source through a private apt configuration (the machine's apt sources
-# are left as they are).
+# (scripts/run_web.sh does). Dear ImGui and giflib are compiled from Debian's source
+# packages, fetched once with apt-get source through a private apt configuration
+# (scripts/debian_source.sh; the machine's apt sources are left as they are).
 #   scripts/build_web.sh                 # ACCEL_WEB_BUILD_DIR=... to build elsewhere
 #   scripts/build_web.sh --student DIR   # with a student's structures (docs/student.md)
 set -euo pipefail
@@ -15,40 +15,29 @@ build_dir="${ACCEL_WEB_BUILD_DIR:-$root/build-web}"
 jobs="$(nproc 2>/dev/null || echo 2)"
 "$root/scripts/deps.sh"
 
-# ImGui's sources: the version of the installed libimgui-dev, from the Debian mirror that
-# served it, unpacked into $imgui_dir (kept between builds).
+# Dear ImGui's and giflib's sources: the versions of the installed libimgui-dev and
+# libgif-dev, unpacked into the build folder (kept between builds).
+source "$root/scripts/debian_source.sh"
 imgui_dir="${ACCEL_IMGUI_SOURCE_DIR:-$build_dir/imgui-src}"
-version="$(dpkg-query -W -f='${source:Version}' libimgui-dev)"
-if [ ! -f "$imgui_dir/imgui.cpp" ] || [ "$(cat "$imgui_dir/.debian-version" 2>/dev/null)" != "$version" ]; then
-  echo "build_web.sh: fetching Dear ImGui $version's sources (apt-get source imgui)" >&2
-  apt_dir="$(mktemp -d)"
-  trap 'rm -rf "$apt_dir"' EXIT
-  uri="$(apt-get download --print-uris libimgui-dev | head -n1 | cut -d"'" -f2)"
-  mirror="${uri%%/pool/*}"
-  codename="$(. /etc/os-release && echo "${VERSION_CODENAME:-}")"
-  if [ -z "$mirror" ] || [ "$mirror" = "$uri" ] || [ -z "$codename" ]; then
-    echo "build_web.sh: cannot tell which Debian mirror and release libimgui-dev came from ('$uri', '$codename')" >&2
-    exit 1
-  fi
-  keyring=/usr/share/keyrings/debian-archive-keyring.gpg
-  signed=""
-  [ -f "$keyring" ] && signed="[signed-by=$keyring] "
-  echo "deb-src $signed$mirror $codename main" >"$apt_dir/sources.list"
-  mkdir -p "$apt_dir/lists/partial" "$apt_dir/cache/archives/partial"
-  apt_options=(-o "Dir::Etc::SourceList=$apt_dir/sources.list" -o Dir::Etc::SourceParts=/dev/null
-               -o "Dir::State::Lists=$apt_dir/lists" -o "Dir::Cache=$apt_dir/cache" -o APT::Sandbox::User=root)
-  apt-get "${apt_options[@]}" -qq update
-  (cd "$apt_dir" && apt-get "${apt_options[@]}" -qq source --download-only "imgui=$version" >/dev/null)
-  rm -rf "$imgui_dir"
-  mkdir -p "$(dirname "$imgui_dir")"
-  dpkg-source -x "$apt_dir"/imgui_*.dsc "$imgui_dir" >/dev/null
-  rm -f "$(dirname "$imgui_dir")"/imgui_*.orig.tar.*  # dpkg-source leaves a link to it there
-  echo "$version" >"$imgui_dir/.debian-version"
-fi
+gif_dir="${ACCEL_GIF_SOURCE_DIR:-$build_dir/giflib-src}"
+fetch_debian_source libimgui-dev "$imgui_dir"
+fetch_debian_source libgif-dev "$gif_dir"
 
 # emcc's JavaScript tools need Debian's acorn; a node from elsewhere on the PATH does not
 # look in Debian's module folder.
 export NODE_PATH="${NODE_PATH:+$NODE_PATH:}/usr/share/nodejs"
 emcmake cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DACCEL_IMGUI_SOURCE_DIR="$imgui_dir" \
+  -DACCEL_GIF_SOURCE_DIR="$gif_dir" \
   "${student_cmake_args[@]}" "$@" >/dev/null
 cmake --build "$build_dir" -j"$jobs" --target accelviz
+
+# site/: exactly the files to put on a web server (next to them a lecturer adds a playlist,
+# meshes and scripts; docs/viewer.md). Made anew each build, so nothing stale is uploaded.
+site="$build_dir/site"
+rm -rf "$site"
+mkdir -p "$site"
+for file in accelviz.html page.js accelviz.js accelviz.wasm accelviz.data; do
+  cp "$build_dir/$file" "$site/$file"
+done
+bytes="$(du -cb "$site"/* | tail -n1 | cut -f1)"
+echo "build_web.sh: site: $site ($(ls "$site" | wc -l) files, $(awk -v b="$bytes" 'BEGIN { printf "%.1f MB", b / 1e6 }'))"

@@ -5,9 +5,12 @@
 #    bring glibc's headers into emscripten's sysroot);
 #  * Dear ImGui is compiled from Debian's source package (apt-get source imgui, fetched by
 #    build_web.sh into ACCEL_IMGUI_SOURCE_DIR), with its GLFW and OpenGL3 backends;
+#  * giflib likewise (apt-get source giflib, into ACCEL_GIF_SOURCE_DIR): the page records
+#    GIFs with the writer the native viewer uses;
 #  * GLFW is emscripten's own (-sUSE_GLFW=3), OpenGL ES 3.0 is WebGL2.
 set(ACCEL_HOST_INCLUDE_DIR "/usr/include" CACHE PATH "Where the host's Debian headers are (glm, nlohmann, stb, tiny_obj_loader.h, CLI)")
 set(ACCEL_IMGUI_SOURCE_DIR "" CACHE PATH "Dear ImGui's unpacked Debian source package (imgui.cpp, backends/)")
+set(ACCEL_GIF_SOURCE_DIR "" CACHE PATH "giflib's unpacked Debian source package (egif_lib.c, quantize.c, ...)")
 
 set(host_links ${CMAKE_CURRENT_BINARY_DIR}/host-include)
 file(MAKE_DIRECTORY ${host_links})
@@ -53,3 +56,20 @@ target_include_directories(imgui_web SYSTEM PUBLIC
   ${ACCEL_IMGUI_SOURCE_DIR} ${ACCEL_IMGUI_SOURCE_DIR}/backends ${ACCEL_IMGUI_SOURCE_DIR}/misc/cpp)
 target_link_libraries(imgui_web PUBLIC glfw)
 add_library(imgui::imgui ALIAS imgui_web)
+
+# giflib: the library files of its Makefile (SOURCES), not its tools.
+if(NOT EXISTS ${ACCEL_GIF_SOURCE_DIR}/egif_lib.c OR NOT EXISTS ${ACCEL_GIF_SOURCE_DIR}/quantize.c)
+  message(FATAL_ERROR "web build: ACCEL_GIF_SOURCE_DIR='${ACCEL_GIF_SOURCE_DIR}' holds no giflib sources "
+                      "(scripts/build_web.sh fetches them with apt-get source giflib)")
+endif()
+add_library(gif_web STATIC
+  ${ACCEL_GIF_SOURCE_DIR}/dgif_lib.c
+  ${ACCEL_GIF_SOURCE_DIR}/egif_lib.c
+  ${ACCEL_GIF_SOURCE_DIR}/gifalloc.c
+  ${ACCEL_GIF_SOURCE_DIR}/gif_err.c
+  ${ACCEL_GIF_SOURCE_DIR}/gif_font.c
+  ${ACCEL_GIF_SOURCE_DIR}/gif_hash.c
+  ${ACCEL_GIF_SOURCE_DIR}/openbsd-reallocarray.c
+  ${ACCEL_GIF_SOURCE_DIR}/quantize.c)
+target_include_directories(gif_web SYSTEM PUBLIC ${ACCEL_GIF_SOURCE_DIR})
+add_library(GIF::GIF ALIAS gif_web)

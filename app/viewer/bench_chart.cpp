@@ -1,6 +1,7 @@
 #include "bench_chart.h"
 
 #include "geometry.h"
+#include "input_files.h"
 #include "registry.h"
 
 #include <algorithm>
@@ -175,6 +176,7 @@ accel::Result<BenchData> parse_bench_json(const std::string& text, const std::st
 }
 
 accel::Result<BenchData> load_bench_json(const std::string& path) {
+  if (accel::Status fetched = accel::fetch_missing_input(path); !fetched) return fetched.error();  // the page
   std::ifstream file(path, std::ios::binary);
   if (!file) return accel::make_error(path + ": cannot read the file");
   std::ostringstream text;

@@ -4,7 +4,8 @@
 // the tools call them unconditionally:
 //
 //   browser_native.cpp  the empty versions
-//   browser_web.cpp     the page: the animation frame, background tasks, downloads, logs
+//   browser_web.cpp     the page: the animation frame, background tasks, files on demand,
+//                       downloads, logs
 //
 // Background tasks: the page cannot start threads, so a build (or a heat map, a comparison)
 // runs as a BackgroundTask on a stack of its own (an emscripten fiber). Each frame the main
@@ -49,6 +50,13 @@ class BackgroundTask {
  private:
   std::unique_ptr<State> state_;
 };
+
+/// Files on demand: installs the page's accel::InputFetcher, so any file the viewer or the
+/// core opens by a path relative to the page's folder (a scene, a playlist, a script and
+/// what they name in turn) is fetched from the served folder at the moment it is opened,
+/// when the page's file system does not hold it yet. Absolute paths and paths leading out
+/// of the served folder are refused in one line. Natively: nothing.
+void install_input_fetcher();
 
 /// A file the viewer wrote for the user (F12's screenshot, a recording): the browser saves
 /// it as a download.

@@ -10,6 +10,7 @@ BackgroundTask::BackgroundTask(std::function<void()> work) { work(); }
 BackgroundTask::~BackgroundTask() = default;
 bool BackgroundTask::done() const { return true; }
 void BackgroundTask::finish() {}
+void install_input_fetcher() {}
 void offer_download(const std::string&) {}
 void log_screenshot(const std::string&) {}
 void log_line(const std::string&) {}

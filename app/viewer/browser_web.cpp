@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <vector>
 
+#include "input_files.h"
 #include "yield_point.h"
 
 namespace viz::browser {
@@ -118,6 +120,32 @@ EM_ASYNC_JS(void, accelviz_wait_for_animation_frame, (), {
 
 void wait_for_next_frame() { accelviz_wait_for_animation_frame(); }
 
+// Files on demand (install_input_fetcher): the served folder is the page's folder, which
+// the working directory /app stands for. The fetch runs while the viewer waits (Asyncify
+// unwinds the C++ stack meanwhile), so the file is there when the reader goes on. Writes ""
+// to `why` when the file now exists, else the one-line reason naming the URL tried.
+EM_ASYNC_JS(void, accelviz_fetch_input, (const char* path_ptr, char* why_ptr, int why_size), {
+  const path = UTF8ToString(path_ptr);
+  const url = new URL(path, document.baseURI).href;
+  let why;
+  try {
+    const response = await fetch(url);
+    if (response.ok) {
+      const data = new Uint8Array(await response.arrayBuffer());
+      const target = PATH_FS.resolve(FS.cwd(), path);
+      const dir = PATH.dirname(target);
+      if (dir !== '/') FS.mkdirTree(dir);
+      FS.writeFile(target, data);
+      why = '';
+    } else {
+      why = url + ': the server answered ' + response.status + (response.statusText ? ' ' + response.statusText : '');
+    }
+  } catch (e) {
+    why = url + ': ' + e.message;
+  }
+  stringToUTF8(why, why_ptr, why_size);
+});
+
 // The page's side of offer_download(), log_screenshot() and log_line(). Lines go out as the
 // viewer's standard output does (Module.print: page.js adds "accelviz: ").
 EM_JS(void, accelviz_offer_download, (const char* path_ptr), {
@@ -140,6 +168,22 @@ EM_JS(void, accelviz_log_screenshot, (const char* path_ptr), {
 });
 
 EM_JS(void, accelviz_log_line, (const char* line_ptr), { out(UTF8ToString(line_ptr)); });
+
+void install_input_fetcher() {
+  accel::set_input_fetcher([](const std::string& path) -> accel::Status {
+    // The served folder only: /app (the working directory) and what lies below it.
+    const std::filesystem::path full = (std::filesystem::path("/app") / path).lexically_normal();
+    const std::string text = full.string();
+    if (!path.empty() && path[0] == '/')
+      return accel::make_error(path + ": cannot open (an absolute path; the page reads files of its own folder only)");
+    if (text.rfind("/app/", 0) != 0)
+      return accel::make_error(path + ": cannot open (outside the page's folder, which is all the page may read)");
+    char why[1024] = "";
+    accelviz_fetch_input(path.c_str(), why, int(sizeof why));
+    if (why[0] == 0) return {};
+    return accel::make_error(path + ": cannot open (fetched " + std::string(why) + ")");
+  });
+}
 
 void offer_download(const std::string& path) { accelviz_offer_download(path.c_str()); }
 void log_screenshot(const std::string& path) { accelviz_log_screenshot(path.c_str()); }

@@ -345,6 +345,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
+  viz::browser::install_input_fetcher();  // the page: files next to it are fetched when opened
   const bool screenshot_mode = !options.screenshot.empty();
   const bool script_mode = !options.script.empty();
   const bool headless = screenshot_mode || script_mode;

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "input_files.h"
+
 namespace viz {
 namespace {
 
@@ -67,6 +69,7 @@ accel::Result<Playlist> parse_playlist(const std::string& text, const std::strin
 }
 
 accel::Result<Playlist> load_playlist(const std::string& path) {
+  if (accel::Status fetched = accel::fetch_missing_input(path); !fetched) return fetched.error();  // the page
   std::ifstream file(path, std::ios::binary);
   if (!file) return accel::make_error(path + ": cannot read the playlist");
   std::ostringstream text;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "color_scheme.h"
+#include "input_files.h"
 #include "script_verbs.h"
 
 namespace viz {
@@ -145,6 +146,7 @@ accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, 
 }
 
 accel::Result<std::vector<ScriptCommand>> load_script(const std::string& path) {
+  if (accel::Status fetched = accel::fetch_missing_input(path); !fetched) return fetched.error();  // the page
   std::ifstream file(path, std::ios::binary);
   if (!file) return accel::make_error(path + ": cannot read the script");
   std::ostringstream text;

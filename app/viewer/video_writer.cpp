@@ -6,13 +6,15 @@
 #include <filesystem>
 #include <vector>
 
-// The web page has neither library (ACCEL_WITH_VIDEO=0): open() then says so in one line.
-#ifndef ACCEL_WITH_VIDEO
-#define ACCEL_WITH_VIDEO 1
+// The web page has giflib (compiled from Debian's source package) but not FFmpeg
+// (ACCEL_WITH_MP4=0): an MP4 is then refused in one line, and frames are resized with
+// stb_image_resize (stb's, as the native viewer's screenshots are written with stb).
+#ifndef ACCEL_WITH_MP4
+#define ACCEL_WITH_MP4 1
 #endif
-#if ACCEL_WITH_VIDEO
 #include <gif_lib.h>
 
+#if ACCEL_WITH_MP4
 extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
@@ -20,6 +22,10 @@ extern "C" {
 #include <libavutil/opt.h>
 #include <libswscale/swscale.h>
 }
+#else
+#define STB_IMAGE_RESIZE_IMPLEMENTATION
+#define STBIR_DEFAULT_FILTER_DOWNSAMPLE STBIR_FILTER_BOX  // an area filter, as swscale's SWS_AREA
+#include <stb/stb_image_resize.h>
 #endif
 
 namespace viz {
@@ -31,7 +37,6 @@ std::string extension_of(const std::string& path) {
   return ext;
 }
 
-#if ACCEL_WITH_VIDEO
 void remove_quietly(const std::string& path) {
   std::error_code ec;
   std::filesystem::remove(path, ec);
@@ -141,6 +146,7 @@ class GifWriter final : public VideoWriter {
   GifFileType* gif_ = nullptr;
 };
 
+#if ACCEL_WITH_MP4
 // ---------------------------------------------------------------------------------------
 // MP4: H.264 (libx264 through libavcodec), YUV 4:2:0, one frame per 1/fps.
 
@@ -267,13 +273,13 @@ class Mp4Writer final : public VideoWriter {
   SwsContext* scaler_ = nullptr;
 };
 
-#endif  // ACCEL_WITH_VIDEO
+#endif  // ACCEL_WITH_MP4
 
 }  // namespace
 
 std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, int out_w, int out_h) {
-#if ACCEL_WITH_VIDEO
   std::vector<uint8_t> out(static_cast<size_t>(out_w) * static_cast<size_t>(out_h) * 4);
+#if ACCEL_WITH_MP4
   SwsContext* ctx = sws_getContext(w, h, AV_PIX_FMT_RGBA, out_w, out_h, AV_PIX_FMT_RGBA, SWS_AREA, nullptr, nullptr, nullptr);
   if (!ctx) return {};
   const uint8_t* in_planes[1] = {src.data()};
@@ -282,11 +288,10 @@ std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, 
   const int out_stride[1] = {out_w * 4};
   sws_scale(ctx, in_planes, in_stride, 0, h, out_planes, out_stride);
   sws_freeContext(ctx);
-  return out;
 #else
-  (void)src, (void)w, (void)h, (void)out_w, (void)out_h;
-  return {};
+  if (!stbir_resize_uint8(src.data(), w, h, w * 4, out.data(), out_w, out_h, out_w * 4, 4)) return {};
 #endif
+  return out;
 }
 
 accel::Result<VideoFormat> video_format_of(const std::string& path) {
@@ -306,17 +311,17 @@ accel::Result<std::unique_ptr<VideoWriter>> VideoWriter::open(const std::string&
   if (fps < kMinFps || fps > kMaxFps)
     return accel::make_error(path + ": fps=" + std::to_string(fps) + " is out of range (" + std::to_string(kMinFps) +
                              ".." + std::to_string(kMaxFps) + ")");
-#if !ACCEL_WITH_VIDEO
-  return accel::make_error(path + ": GIF and MP4 recording needs giflib and FFmpeg, which this build does not have");
-#else
   if (format.value() == VideoFormat::Gif) {
     auto w = std::make_unique<GifWriter>(path, width, height, fps);
     if (auto st = w->start(); !st) return st.error();
     return std::unique_ptr<VideoWriter>(std::move(w));
   }
+#if ACCEL_WITH_MP4
   auto w = std::make_unique<Mp4Writer>(path, width, height, fps);
   if (auto st = w->start(); !st) return st.error();
   return std::unique_ptr<VideoWriter>(std::move(w));
+#else
+  return accel::make_error(path + ": MP4 recording needs FFmpeg, which the web page does not have; record a .gif");
 #endif
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // GL-free: writes the frames of a recording (RGBA8, top row first) to an animated GIF
 // (giflib, a palette per frame from its median-cut quantizer) or an MP4 with H.264 video
-// (FFmpeg's libavformat / libavcodec with libx264, libswscale for RGB -> YUV 4:2:0). No
-// hand-written encoder. The output appears only when finish() succeeds: frames go to
+// (FFmpeg's libavformat / libavcodec with libx264, libswscale for RGB -> YUV 4:2:0; not in
+// the web page, which records GIFs only). No hand-written encoder. The output appears only when finish() succeeds: frames go to
 // "PATH.part", renamed at the end and removed on failure or when the writer is dropped, so
 // a failed or abandoned recording never leaves a half-written file.
 #include <cstdint>
@@ -20,8 +20,9 @@ enum class VideoFormat { Gif, Mp4 };
 /// the path and the valid extensions.
 accel::Result<VideoFormat> video_format_of(const std::string& path);
 
-/// `src` (w x h RGBA) resampled to `out_w` x `out_h` with libswscale (area filter: frames
-/// shrink well); empty when that fails or the build has no FFmpeg.
+/// `src` (w x h RGBA) resampled to `out_w` x `out_h` with an area filter (frames shrink
+/// well): libswscale's natively, stb_image_resize's box filter in the page; empty when
+/// that fails.
 std::vector<uint8_t> resize_rgba(const std::vector<uint8_t>& src, int w, int h, int out_w, int out_h);
 
 class VideoWriter {

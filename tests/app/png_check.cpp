@@ -6,14 +6,21 @@
 //                                                 background, in several shades
 //   png_check --differ A B [MIN_PIXELS]          exit 0 if A and B have the same size and at
 //                                                 least MIN_PIXELS (default 50) pixels differ
+//   png_check --gif FILE FRAMES WIDTH HEIGHT     exit 0 if FILE decodes (stb_image's GIF
+//                                                 decoder) to FRAMES images of WIDTHxHEIGHT,
+//                                                 not all the same
 //   png_check --skip REASON                      prints REASON, exits 77 (ctest SKIP)
 //
 // The background is the bottom-right corner pixel: ImGui's panel sits top-left, and the
 // framed scene leaves the corners free.
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
+#include <vector>
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
@@ -63,6 +70,32 @@ int differ(const std::string& a_path, const std::string& b_path, size_t min_pixe
   return 0;
 }
 
+/// --gif: a recording (the web page's downloaded GIF) decodes, with the expected frames.
+int gif(const std::string& path, int want_frames, int want_w, int want_h) {
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (data.empty()) return fail("cannot read " + path);
+  int* delays = nullptr;
+  int w = 0, h = 0, frames = 0, channels = 0;
+  unsigned char* pixels =
+      stbi_load_gif_from_memory(data.data(), int(data.size()), &delays, &w, &h, &frames, &channels, 4);
+  if (pixels == nullptr) return fail("cannot decode " + path + ": " + stbi_failure_reason());
+  const size_t frame_bytes = 4 * static_cast<size_t>(w) * static_cast<size_t>(h);
+  size_t distinct = 1;
+  for (int k = 1; k < frames; ++k)
+    if (std::memcmp(pixels + frame_bytes * size_t(k), pixels + frame_bytes * size_t(k - 1), frame_bytes) != 0)
+      ++distinct;
+  stbi_image_free(pixels);
+  stbi_image_free(delays);
+  std::printf("png_check: %s: %d frames of %dx%d, %zu changes\n", path.c_str(), frames, w, h, distinct);
+  if (frames != want_frames) return fail(std::to_string(frames) + " frames, expected " + std::to_string(want_frames));
+  if (w != want_w || h != want_h)
+    return fail(std::to_string(w) + "x" + std::to_string(h) + ", expected " + std::to_string(want_w) + "x" +
+                std::to_string(want_h));
+  if (frames > 1 && distinct < 2) return fail("every frame is the same picture");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -70,12 +103,14 @@ int main(int argc, char** argv) {
     std::printf("png_check: skipped: %s\n", argv[2]);
     return kSkipCode;
   }
+  if (argc == 6 && std::string(argv[1]) == "--gif")
+    return gif(argv[2], std::atoi(argv[3]), std::atoi(argv[4]), std::atoi(argv[5]));
   if ((argc == 4 || argc == 5) && std::string(argv[1]) == "--differ")
     return differ(argv[2], argv[3], argc == 5 ? static_cast<size_t>(std::atol(argv[4])) : 50);
   if (argc < 4 || argc > 5) {
     std::fprintf(stderr,
                  "usage: png_check FILE WIDTH HEIGHT [MIN_FRACTION] | png_check --differ A B [MIN_PIXELS] | "
-                 "png_check --skip REASON\n");
+                 "png_check --gif FILE FRAMES WIDTH HEIGHT | png_check --skip REASON\n");
     return 2;
   }
   const std::string path = argv[1];

@@ -162,7 +162,7 @@ def main():
     faults = {
         "fault_crash": (lambda r: "crashed" in r.get("failure", "") and "ray" in r["failure"], []),
         "fault_loop": (lambda r: "no answer within the time limit" in r.get("failure", ""),
-                       ["--timeout", "5" if sanitized else "15"]),
+                       ["--timeout", "5"]),
         "fault_logged_loop": (lambda r: any("endless loop" in f for f in r["faults"]), ["--timeout", "60"]),
         "fault_throw": (lambda r: any("threw" in f and "planted student bug" in f for f in r["faults"]), []),
         "fault_build_throw": (lambda r: any("build threw" in f for f in r["faults"]), []),

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """The web page's test: drives accelviz.html in headless Chromium over the DevTools protocol.
 
-    python3 tests/web/test_page.py --web-dir build-web --cli build/bin/accelviz-cli \
+    python3 tests/web/test_page.py --web-dir build-web/site --cli build/bin/accelviz-cli \
         [--shared ../shared] [--only NAME] [--keep] [-v]
 
 Serves --web-dir on 127.0.0.1 (a free port), writes its viewer scripts into
 WEB_DIR/test-scripts/ (removed at the end unless --keep) and opens one page per script.
-Prints 'PASS: name', 'FAIL: name: why' (details indented below it) or 'SKIP: name: why' per
-check, then 'N passed, N failed'. Exit 0 when none failed, 1 otherwise, 77 (skipped) when the
-web folder has no accelviz.html or Chromium is missing, 2 on bad arguments.
+Prints 'PASS: name (seconds)', 'FAIL: name: why' (details indented below it) or
+'SKIP: name: why' per check, then 'N passed, N failed'. Exit 0 when none failed, 1
+otherwise, 77 (skipped) when the web folder has no accelviz.html or Chromium is missing, 2
+on bad arguments.
 
 Checks (--only takes the short name or the full one; repeatable):
   loads        'loads'               the page alone logs 'accelviz: ready', no error
@@ -20,6 +21,13 @@ Checks (--only takes the short name or the full one; repeatable):
   f12          'F12 downloads a screenshot'  F12 saves accelviz_0001.png, the canvas's size
   blackboard   'blackboard'          the 2D mode: ray2d + print-hit per structure on the bundled
                                      scenes/blackboard.scene2d give its hit (triangle 7 at 13.238)
+  on-demand    'files on demand'     a playlist, an OBJ and scripts next to the page, not bundled
+                                     and not in the URL's fetch=: ?playlist=...&state=2 reaches
+                                     the state that loads the OBJ, ?script= loads it and every
+                                     structure's print-hit = accelviz-cli trace, a missing file
+                                     and a path out of the folder give their one-line errors
+  gif          'GIF recording'       record ... / record stop in the page: the GIF arrives as a
+                                     download and decodes (png_check --gif) to its frames
   student      'student structure'   a page built with --student (scripts/build_web.sh): the
                                      student's structure answers as the built-in BVH does, and
                                      `compare` runs it against the built-in of its kind (skipped
@@ -216,6 +224,20 @@ def is_ray_line(text):
         return False
 
 
+def ray_through_centre(obj_path):
+    """A ray line from outside the mesh's box straight at its centre (along -z)."""
+    lo, hi = [float('inf')] * 3, [float('-inf')] * 3
+    with open(obj_path) as f:
+        for line in f:
+            if line.startswith('v '):
+                xyz = [float(v) for v in line.split()[1:4]]
+                lo = [min(a, b) for a, b in zip(lo, xyz)]
+                hi = [max(a, b) for a, b in zip(hi, xyz)]
+    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+    start = [centre[0], centre[1], hi[2] + (hi[2] - lo[2])]
+    return '%.9g %.9g %.9g 0 0 -1' % tuple(start)
+
+
 class Run:
     """A viewer script run in a page: its console lines, errors and how it ended."""
 
@@ -249,12 +271,16 @@ class Tester:
             f.write('\n'.join(lines) + '\n')
         return SCRIPTS_DIR + '/' + name
 
-    def run_script(self, name, lines, timeout):
-        """Writes and runs a script in a fresh page; returns a Run (end None on a timeout)."""
-        script = self.write_script(name, lines)
+    def run_script(self, name, lines, timeout, downloads=None, query=None):
+        """Writes and runs a script in a fresh page (with `lines`; None: the page's `query`
+        instead, the script already written); returns a Run (end None on a timeout).
+        `downloads`: the folder the browser saves downloads into."""
+        script = self.write_script(name, lines) if lines is not None else None
         with self.browser() as browser:
+            if downloads:
+                browser.send('Browser.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads})
             page = browser.new_page(*VIEWPORT)
-            page.navigate(self.url(script))
+            page.navigate(self.url(script) if query is None else self.base_url + '/accelviz.html?' + query)
             end, details = None, ''
             try:
                 # An uncaught exception (an emscripten abort) ends the wait early.
@@ -306,28 +332,23 @@ class Tester:
             self._bunny_run = self.run_script('bunny.txt', lines, timeout=180)
         return self._bunny_run
 
-    def check_hits(self):
-        native = self.need_bunny()
+    def need_cli(self):
         cli = self.args.cli
         if not cli or not os.path.isfile(cli) or not os.access(cli, os.X_OK):
             raise CheckFailed('no executable accelviz-cli at %r (--cli)' % cli)
-        run = self.bunny_run()
-        if run.end is None:
-            raise CheckFailed('the script did not end: %s' % run.details)
-        if not run.end.startswith(PREFIX + 'script done'):
-            raise CheckFailed('%s\n%s' % (run.end, run.details))
-        rays = [t for t in run.lines if is_ray_line(t)]
-        hits = [t for t in run.lines if HIT_RE.match(t) or t == 'miss']
-        if len(rays) != len(STRUCTURES) or len(hits) != len(STRUCTURES):
-            raise CheckFailed('expected %d print-ray and %d print-hit lines, got %d and %d\n%s' % (
-                len(STRUCTURES), len(STRUCTURES), len(rays), len(hits), run.details))
+        return cli
+
+    def cli_mismatches(self, native, answers):
+        """`answers`: (structure, ray line, page's print-hit line) on the mesh `native`; the
+        differences from accelviz-cli trace's answers, one string each."""
+        cli = self.need_cli()
         problems = []
         tmp = tempfile.mkdtemp(prefix='accelviz-web-test-')
         try:
-            for name, ray, hit in zip(STRUCTURES, rays, hits):
+            for name, ray, hit in answers:
                 m = HIT_RE.match(hit)
                 if not m:
-                    problems.append('%s: the ray at pixel (320, 240) misses (ray %s)' % (name, ray))
+                    problems.append('%s: the ray misses (ray %s)' % (name, ray))
                     continue
                 prim, t = int(m.group(1)), float(m.group(2))
                 rays_file = os.path.join(tmp, name + '.rays')
@@ -361,6 +382,22 @@ class Tester:
                     print('    %s: hit %d %.9g (ray %s)' % (name, prim, t, ray))
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
+        return problems
+
+    def check_hits(self):
+        native = self.need_bunny()
+        self.need_cli()
+        run = self.bunny_run()
+        if run.end is None:
+            raise CheckFailed('the script did not end: %s' % run.details)
+        if not run.end.startswith(PREFIX + 'script done'):
+            raise CheckFailed('%s\n%s' % (run.end, run.details))
+        rays = [t for t in run.lines if is_ray_line(t)]
+        hits = [t for t in run.lines if HIT_RE.match(t) or t == 'miss']
+        if len(rays) != len(STRUCTURES) or len(hits) != len(STRUCTURES):
+            raise CheckFailed('expected %d print-ray and %d print-hit lines, got %d and %d\n%s' % (
+                len(STRUCTURES), len(STRUCTURES), len(rays), len(hits), run.details))
+        problems = self.cli_mismatches(native, list(zip(STRUCTURES, rays, hits)))
         if problems:
             raise CheckFailed('; '.join(problems))
 
@@ -581,6 +618,98 @@ class Tester:
                    for t in run.lines):
             raise CheckFailed('compare printed no line against the built-in:\n%s' % '\n'.join(run.lines[-12:]))
 
+    def check_on_demand(self):
+        """A lecturer's files next to the page: a playlist, an OBJ and scripts that the page
+        does not bundle and the URL does not list (no fetch=). Each is fetched where the
+        viewer opens it, however deep the reference: the playlist names the OBJ."""
+        native = self.need_bunny()
+        self.need_cli()
+        course = SCRIPTS_DIR + '/course'  # as the page sees it
+        folder = os.path.join(self.web_dir, course)
+        os.makedirs(os.path.join(folder, 'meshes'), exist_ok=True)
+        shutil.copyfile(native, os.path.join(folder, 'meshes', 'mymesh.obj'))
+        ray = ray_through_centre(native)
+        # The playlist's paths are relative to it; the scripts' to the page's folder.
+        with open(os.path.join(folder, 'course.playlist'), 'w') as f:
+            f.write('state One: the Cornell box\nscene procedural:cornell\n\n'
+                    'state Two: my own mesh\nscene meshes/mymesh.obj\nstructure kdtree\n'
+                    'ray %s\nprint-hit\n' % ray)
+        problems = []
+        with self.browser() as browser:
+            page = browser.new_page(*VIEWPORT)
+            page.navigate(self.base_url + '/accelviz.html?playlist=%s/course.playlist&state=2' % course)
+            try:
+                hit = page.wait_for_console(lambda t: t.startswith(PREFIX) and (
+                    HIT_RE.match(t[len(PREFIX):]) or t == PREFIX + 'miss'), timeout=120,
+                    fail_on_error=FATAL, what='the state\'s print-hit')
+                problems += ['playlist: ' + p for p in self.cli_mismatches(
+                    native, [('kdtree', ray, hit[len(PREFIX):])])]
+            except cdp.CdpError as e:
+                problems.append('playlist: state 2 printed no hit: %s\n%s' % (e, page.last_console()))
+        lines = ['size 640 480', 'scene %s/meshes/mymesh.obj' % course]
+        for name in STRUCTURES:
+            lines += ['structure ' + name, 'ray ' + ray, 'print-hit']
+        self.write_script('course/demo.script', lines)
+        run = self.run_script('course/demo.script', None, timeout=180,
+                              query='script=%s/demo.script' % course)
+        if run.end is None or not run.end.startswith(PREFIX + 'script done'):
+            problems.append('script: %s' % clip(run.end or run.details))
+        else:
+            hits = [t for t in run.lines if HIT_RE.match(t) or t == 'miss']
+            if len(hits) != len(STRUCTURES):
+                problems.append('script: %d print-hit lines, expected %d' % (len(hits), len(STRUCTURES)))
+            else:
+                problems += ['script: ' + p for p in self.cli_mismatches(
+                    native, [(name, ray, hit) for name, hit in zip(STRUCTURES, hits)])]
+        # A missing file, and a path out of the page's folder: one line each, naming the
+        # file (and the URL tried); the page lives on.
+        for name, target, expect in [('missing.script', course + '/meshes/missing.obj', 'the server answered 404'),
+                                     ('outside.script', '../outside.obj', 'outside the page\'s folder')]:
+            run = self.run_script('course/' + name, ['size 640 480', 'scene ' + target], timeout=60)
+            end = run.end or ''
+            want = PREFIX + 'script failed: %s/%s:2: %s: cannot open (' % (course, name, target)
+            if not end.startswith(want) or expect not in end or '\n' in end:
+                problems.append('%s: expected "%s... %s ...)" on one line, got %s' % (
+                    name, want, expect, clip(end or run.details)))
+            elif expect.startswith('the server') and self.base_url + '/' + target not in end:
+                problems.append('%s: the message does not name the URL tried: %s' % (name, clip(end)))
+            fatal = [e for e in run.errors if e[0] in FATAL]
+            if fatal:
+                problems.append('%s: the page stopped: [%s] %s' % (name, fatal[0][0], clip(fatal[0][1])))
+        if problems:
+            raise CheckFailed('; '.join(problems))
+
+    def check_gif(self):
+        """`record NAME.gif` ... `record stop` in the page: the desktop's GIF writer, the file
+        saved as a download, decoding (stb_image, png_check --gif) to one frame per step."""
+        png_check = self.args.png_check
+        if not png_check or not os.access(png_check, os.X_OK):
+            raise CheckFailed('no executable png_check at %r (--png-check)' % png_check)
+        downloads = tempfile.mkdtemp(prefix='accelviz-downloads-')
+        try:
+            lines = ['size 640 480', 'scene procedural:cornell', 'structure kdtree', 'ray 0 0.5 3 0 0 -1',
+                     'step start', 'record clip.gif fps=5 size=320x240', 'step 5', 'record stop']
+            run = self.run_script('gif.txt', lines, timeout=120, downloads=downloads)
+            if run.end is None or not run.end.startswith(PREFIX + 'script done'):
+                raise CheckFailed('the script: %s' % clip(run.end or run.details))
+            wrote = [t for t in run.lines if t.startswith('wrote ')]
+            if wrote != ['wrote /app/clip.gif (6 frames)']:
+                raise CheckFailed('expected "wrote /app/clip.gif (6 frames)", got %s' % wrote)
+            path = os.path.join(downloads, 'clip.gif')
+            deadline = time.monotonic() + 30
+            while time.monotonic() < deadline and not os.path.isfile(path):
+                time.sleep(0.2)
+            time.sleep(0.5)  # the download's last bytes
+            if not os.path.isfile(path):
+                raise CheckFailed('no clip.gif downloaded within 30 s (got %s)' % os.listdir(downloads))
+            proc = subprocess.run([png_check, '--gif', path, '6', '320', '240'], capture_output=True, text=True)
+            if proc.returncode != 0:
+                raise CheckFailed('the GIF: %s' % (proc.stderr.strip() or proc.stdout.strip()))
+            if self.args.verbose:
+                print('    ' + proc.stdout.strip())
+        finally:
+            shutil.rmtree(downloads, ignore_errors=True)
+
     CHECKS = [
         ('loads', 'loads', check_loads),
         ('hits', 'hits match the CLI', check_hits),
@@ -590,6 +719,8 @@ class Tester:
         ('bad-script', 'bad script', check_bad_script),
         ('f12', 'F12 downloads a screenshot', check_f12),
         ('blackboard', 'blackboard', check_blackboard),
+        ('on-demand', 'files on demand', check_on_demand),
+        ('gif', 'GIF recording', check_gif),
         ('student', 'student structure', check_student),
     ]
 
@@ -612,8 +743,8 @@ class Tester:
                 self.report_fail(name, traceback.format_exc().rstrip())
             else:
                 self.passed += 1
-                print('PASS: %s' % name + (' (%.1f s)' % (time.monotonic() - t0)
-                                           if self.args.verbose else ''), flush=True)
+                # The time too: the CI log shows where the browser test's minutes go.
+                print('PASS: %s (%.1f s)' % (name, time.monotonic() - t0), flush=True)
 
     def report_fail(self, name, why):
         self.failed += 1
@@ -640,6 +771,8 @@ def main():
     ap.add_argument('--keep', action='store_true',
                     help='keep WEB_DIR/test-scripts (scripts and the screenshots as PNGs)')
     ap.add_argument('-v', '--verbose', action='store_true', help='print the pages\' console')
+    ap.add_argument('--png-check', default=None,
+                    help='png_check, for the GIF check (default: next to --cli)')
     ap.add_argument('--student-structure', default='median_bvh',
                     help='the student structure the page was built with (scripts/build_web.sh --student)')
     args = ap.parse_args()
@@ -658,6 +791,8 @@ def main():
         return 77
     if args.cli:
         args.cli = os.path.abspath(args.cli)
+        if args.png_check is None:
+            args.png_check = os.path.join(os.path.dirname(args.cli), 'png_check')
     args.shared = os.path.abspath(args.shared)
 
     tester = Tester(args)

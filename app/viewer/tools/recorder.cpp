@@ -57,7 +57,9 @@ accel::Status Recorder::stop() {
     set_notice(st.error().message);
     return st;
   }
-  set_notice("wrote " + std::filesystem::absolute(path).string() + " (" + std::to_string(frames) + " frames)");
+  const std::string written = std::filesystem::absolute(path).string();
+  set_notice("wrote " + written + " (" + std::to_string(frames) + " frames)");
+  browser::offer_download(written);  // the page: the browser saves it as a download
   return {};
 }
 

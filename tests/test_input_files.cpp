@@ -1,0 +1,99 @@
+// Files on demand (input_files.h): the readers of scenes, 2D scenes and rays files ask the
+// installed fetcher for a missing file at the moment they open it, and only then. The web
+// page's fetcher copies from the served folder; here a fetcher writes the file itself.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "input_files.h"
+#include "rays_io.h"
+#include "scene.h"
+
+namespace accel {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A fresh folder, and a fetcher installed for the test's duration that records what it was
+/// asked for and writes `contents` when it has them.
+class InputFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("accel_input_files_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    set_input_fetcher([this](const std::string& path) -> Status {
+      asked_.push_back(path);
+      if (contents_.empty()) return make_error(path + ": cannot open (fetched http://x/" + path + ": 404)");
+      std::ofstream(path) << contents_;
+      return {};
+    });
+  }
+  void TearDown() override {
+    set_input_fetcher(nullptr);
+    fs::remove_all(dir_);
+  }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+  std::vector<std::string> asked_;
+  std::string contents_;
+};
+
+constexpr const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+TEST_F(InputFiles, AMissingSceneIsFetchedWhenOpened) {
+  contents_ = kTriangleObj;
+  auto scene = load_scene(file("later.obj"));
+  ASSERT_TRUE(scene) << scene.error().message;
+  EXPECT_EQ(scene.value().triangle_count(), 1u);
+  EXPECT_EQ(asked_, std::vector<std::string>{file("later.obj")});
+}
+
+TEST_F(InputFiles, AnExistingFileIsNotFetched) {
+  std::ofstream(file("here.obj")) << kTriangleObj;
+  ASSERT_TRUE(load_scene(file("here.obj")));
+  EXPECT_TRUE(asked_.empty());
+}
+
+TEST_F(InputFiles, ProceduralScenesAreNotFiles) {
+  ASSERT_TRUE(load_scene("procedural:sphere"));
+  EXPECT_TRUE(asked_.empty());
+}
+
+TEST_F(InputFiles, TheFetchersErrorIsTheReadersError) {
+  auto scene = load_scene(file("missing.obj"));
+  ASSERT_FALSE(scene);
+  EXPECT_EQ(scene.error().message,
+            file("missing.obj") + ": cannot open (fetched http://x/" + file("missing.obj") + ": 404)");
+  auto rays = read_rays(file("missing.rays"));
+  ASSERT_FALSE(rays);
+  EXPECT_NE(rays.error().message.find("missing.rays: cannot open (fetched"), std::string::npos);
+}
+
+TEST_F(InputFiles, RaysAnd2dScenesAreFetchedToo) {
+  contents_ = "0 0 -1 0 0 1\n";
+  auto rays = read_rays(file("later.rays"));
+  ASSERT_TRUE(rays) << rays.error().message;
+  EXPECT_EQ(rays.value().size(), 1u);
+  contents_ = "tri 1 1 3 1 2 3\n";
+  auto flat = load_scene(file("later.scene2d"));
+  ASSERT_TRUE(flat) << flat.error().message;
+  EXPECT_EQ(flat.value().triangle_count(), 1u);
+  EXPECT_EQ(asked_, (std::vector<std::string>{file("later.rays"), file("later.scene2d")}));
+}
+
+TEST(InputFilesNone, WithoutAFetcherAMissingFileIsTheReadersOwnError) {
+  set_input_fetcher(nullptr);
+  EXPECT_TRUE(fetch_missing_input("/nonexistent/accel_input.obj"));
+  auto scene = load_scene("/nonexistent/accel_input.obj");
+  ASSERT_FALSE(scene);
+  EXPECT_NE(scene.error().message.find("cannot open"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace accel
