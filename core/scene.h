@@ -121,4 +121,9 @@ Scene make_scattered_scene(const ScatteredSceneSize& size, uint32_t seed = 1, st
 /// a .scene2d file via load_scene2d (scene2d.h: a 2D scene), anything else via load_obj.
 Result<Scene> load_scene(const std::string& spec);
 
+/// The first thing load_scene does with a spec that names a file: fetch_missing_input
+/// (input_files.h), so that in the page a file next to it is there. For a caller that loads
+/// on another thread or fibre: it calls this first, where the page can wait for a download.
+Status fetch_scene_file(const std::string& spec);
+
 }  // namespace accel

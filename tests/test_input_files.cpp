@@ -62,7 +62,19 @@ TEST_F(InputFiles, AnExistingFileIsNotFetched) {
 
 TEST_F(InputFiles, ProceduralScenesAreNotFiles) {
   ASSERT_TRUE(load_scene("procedural:sphere"));
+  EXPECT_TRUE(fetch_scene_file("procedural:sphere"));
   EXPECT_TRUE(asked_.empty());
+}
+
+// The viewer's background load: fetched first (where the page may wait), then read without
+// asking again.
+TEST_F(InputFiles, FetchSceneFileBeforeALoadElsewhere) {
+  contents_ = kTriangleObj;
+  ASSERT_TRUE(fetch_scene_file(file("early.obj")));
+  contents_.clear();
+  auto scene = load_scene(file("early.obj"));
+  ASSERT_TRUE(scene) << scene.error().message;
+  EXPECT_EQ(asked_, std::vector<std::string>{file("early.obj")});
 }
 
 TEST_F(InputFiles, TheFetchersErrorIsTheReadersError) {

@@ -123,25 +123,33 @@ void wait_for_next_frame() { accelviz_wait_for_animation_frame(); }
 // Files on demand (install_input_fetcher): the served folder is the page's folder, which
 // the working directory /app stands for. The fetch runs while the viewer waits (Asyncify
 // unwinds the C++ stack meanwhile), so the file is there when the reader goes on. Writes ""
-// to `why` when the file now exists, else the one-line reason naming the URL tried.
+// to `why` when the file now exists, else the reason, naming the URL tried. The URL, as the
+// browser resolves it, must lie in the page's folder: this also refuses what the path check
+// of install_input_fetcher cannot see ("http://...", "%2e%2e/").
 EM_ASYNC_JS(void, accelviz_fetch_input, (const char* path_ptr, char* why_ptr, int why_size), {
   const path = UTF8ToString(path_ptr);
-  const url = new URL(path, document.baseURI).href;
+  const folder = new URL(".", document.baseURI).href;
   let why;
   try {
-    const response = await fetch(url);
-    if (response.ok) {
-      const data = new Uint8Array(await response.arrayBuffer());
-      const target = PATH_FS.resolve(FS.cwd(), path);
-      const dir = PATH.dirname(target);
-      if (dir !== '/') FS.mkdirTree(dir);
-      FS.writeFile(target, data);
-      why = '';
+    const url = new URL(path, document.baseURI).href;
+    if (!url.startsWith(folder)) {
+      why = url + " is outside the page's folder, which is all the page may read";
     } else {
-      why = url + ': the server answered ' + response.status + (response.statusText ? ' ' + response.statusText : '');
+      const response = await fetch(url);
+      if (response.ok) {
+        const data = new Uint8Array(await response.arrayBuffer());
+        const target = PATH_FS.resolve(FS.cwd(), path);
+        const dir = PATH.dirname(target);
+        if (dir !== "/") FS.mkdirTree(dir);
+        FS.writeFile(target, data);
+        why = "";
+      } else {
+        why = "fetched " + url + ": the server answered " + response.status +
+              (response.statusText ? " " + response.statusText : "");
+      }
     }
   } catch (e) {
-    why = url + ': ' + e.message;
+    why = "fetching " + path + ": " + e.message;
   }
   stringToUTF8(why, why_ptr, why_size);
 });
@@ -181,7 +189,7 @@ void install_input_fetcher() {
     char why[1024] = "";
     accelviz_fetch_input(path.c_str(), why, int(sizeof why));
     if (why[0] == 0) return {};
-    return accel::make_error(path + ": cannot open (fetched " + std::string(why) + ")");
+    return accel::make_error(path + ": cannot open (" + std::string(why) + ")");
   });
 }
 

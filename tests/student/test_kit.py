@@ -142,7 +142,7 @@ def main():
     if sanitized:
         bugs = {k: v for k, v in bugs.items() if k in ("bug_bvh_first_hit", "bug_sphere_too_small")}
     for name, caught in bugs.items():
-        code, r, s = check_json(args, name, "--no-time", scale=scale("0.5"))
+        code, r, s = check_json(args, name, "--no-time", scale=scale("0.3"))
         if r is None:
             continue
         traps = sorted({w["trap"] for w in r["wrong_rays"] if w["trap"]})

@@ -664,7 +664,10 @@ class Tester:
         # A missing file, and a path out of the page's folder: one line each, naming the
         # file (and the URL tried); the page lives on.
         for name, target, expect in [('missing.script', course + '/meshes/missing.obj', 'the server answered 404'),
-                                     ('outside.script', '../outside.obj', 'outside the page\'s folder')]:
+                                     ('outside.script', '../outside.obj', 'outside the page\'s folder'),
+                                     # a URL of another server: past the path check, refused
+                                     # where the browser resolves the URL
+                                     ('url.script', 'http://127.0.0.1:9/outside.obj', 'outside the page\'s folder')]:
             run = self.run_script('course/' + name, ['size 640 480', 'scene ' + target], timeout=60)
             end = run.end or ''
             want = PREFIX + 'script failed: %s/%s:2: %s: cannot open (' % (course, name, target)

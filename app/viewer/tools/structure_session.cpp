@@ -51,6 +51,13 @@ void StructureSession::load_scene_in_background(const std::string& spec) {
     next_load_ = spec;
     return;
   }
+  // The page downloads a file it does not hold yet here, in the main loop, which may wait
+  // for it; the job's fibre then reads it from the page's file system (natively: nothing).
+  if (accel::Status fetched = accel::fetch_scene_file(spec); !fetched) {
+    panel_.load_error = fetched.error().message;
+    browser::log_line(panel_.load_error);
+    return;
+  }
   loading_spec_ = spec;
   load_dropped_ = false;
   panel_.load_error.clear();
