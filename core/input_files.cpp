@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <filesystem>
 #include <utility>
 
 namespace accel {
@@ -21,6 +22,12 @@ Status fetch_missing_input(const std::string& path) {
   if (!f || path.empty()) return {};
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) return {};
+  // What a fetcher may be asked for: a path below the working directory (the page's folder).
+  if (path[0] == '/')
+    return make_error(path + ": cannot open (an absolute path; the page reads files of its own folder only)");
+  const std::string normal = std::filesystem::path(path).lexically_normal().generic_string();
+  if (normal == ".." || normal.rfind("../", 0) == 0)
+    return make_error(path + ": cannot open (outside the page's folder, which is all the page may read)");
   return f(path);
 }
 

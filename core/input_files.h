@@ -20,8 +20,9 @@ using InputFetcher = std::function<Status(const std::string& path)>;
 void set_input_fetcher(InputFetcher fetcher);
 
 /// Before a reader opens `path`: when it does not exist and a fetcher is installed, the
-/// fetcher's answer (its error is the reader's error); otherwise success, and the reader
-/// reports a missing file as it always does.
+/// fetcher's answer (its error is the reader's error), or a refusal without asking it for an
+/// absolute path or one whose `..` leads out of the working directory; otherwise success,
+/// and the reader reports a missing file as it always does.
 Status fetch_missing_input(const std::string& path);
 
 }  // namespace accel

@@ -99,6 +99,32 @@ TEST_F(InputFiles, RaysAnd2dScenesAreFetchedToo) {
   EXPECT_EQ(asked_, (std::vector<std::string>{file("later.rays"), file("later.scene2d")}));
 }
 
+// The page may read its own folder only: an absolute path, or a ".." leading out of the
+// working directory, is refused in one line without asking the fetcher.
+TEST_F(InputFiles, AbsoluteAndEscapingPathsAreRefusedWithoutAsking) {
+  contents_ = kTriangleObj;
+  const Status absolute = fetch_missing_input("/nonexistent/accel_input.obj");
+  ASSERT_FALSE(absolute);
+  EXPECT_EQ(
+      absolute.error().message,
+      "/nonexistent/accel_input.obj: cannot open (an absolute path; the page reads files of its own folder only)");
+  for (const std::string path : {"../accel_outside.obj", "a/../../accel_outside.obj", ".."}) {
+    const Status escaping = fetch_missing_input(path);
+    ASSERT_FALSE(escaping) << path;
+    EXPECT_EQ(escaping.error().message,
+              path + ": cannot open (outside the page's folder, which is all the page may read)");
+  }
+  EXPECT_TRUE(asked_.empty());
+  // A ".." that stays inside is a path like any other.
+  const std::string inside =
+      "accel_input_dir_" + std::to_string(::getpid()) + "/../accel_inside_" + std::to_string(::getpid()) + ".obj";
+  fs::create_directories("accel_input_dir_" + std::to_string(::getpid()));
+  EXPECT_TRUE(fetch_missing_input(inside));
+  EXPECT_EQ(asked_, std::vector<std::string>{inside});
+  fs::remove_all("accel_input_dir_" + std::to_string(::getpid()));
+  fs::remove("accel_inside_" + std::to_string(::getpid()) + ".obj");
+}
+
 TEST(InputFilesNone, WithoutAFetcherAMissingFileIsTheReadersOwnError) {
   set_input_fetcher(nullptr);
   EXPECT_TRUE(fetch_missing_input("/nonexistent/accel_input.obj"));
