@@ -102,7 +102,7 @@ Status fetch_scene_file(const std::string& spec) {
 Result<Scene> load_scene(const std::string& spec) {
   if (spec.rfind(kProceduralPrefix, 0) == 0)
     return make_procedural_scene(std::string_view(spec).substr(kProceduralPrefix.size()));
-  if (Status fetched = fetch_scene_file(spec); !fetched) return fetched.error();  // the page: from its folder
+  if (Status fetched = fetch_missing_input(spec); !fetched) return fetched.error();  // the page: from its folder
   if (is_mesh_format(spec)) return load_mesh(spec);
   if (spec.size() > std::strlen(kScene2dExtension) && spec.ends_with(kScene2dExtension)) return load_scene2d(spec);
   return load_obj(spec);
