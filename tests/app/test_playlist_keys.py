@@ -40,6 +40,8 @@ def main():
     work = tempfile.mkdtemp(prefix="accel_keys_")
     viewer = subprocess.Popen([args.viewer, "--playlist", os.path.abspath(args.playlist), "--msaa", "0",
                                "--size", "1024x640"], cwd=work, stderr=subprocess.PIPE, text=True)
+    started = time.time()
+    seen = []  # (seconds, title) each time the title changed: printed when a check fails
     try:
         window = ""
         for _ in range(200):
@@ -53,7 +55,10 @@ def main():
             return 1
 
         def title():
-            return subprocess.run(["xdotool", "getwindowname", window], capture_output=True, text=True).stdout.strip()
+            t = subprocess.run(["xdotool", "getwindowname", window], capture_output=True, text=True).stdout.strip()
+            if not seen or seen[-1][1] != t:
+                seen.append((time.time() - started, t))
+            return t
 
         def settled(pattern=r" state \d+/", timeout=60.0):
             # The window first has GLFW's title ("accelviz"); the viewer names the state once
@@ -107,10 +112,18 @@ def main():
         for k in range(n - 3, 0, -1):  # up to the first state (its traversal plays)
             key("Up")
             settled(rf"state {k}/{n}: ")
+        # The title says "recording" from R until R again. Waiting for it, and not only for
+        # the clock, matters when frames are slow: two R presses taken in one frame record
+        # nothing (the viewer then says so on stderr).
         key("r")
+        if "recording" not in settled(r" - recording"):
+            failures.append(f"R started no recording: '{title()}'")
         key("space")
         time.sleep(3.0)
         key("r")
+        t = settled(r"^(?!.* - recording)")
+        if "recording" in t:
+            failures.append(f"the second R did not stop the recording: '{t}'")
         gif = os.path.join(work, "accelviz.gif")
         if not appears(gif) or os.path.getsize(gif) < 100:
             failures.append("R, space, R recorded no accelviz.gif")
@@ -130,6 +143,9 @@ def main():
     for f in failures:
         print("FAIL:", f)
     if failures:
+        print("the window's titles, seconds after the viewer started:")
+        for at, t in seen:
+            print(f"  {at:7.1f}  {t}")
         return 1
     print(f"the playlist ran through its {n} states from the keyboard")
     shutil.rmtree(work, ignore_errors=True)
