@@ -3,6 +3,8 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <utility>
 
 namespace accel {
@@ -29,6 +31,16 @@ Status fetch_missing_input(const std::string& path) {
   if (normal == ".." || normal.rfind("../", 0) == 0)
     return make_error(path + ": cannot open (outside the page's folder, which is all the page may read)");
   return f(path);
+}
+
+Result<std::string> read_input_file(const std::string& path, const std::string& what) {
+  if (Status fetched = fetch_missing_input(path); !fetched) return fetched.error();  // the page: from its folder
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return make_error(path + ": cannot read " + what);
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) return make_error(path + ": cannot read " + what);
+  return text.str();
 }
 
 }  // namespace accel

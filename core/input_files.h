@@ -25,4 +25,9 @@ void set_input_fetcher(InputFetcher fetcher);
 /// and the reader reports a missing file as it always does.
 Status fetch_missing_input(const std::string& path);
 
+/// A user-named text file (a playlist, a script, a bench result) read whole, after
+/// fetch_missing_input: that error, or "PATH: cannot read WHAT" when the file cannot be
+/// opened or read.
+Result<std::string> read_input_file(const std::string& path, const std::string& what);
+
 }  // namespace accel

@@ -1,5 +1,6 @@
-// Files on demand (input_files.h): the readers of scenes, 2D scenes and rays files ask the
-// installed fetcher for a missing file at the moment they open it, and only then. The web
+// Files on demand (input_files.h): the readers of scenes, 2D scenes, rays files and (through
+// read_input_file) playlists, scripts and bench results ask the installed fetcher for a
+// missing file at the moment they open it, and only then. The web
 // page's fetcher copies from the served folder; here a fetcher writes the file itself.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -103,6 +104,21 @@ TEST_F(InputFiles, RaysAnd2dScenesAreFetchedToo) {
   EXPECT_EQ(asked_, (std::vector<std::string>{file("later.rays"), file("later.scene2d")}));
 }
 
+// The viewer's playlists, scripts and bench results: read whole, fetched when missing, the
+// fetcher's error as theirs.
+TEST_F(InputFiles, ReadInputFileFetchesAMissingFile) {
+  contents_ = "state One\n";
+  auto text = read_input_file(file("later.playlist"), "the playlist");
+  ASSERT_TRUE(text) << text.error().message;
+  EXPECT_EQ(text.value(), "state One\n");
+  contents_.clear();
+  auto missing = read_input_file(file("missing.script"), "the script");
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().message,
+            file("missing.script") + ": cannot open (fetched http://x/" + file("missing.script") + ": 404)");
+  EXPECT_EQ(asked_, (std::vector<std::string>{file("later.playlist"), file("missing.script")}));
+}
+
 // The page may read its own folder only: an absolute path, or a ".." leading out of the
 // working directory, is refused in one line without asking the fetcher.
 TEST_F(InputFiles, AbsoluteAndEscapingPathsAreRefusedWithoutAsking) {
@@ -131,6 +147,9 @@ TEST(InputFilesNone, WithoutAFetcherAMissingFileIsTheReadersOwnError) {
   auto scene = load_scene("/nonexistent/accel_input.obj");
   ASSERT_FALSE(scene);
   EXPECT_NE(scene.error().message.find("cannot open"), std::string::npos);
+  auto text = read_input_file("/nonexistent/accel_input.playlist", "the playlist");
+  ASSERT_FALSE(text);
+  EXPECT_EQ(text.error().message, "/nonexistent/accel_input.playlist: cannot read the playlist");
 }
 
 }  // namespace

@@ -8,8 +8,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -176,13 +174,9 @@ accel::Result<BenchData> parse_bench_json(const std::string& text, const std::st
 }
 
 accel::Result<BenchData> load_bench_json(const std::string& path) {
-  if (accel::Status fetched = accel::fetch_missing_input(path); !fetched) return fetched.error();  // the page
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return accel::make_error(path + ": cannot read the file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) return accel::make_error(path + ": cannot read the file");
-  return parse_bench_json(text.str(), path);
+  auto text = accel::read_input_file(path, "the file");
+  if (!text) return text.error();
+  return parse_bench_json(text.value(), path);
 }
 
 // ---------------------------------------------------------------------------------------

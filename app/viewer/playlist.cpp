@@ -1,7 +1,6 @@
 #include "playlist.h"
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "input_files.h"
@@ -69,12 +68,9 @@ accel::Result<Playlist> parse_playlist(const std::string& text, const std::strin
 }
 
 accel::Result<Playlist> load_playlist(const std::string& path) {
-  if (accel::Status fetched = accel::fetch_missing_input(path); !fetched) return fetched.error();  // the page
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return accel::make_error(path + ": cannot read the playlist");
-  std::ostringstream text;
-  text << file.rdbuf();
-  auto playlist = parse_playlist(text.str(), path);
+  auto text = accel::read_input_file(path, "the playlist");
+  if (!text) return text.error();
+  auto playlist = parse_playlist(text.value(), path);
   if (!playlist) return playlist;
   // Files named in a playlist are relative to the playlist, so it runs from any directory.
   namespace fs = std::filesystem;

@@ -1,7 +1,6 @@
 #include "script.h"
 
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "color_scheme.h"
@@ -146,12 +145,9 @@ accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, 
 }
 
 accel::Result<std::vector<ScriptCommand>> load_script(const std::string& path) {
-  if (accel::Status fetched = accel::fetch_missing_input(path); !fetched) return fetched.error();  // the page
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return accel::make_error(path + ": cannot read the script");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_script(text.str(), path);
+  auto text = accel::read_input_file(path, "the script");
+  if (!text) return text.error();
+  return parse_script(text.value(), path);
 }
 
 }  // namespace viz

@@ -2,9 +2,10 @@
 // GL-free: writes the frames of a recording (RGBA8, top row first) to an animated GIF
 // (giflib, a palette per frame from its median-cut quantizer) or an MP4 with H.264 video
 // (FFmpeg's libavformat / libavcodec with libx264, libswscale for RGB -> YUV 4:2:0; not in
-// the web page, which records GIFs only). No hand-written encoder. The output appears only when finish() succeeds: frames go to
-// "PATH.part", renamed at the end and removed on failure or when the writer is dropped, so
-// a failed or abandoned recording never leaves a half-written file.
+// the web page, which records GIFs only). No hand-written encoder. The output appears only
+// when finish() succeeds: frames go to "PATH.part", renamed at the end and removed on
+// failure or when the writer is dropped, so a failed or abandoned recording never leaves a
+// half-written file.
 #include <cstdint>
 #include <memory>
 #include <string>

@@ -238,6 +238,20 @@ def ray_through_centre(obj_path):
     return '%.9g %.9g %.9g 0 0 -1' % tuple(start)
 
 
+def wait_for_downloads(folder, suffix, timeout=30):
+    """The names of the files in `folder` ending in `suffix`, once there is one (empty after
+    `timeout` seconds), then half a second more for the download's last bytes."""
+    deadline = time.monotonic() + timeout
+    names = []
+    while time.monotonic() < deadline:
+        names = sorted(n for n in os.listdir(folder) if n.endswith(suffix))
+        if names:
+            time.sleep(0.5)
+            break
+        time.sleep(0.2)
+    return names
+
+
 class Run:
     """A viewer script run in a page: its console lines, errors and how it ended."""
 
@@ -556,17 +570,10 @@ class Tester:
                 browser.send('Browser.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads})
                 page = self.ready_page(browser, fail_on_error=FATAL)
                 page.press_key('F12')
-                deadline = time.monotonic() + 30
-                names = []
-                while time.monotonic() < deadline:
-                    names = [n for n in os.listdir(downloads) if n.endswith('.png')]
-                    if names:
-                        break
-                    time.sleep(0.2)
+                names = wait_for_downloads(downloads, '.png')
                 if names != ['accelviz_0001.png']:
                     raise CheckFailed('expected accelviz_0001.png downloaded within 30 s, got %s\n%s' % (
                         names, page.last_console()))
-                time.sleep(0.5)  # the download's last bytes
                 with open(os.path.join(downloads, names[0]), 'rb') as f:
                     width, height, _ = decode_png(f.read())
                 if (width, height) != VIEWPORT:
@@ -699,11 +706,7 @@ class Tester:
             if wrote != ['wrote /app/clip.gif (6 frames)']:
                 raise CheckFailed('expected "wrote /app/clip.gif (6 frames)", got %s' % wrote)
             path = os.path.join(downloads, 'clip.gif')
-            deadline = time.monotonic() + 30
-            while time.monotonic() < deadline and not os.path.isfile(path):
-                time.sleep(0.2)
-            time.sleep(0.5)  # the download's last bytes
-            if not os.path.isfile(path):
+            if wait_for_downloads(downloads, '.gif') != ['clip.gif']:
                 raise CheckFailed('no clip.gif downloaded within 30 s (got %s)' % os.listdir(downloads))
             proc = subprocess.run([png_check, '--gif', path, '6', '320', '240'], capture_output=True, text=True)
             if proc.returncode != 0:
