@@ -1,8 +1,9 @@
-// accelviz-cli check: the assignment kit's grader (docs/student.md). The parent process runs
-// each student structure's check in a child process of this same binary (`--worker-*`), so
-// a crash, an endless loop or a runaway allocation in the student's code is reported with
-// the case and the ray it happened on, and never takes the grader down. The child writes
-// its report as JSON; the parent prints the table (or --json) and sets the exit code.
+// accelviz-cli check: the assignment kit's grader (docs/student.md), as a judge that holds no
+// student code. The student's structures live in a worker program (accelviz-worker, or one
+// compiled from --submission DIR in the sandbox); the judge starts it confined
+// (judge/confinement.h), asks it for its structures, and runs the core's grader with proxy
+// student objects (judge/remote_student.h): the worker only ever sends what the student's
+// code did, and the judge decides every verdict, writes every file and sets the exit code.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -24,6 +25,10 @@
 #include <thread>
 
 #include "commands.h"
+#include "judge/confinement.h"
+#include "judge/grading.h"
+#include "judge/remote_student.h"
+#include "platform_formats.h"
 #include "memory_budget.h"
 #include "rays_io.h"
 #include "registry.h"
@@ -36,12 +41,6 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-/// Where the child is, in memory the parent maps too: written at each case and each ray.
-struct SharedProgress {
-  char where[240];
-  volatile uint64_t ray;
-};
 
 const char* kVerdictKeys[5] = {"correct", "false_miss", "false_hit", "wrong_triangle", "wrong_t"};
 
@@ -57,14 +56,37 @@ std::string safe_name(std::string s) {
   return s;
 }
 
-/// The viewer next to this binary, as a command a person types from the current folder.
-std::string viewer_command() {
+/// Text that the student's code printed, made valid UTF-8 (other bytes as \xNN), so a report
+/// never fails to be written for a byte a student chose.
+std::string utf8_or_escaped(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+    bool ok = len > 0 && i + len <= s.size();
+    for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) >> 6) == 2;
+    if (ok && (c >= 0x20 || c == '\n' || c == '\t')) {
+      out.append(s, i, len);
+      i += len;
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+      ++i;
+    }
+  }
+  return out;
+}
+
+/// The viewer that holds the student's code, as a command a person types from the current
+/// folder: the one built beside the worker (accelviz-worker -> accelviz; the kit tests'
+/// accelviz-worker-kit -> accelviz-kit).
+std::string viewer_beside(const std::string& worker) {
+  fs::path exe(worker);
+  std::string name = exe.filename().native();
+  if (const size_t at = name.find("-worker"); at != std::string::npos) name.erase(at, 7);
+  fs::path viewer = exe.parent_path() / name;
   std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  // accelviz-cli -> accelviz; the kit tests' accelviz-cli-kit -> accelviz-kit.
-  std::string name = ec ? std::string("accelviz-cli") : exe.filename().native();
-  if (const size_t at = name.find("-cli"); at != std::string::npos) name.erase(at, 4);
-  fs::path viewer = ec ? fs::path(name) : exe.parent_path() / name;
   const fs::path rel = fs::relative(viewer, fs::current_path(), ec);
   if (!ec && !rel.empty() && rel.native().rfind("..", 0) != 0) viewer = rel;
   return viewer.native();
@@ -105,7 +127,10 @@ std::string write_replay(const accel::WrongRay& w, const std::string& structure,
   return state;
 }
 
-json report_json(const accel::CheckReport& r, const CheckOptions& o) {
+}  // namespace
+
+json report_json(const accel::CheckReport& r, const std::string& out_dir, const std::string& viewer,
+                 const judge::WorkerBudget& budget) {
   json j;
   j["structure"] = r.structure;
   j["kind"] = r.kind;
@@ -120,7 +145,7 @@ json report_json(const accel::CheckReport& r, const CheckOptions& o) {
     j["categories"].push_back({{"name", c.name}, {"cases", c.cases}, {"rays", c.rays}, {"wrong", wrong}});
   }
   j["wrong_rays"] = json::array();
-  const std::string dir = (fs::path(o.out_dir) / r.structure).native();
+  const std::string dir = (fs::path(out_dir) / r.structure).native();
   for (size_t k = 0; k < r.wrong_rays.size(); ++k) {
     const accel::WrongRay& w = r.wrong_rays[k];
     std::string error;
@@ -134,7 +159,7 @@ json report_json(const accel::CheckReport& r, const CheckOptions& o) {
                {"trap", w.trap}};
     if (!state.empty()) {
       jw["state_file"] = state;
-      jw["replay"] = viewer_command() + " --restore " + state;
+      jw["replay"] = viewer + " --restore " + state;
     } else if (!error.empty()) {
       jw["replay_error"] = error;
     }
@@ -158,162 +183,13 @@ json report_json(const accel::CheckReport& r, const CheckOptions& o) {
     j["speed"]["builtin_triangles_per_ray"] = s.peer_tris;
   }
   j["faults"] = r.faults;
-  j["failure"] = "";
+  j["failure"] = r.failure;
+  j["sandbox"] = describe_confinement(budget.confinement);
+  // What the student's code printed: data, shown quoted, never read for a verdict.
+  j["output"] = utf8_or_escaped(budget.output());
+  j["output_bytes"] = budget.output_bytes();
   j["passed"] = r.passed();
   return j;
-}
-
-/// The child: checks one structure, writes the JSON report.
-int run_worker(const CheckOptions& o) {
-  // The grader that started this child may be stopped (a course's time limit, Ctrl-C): then
-  // this child goes too, instead of looping on in the background.
-  prctl(PR_SET_PDEATHSIG, SIGKILL);
-  auto info = accel::find_structure(o.structure);
-  if (!info) {
-    std::fprintf(stderr, "accelviz-cli: check: %s\n", info.error().message.c_str());
-    return kExitBadInput;
-  }
-  SharedProgress* progress = nullptr;
-  if (!o.worker_progress.empty()) {
-    const int fd = ::open(o.worker_progress.c_str(), O_RDWR);
-    if (fd >= 0) {
-      void* p = ::mmap(nullptr, sizeof(SharedProgress), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-      if (p != MAP_FAILED) progress = static_cast<SharedProgress*>(p);
-      ::close(fd);
-    }
-  }
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ACCEL_CHECK_UNDER_ASAN 1
-#endif
-#endif
-#if !defined(__SANITIZE_ADDRESS__) && !defined(ACCEL_CHECK_UNDER_ASAN)
-  // ASan reserves terabytes of address space: no limit under it (the sanitizer build).
-  if (o.memory_bytes > 0) {  // a runaway allocation ends in std::bad_alloc, reported as a fault
-    rlimit lim{rlim_t(o.memory_bytes), rlim_t(o.memory_bytes)};
-    setrlimit(RLIMIT_AS, &lim);
-  }
-#endif
-  // The replays of an earlier check of this structure would be mistaken for this one's.
-  std::error_code ec;
-  fs::remove_all(fs::path(o.out_dir) / o.structure, ec);
-  accel::CheckOptions co;
-  co.shared_scenes = o.shared;
-  co.ray_scale = o.ray_scale;
-  co.time = o.time;
-  std::string last;
-  auto report = accel::check_structure(*info.value(), co, [&](const std::string& where, size_t ray) {
-    if (!progress) return;
-    if (where != last) {
-      last = where;
-      std::snprintf(progress->where, sizeof progress->where, "%s", where.c_str());
-    }
-    progress->ray = ray;
-  });
-  for (std::string& f : report.faults)
-    if (f.find("std::bad_alloc") != std::string::npos)
-      f += " (ran out of memory: a runaway allocation? the check's limit is " +
-           accel::format_bytes(double(o.memory_bytes)) + ")";
-  const json j = report_json(report, o);
-  return accel::write_file_atomic(o.worker_report, j.dump(1) + "\n") ? 0 : kExitBadInput;
-}
-
-/// Runs the child for `structure`; returns its report, or one made of how it died.
-json run_child(const std::string& structure, const CheckOptions& o, const std::string& self) {
-  char dir_template[] = "/tmp/accelviz-check-XXXXXX";
-  const char* dir = mkdtemp(dir_template);
-  json failed = {{"structure", structure},
-                 {"passed", false},
-                 {"categories", json::array()},
-                 {"wrong_rays", json::array()},
-                 {"invariants", json::array()},
-                 {"faults", json::array()},
-                 {"speed", {{"timed", false}, {"why_not", "the check did not finish"}}}};
-  if (!dir) {
-    failed["failure"] = "cannot create a temporary folder";
-    return failed;
-  }
-  const std::string progress_file = std::string(dir) + "/progress", report_file = std::string(dir) + "/report.json";
-  SharedProgress* progress = nullptr;
-  if (const int fd = ::open(progress_file.c_str(), O_RDWR | O_CREAT, 0600); fd >= 0) {
-    if (::ftruncate(fd, sizeof(SharedProgress)) == 0) {
-      void* p = ::mmap(nullptr, sizeof(SharedProgress), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-      if (p != MAP_FAILED) progress = static_cast<SharedProgress*>(p);
-    }
-    ::close(fd);
-  }
-  std::vector<std::string> args = {self,
-                                   "check",
-                                   "--structure",
-                                   structure,
-                                   "--worker-progress",
-                                   progress_file,
-                                   "--worker-report",
-                                   report_file,
-                                   "--out-dir",
-                                   o.out_dir,
-                                   "--shared",
-                                   o.shared,
-                                   "--ray-scale",
-                                   fmt(o.ray_scale, "%.17g"),
-                                   "--memory-limit",
-                                   std::to_string(o.memory_bytes)};
-  if (!o.time) args.push_back("--no-time");
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const auto start = std::chrono::steady_clock::now();
-  if (posix_spawn(&pid, self.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
-    failed["failure"] = "cannot start the check's child process";
-    return failed;
-  }
-  int status = 0;
-  bool timed_out = false;
-  for (;;) {
-    const pid_t r = waitpid(pid, &status, WNOHANG);
-    if (r == pid) break;
-    if (std::chrono::steady_clock::now() - start > std::chrono::duration<double>(o.timeout)) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      timed_out = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  std::string where = progress ? std::string(progress->where) : "";
-  const uint64_t ray = progress ? uint64_t(progress->ray) : 0;
-  const std::string at =
-      where.empty() ? "before the first case"
-                    : "at " + where + (where.rfind("speed/", 0) == 0 ? " (timing)" : " ray " + std::to_string(ray));
-  json result;
-  std::ifstream in(report_file);
-  if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && in) {
-    try {
-      in >> result;
-    } catch (const std::exception&) {
-      result = json();
-    }
-  }
-  if (result.is_null()) {
-    result = failed;
-    if (timed_out)
-      result["failure"] = "no answer within the time limit of " + fmt(o.timeout, "%g") + " s " + at +
-                          ": an endless loop? (--timeout sets the limit)";
-    else if (WIFSIGNALED(status))
-      result["failure"] = std::string("crashed (") + strsignal(WTERMSIG(status)) + ") " + at;
-    else
-      result["failure"] =
-          "the check's child process exited with code " + std::to_string(WEXITSTATUS(status)) + " " + at;
-    if (!where.empty() && where.rfind("speed/", 0) != 0) {
-      result["failure_case"] = where;
-      result["failure_ray"] = ray;
-    }
-  }
-  if (progress) ::munmap(progress, sizeof(SharedProgress));
-  std::error_code ec;
-  fs::remove_all(dir, ec);
-  return result;
 }
 
 void print_report(const json& r) {
@@ -368,11 +244,134 @@ void print_report(const json& r) {
   } else {
     std::printf("speed: not timed: %s\n", s.value("why_not", "").c_str());
   }
+  // What the student's code printed is quoted line by line: it can say anything, "PASSED"
+  // included, and must never read as the judge's words.
+  if (r.value("output_bytes", size_t(0)) > 0) {
+    std::printf("the student's code printed %zu bytes; the first lines, quoted:\n", r.value("output_bytes", size_t(0)));
+    std::string out = r.value("output", "");
+    size_t lines = 0, at = 0;
+    while (at < out.size() && lines < 12) {
+      const size_t nl = out.find('\n', at);
+      std::printf("  | %s\n", out.substr(at, std::min<size_t>(nl == std::string::npos ? out.npos : nl - at, 200)).c_str());
+      at = nl == std::string::npos ? out.size() : nl + 1;
+      ++lines;
+    }
+  }
+  std::printf("sandbox: %s\n", r.value("sandbox", "").c_str());
   std::printf("%s: %s\n", name.c_str(),
               r.value("passed", false) ? "PASSED (every answer right, every invariant kept)" : "FAILED");
 }
 
-}  // namespace
+/// A report for a structure, or a whole worker, that could not be checked at all.
+json failed_report(const std::string& structure, const std::string& failure, const judge::WorkerBudget& budget) {
+  return {{"structure", structure},
+          {"passed", false},
+          {"failure", failure},
+          {"categories", json::array()},
+          {"wrong_rays", json::array()},
+          {"invariants", json::array()},
+          {"faults", json::array()},
+          {"speed", {{"timed", false}, {"why_not", "the check did not run"}}},
+          {"sandbox", describe_confinement(budget.confinement)},
+          {"output", utf8_or_escaped(budget.output())},
+          {"output_bytes", budget.output_bytes()}};
+}
+
+accel::Result<json> check_worker(const std::shared_ptr<judge::WorkerBudget>& budget, const accel::CheckOptions& co,
+                                 const std::string& only, const std::string& out_dir, const std::string& viewer) {
+  json reports = json::array();
+  budget->start_check();
+  auto listed = judge::list_worker(budget);
+  if (!listed) {
+    // Its static initialisers ran (in the sandbox) and it never answered: that is the report.
+    reports.push_back(failed_report(only.empty() ? "(the worker)" : only,
+                                    "the structures could not be listed: " + listed.error().message, *budget));
+    return reports;
+  }
+  std::vector<accel::StructureInfo> infos;
+  for (const accel::StudentEntry& entry : judge::remote_entries(listed.value(), budget)) {
+    auto info = accel::student_structure_info(entry, accel::structure_registry());
+    if (!info) return info.error();
+    infos.push_back(std::move(info.value()));
+  }
+  if (!only.empty()) {
+    auto it = std::find_if(infos.begin(), infos.end(), [&](const auto& i) { return i.name == only; });
+    if (it == infos.end()) {
+      if (accel::find_structure(only))
+        return accel::make_error("'" + only +
+                                 "' is a built-in structure; check takes a student structure (built in with "
+                                 "scripts/run.sh --student DIR, docs/student.md)");
+      return accel::make_error("unknown structure '" + only + "' (the worker holds: " +
+                               [&] {
+                                 std::string names;
+                                 for (const auto& i : infos) names += (names.empty() ? "" : ", ") + i.name;
+                                 return names.empty() ? std::string("none") : names;
+                               }() +
+                               ")");
+    }
+    infos = {*it};
+  }
+  if (infos.empty()) return accel::make_error("the worker " + budget->worker + " holds no student structure");
+  for (const accel::StructureInfo& info : infos) {
+    // The replays of an earlier check of this structure would be mistaken for this one's.
+    std::error_code ec;
+    fs::remove_all(fs::path(out_dir) / info.name, ec);
+    budget->start_check();
+    accel::CheckReport report = accel::check_structure(info, co, [](const std::string&, size_t) {});
+    for (std::string& f : report.faults)
+      if (f.find("std::bad_alloc") != std::string::npos)
+        f += " (ran out of memory: a runaway allocation? the worker's limit is " +
+             accel::format_bytes(double(budget->confinement.memory_bytes)) + ")";
+    reports.push_back(report_json(report, out_dir, viewer, *budget));
+  }
+  return reports;
+}
+
+std::string default_worker() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : (exe.parent_path() / "accelviz-worker").native();
+}
+
+std::shared_ptr<judge::WorkerBudget> make_budget(const std::string& worker, const CheckOptions& o) {
+  auto budget = std::make_shared<judge::WorkerBudget>();
+  std::error_code ec;
+  budget->worker = fs::canonical(worker, ec).native();
+  if (ec) budget->worker = worker;
+  budget->timeout_seconds = o.timeout;
+  budget->confinement.sandbox = o.sandbox;
+  budget->confinement.memory_bytes = o.memory_bytes;
+  budget->confinement.cpu_seconds = o.timeout * 2.0 + 10.0;  // every core may spin: the wall limit stops it first
+  budget->confinement.read_only = {budget->worker};
+  return budget;
+}
+
+accel::CheckOptions grader_options(const CheckOptions& o) {
+  accel::CheckOptions co;
+  co.shared_scenes = o.shared;
+  co.ray_scale = o.ray_scale;
+  co.time = o.time;
+  return co;
+}
+
+int print_reports(const json& reports, const std::string& format, const json& compile) {
+  bool passed = !reports.empty();
+  for (const auto& r : reports) passed = passed && r.value("passed", false);
+  if (format == "json") {
+    json all = {{"structures", reports}, {"passed", passed}};
+    if (!compile.is_null()) all["compile"] = compile;
+    std::printf("%s\n", all.dump(1, ' ', false, json::error_handler_t::replace).c_str());
+  } else if (format == "gradescope" || format == "prairielearn") {
+    json student = {{"structures", reports}, {"passed", passed}, {"compile", compile.is_null() ? json{{"ok", true}} : compile}};
+    const json out = format == "gradescope" ? gradescope_results(student) : prairielearn_results(student);
+    std::printf("%s\n", out.dump(1, ' ', false, json::error_handler_t::replace).c_str());
+  } else {
+    if (!compile.is_null() && !compile.value("ok", true))
+      std::printf("compile error:\n%s\n", compile.value("error", "").c_str());
+    for (const auto& r : reports) print_report(r);
+  }
+  return passed ? 0 : 1;
+}
 
 int run_check(const CheckOptions& options) {
   CheckOptions o = options;
@@ -384,47 +383,43 @@ int run_check(const CheckOptions& options) {
     }
     o.memory_bytes = bytes.value();
   }
-  if (!o.worker_report.empty()) return run_worker(o);
   if (!(o.ray_scale > 0.0 && o.ray_scale <= 10.0)) {
     std::fprintf(stderr, "accelviz-cli: check: --ray-scale must be in (0, 10]\n");
     return kExitBadInput;
   }
-  std::vector<std::string> names;
-  if (!o.structure.empty()) {
-    auto info = accel::find_structure(o.structure);
-    if (!info) {
-      std::fprintf(stderr, "accelviz-cli: check: %s\n", info.error().message.c_str());
-      return kExitBadInput;
-    }
-    if (!info.value()->student) {
-      std::fprintf(stderr, "accelviz-cli: check: '%s' is a built-in structure; check takes a student structure (%s)\n",
-                   o.structure.c_str(), "built in with scripts/run.sh --student DIR, docs/student.md");
-      return kExitBadInput;
-    }
-    names.push_back(o.structure);
-  } else {
-    for (const accel::StructureInfo* s : accel::student_structures()) names.push_back(s->name);
-    if (names.empty()) {
-      std::fprintf(stderr,
-                   "accelviz-cli: check: no student structure is built in (build with scripts/run.sh --student DIR "
-                   "or -DACCEL_STUDENT_DIR=DIR; docs/student.md)\n");
-      return kExitBadInput;
-    }
+  if (o.json) o.format = "json";
+  if (o.sandbox && !judge::sandbox_unavailable_reason().empty()) {
+    std::fprintf(stderr, "accelviz-cli: check: refusing to grade: %s (--no-sandbox runs the student's code without it)\n",
+                 judge::sandbox_unavailable_reason().c_str());
+    return kExitNoSandbox;
   }
-  std::error_code ec;
-  const std::string self = fs::read_symlink("/proc/self/exe", ec).native();
-  json all = {{"structures", json::array()}};
-  bool passed = true;
-  for (const std::string& name : names) {
-    if (!o.json) std::fprintf(stderr, "checking %s ...\n", name.c_str());
-    json r = run_child(name, o, self);
-    passed = passed && r.value("passed", false);
-    if (!o.json) print_report(r);
-    all["structures"].push_back(std::move(r));
+  std::string worker = o.worker.empty() ? default_worker() : o.worker;
+  std::string viewer = viewer_beside(worker);
+  json compile;
+  if (!o.submission.empty()) {
+    const Submission sub = compile_submission(o.submission, o.out_dir + "/.build", o);
+    if (!sub.error_for_user.empty()) {
+      std::fprintf(stderr, "accelviz-cli: check: %s\n", sub.error_for_user.c_str());
+      return kExitBadInput;
+    }
+    compile = sub.compile;
+    if (!sub.compile.value("ok", false)) return print_reports(json::array(), o.format, compile);
+    worker = sub.worker;
+    viewer = "scripts/run.sh --student " + o.submission;
+  } else if (worker.empty() || access(worker.c_str(), X_OK) != 0) {
+    std::fprintf(stderr,
+                 "accelviz-cli: check: no student structure is built in: %s is missing (build with scripts/run.sh "
+                 "--student DIR or -DACCEL_STUDENT_DIR=DIR, or give --submission DIR; docs/student.md)\n",
+                 worker.empty() ? "accelviz-worker" : worker.c_str());
+    return kExitBadInput;
   }
-  all["passed"] = passed;
-  if (o.json) std::printf("%s\n", all.dump(1).c_str());
-  return passed ? 0 : 1;
+  auto budget = make_budget(worker, o);
+  auto reports = check_worker(budget, grader_options(o), o.structure, o.out_dir, viewer);
+  if (!reports) {
+    std::fprintf(stderr, "accelviz-cli: check: %s\n", reports.error().message.c_str());
+    return kExitBadInput;
+  }
+  return print_reports(reports.value(), o.format, compile);
 }
 
 }  // namespace cli

@@ -53,20 +53,33 @@ struct BenchOptions {
 
 /// accelviz-cli check: the assignment kit's grader (check_command.cpp, docs/student.md).
 struct CheckOptions {
-  std::string structure;      ///< one student structure; empty: every one built in
-  bool json = false;
+  std::string structure;      ///< one student structure; empty: every one the worker holds
+  bool json = false;          ///< --json: the same as --format json
+  std::string format = "text";  ///< text, json, gradescope, prairielearn
   std::string out_dir = "accelviz-check";  ///< replay files of the wrong rays
   std::string shared;         ///< ../shared/scenes for the meshes category
   double ray_scale = 1.0;
   bool time = true;
-  double timeout = 300.0;     ///< seconds per structure before its child is stopped
-  std::string memory_limit;   ///< per structure's child (default: 4 GiB or half the memory)
+  double timeout = 300.0;     ///< seconds per structure before its worker is stopped
+  std::string memory_limit;   ///< per structure's worker (default: 4 GiB or half the memory)
   size_t memory_bytes = 0;
-  std::string worker_progress, worker_report;  ///< set in the child process only
+  std::string worker;         ///< the worker program (default: accelviz-worker beside accelviz-cli)
+  std::string submission;     ///< a folder of .cpp files to compile into a worker first
+  bool sandbox = true;        ///< false: --no-sandbox
+};
+
+/// accelviz-cli grade-class: every submission of a class (grade_class.cpp, docs/student.md).
+struct GradeClassOptions {
+  std::string submissions;  ///< one subfolder per student
+  std::string out;          ///< reports, CSV, HTML
+  int jobs = 0;             ///< submissions graded at once (0: one per core)
+  bool force = false;       ///< grade again even when unchanged
+  CheckOptions check;       ///< the options every submission is checked with
 };
 
 int run_trace(const TraceOptions& options);
 int run_check(const CheckOptions& options);
+int run_grade_class(const GradeClassOptions& options);
 int run_bench(const BenchOptions& options);
 int run_stats(const StatsOptions& options);
 

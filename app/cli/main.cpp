@@ -9,7 +9,16 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <climits>
+#include <csignal>
+#include <cstdlib>
+#include <memory>
+
 #include "commands.h"
+#include "judge/remote_student.h"
+#include "student/kit_registry.h"
 #include "interrupt.h"
 #include "memory_budget.h"
 #include "registry.h"
@@ -46,6 +55,22 @@ void add_structure_options(CLI::App* cmd, cli::StructureOptions* o) {
   add_limit_options(cmd, &o->memory_limit, &o->time_limit);
 }
 
+/// The options check and grade-class share: what a student structure is checked on, and
+/// how its code is confined.
+void add_judge_options(CLI::App* cmd, cli::CheckOptions* o) {
+  cmd->add_option("--shared", o->shared, "folder of the shared meshes (skipped when absent)")->capture_default_str();
+  cmd->add_option("--ray-scale", o->ray_scale, "multiply every case's ray count (0 < F <= 10)")->capture_default_str();
+  cmd->add_flag("!--no-time", o->time, "skip the speed measurement");
+  cmd->add_option("--timeout", o->timeout, "seconds one structure's check may take (an endless loop)")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  cmd->add_option("--memory-limit", o->memory_limit,
+                  "memory one structure's worker may use, e.g. 2G (default: 4G or half the memory)");
+  cmd->add_flag("!--no-sandbox", o->sandbox,
+                "run the student's code without bubblewrap (where a course platform's container isolates it): "
+                "limits and seccomp only, as the user nobody when run as root; the report says so");
+}
+
 int print_params() {
   for (const auto& info : accel::structure_registry()) {
     std::printf("%s: %s\n", info.name.c_str(), info.description.c_str());
@@ -69,8 +94,41 @@ int check_stdout(int code) {
 
 }  // namespace
 
+/// trace, stats, bench and params see a student's structures through their worker (nothing
+/// is graded there, so it runs unconfined, as the student's own program): $ACCELVIZ_WORKER,
+/// or accelviz-worker beside this program. check and grade-class list their workers
+/// themselves, in the sandbox. Before the registry is first used (the options' help texts).
+void use_worker_for_queries(int argc, char** argv) {
+  const std::string command = argc > 1 ? argv[1] : "";
+  if (command != "trace" && command != "stats" && command != "bench" && command != "params") return;
+  const char* env = std::getenv("ACCELVIZ_WORKER");
+  std::string worker = env && *env ? env : "";
+  if (worker.empty()) {
+    char self[4096];
+    const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n <= 0) return;
+    std::string dir(self, size_t(n));
+    worker = dir.substr(0, dir.rfind('/') + 1) + "accelviz-worker";
+    if (access(worker.c_str(), X_OK) != 0) return;
+  }
+  auto budget = std::make_shared<judge::WorkerBudget>();
+  budget->worker = worker;
+  budget->confinement.sandbox = false;
+  budget->confinement.allow_processes = true;
+  budget->output_limit = SIZE_MAX;
+  auto listed = judge::list_worker(budget);
+  if (!listed) {
+    std::fprintf(stderr, "accelviz-cli: %s: %s (its structures are left out)\n", worker.c_str(),
+                 listed.error().message.c_str());
+    return;
+  }
+  accel::set_remote_students(judge::remote_entries(listed.value(), budget));
+}
+
 int main(int argc, char** argv) {
   cli::install_interrupt_handlers();
+  std::signal(SIGPIPE, SIG_IGN);  // a worker that is gone is an error to report, not the judge's end
+  use_worker_for_queries(argc, argv);
   accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   CLI::App app{"accelviz-cli: batch ray queries, statistics and benchmarks of acceleration structures"};
   app.require_subcommand(1);
@@ -131,23 +189,35 @@ int main(int argc, char** argv) {
   check.memory_bytes = std::min<size_t>(size_t(4) << 30, accel::default_memory_limit());
   CLI::App* check_cmd = app.add_subcommand(
       "check", "grade student structures (docs/student.md): answers against the reference, the lecture's traps, "
-               "invariants of the logs, speed against the built-in structure; exit 0 only when all is correct");
-  check_cmd->add_option("--structure", check.structure, "one student structure (default: every one built in)");
-  check_cmd->add_flag("--json", check.json, "print the report as JSON (for course autograders)");
+               "invariants of the logs, speed against the built-in structure; exit 0 only when all is correct "
+               "(1: not, 2: bad use, 3: no sandbox here)");
+  add_judge_options(check_cmd, &check);
+  check_cmd->add_option("--structure", check.structure, "one student structure (default: every one the worker holds)");
+  check_cmd->add_flag("--json", check.json, "print the report as JSON (the same as --format json)");
+  check_cmd->add_option("--format", check.format, "text, json, gradescope or prairielearn (their results.json)")
+      ->check(CLI::IsMember({"text", "json", "gradescope", "prairielearn"}))
+      ->capture_default_str();
   check_cmd->add_option("--out-dir", check.out_dir, "folder for the wrong rays' viewer state files")
       ->capture_default_str();
-  check_cmd->add_option("--shared", check.shared, "folder of the shared meshes (skipped when absent)")
+  check_cmd->add_option("--worker", check.worker,
+                        "the student's worker program (default: accelviz-worker beside accelviz-cli)");
+  check_cmd->add_option("--submission", check.submission,
+                        "a folder of .cpp files: compiled in the sandbox into a worker, then checked");
+
+  cli::GradeClassOptions grade;
+  grade.check = check;
+  grade.check.timeout = 120.0;
+  CLI::App* grade_cmd = app.add_subcommand(
+      "grade-class", "grade every submission of a class (one subfolder each) in the sandbox: per student a JSON "
+                     "report and a CSV row, and one HTML class report (docs/student.md)");
+  grade_cmd->add_option("SUBMISSIONS", grade.submissions, "folder of submissions, one subfolder per student")
+      ->required();
+  grade_cmd->add_option("--out", grade.out, "folder for the reports (not inside SUBMISSIONS)")->required();
+  grade_cmd->add_option("--jobs", grade.jobs, "submissions graded at once (0 = one per core)")
+      ->check(CLI::Range(0, 256))
       ->capture_default_str();
-  check_cmd->add_option("--ray-scale", check.ray_scale, "multiply every case's ray count (0 < F <= 10)")
-      ->capture_default_str();
-  check_cmd->add_flag("!--no-time", check.time, "skip the speed measurement");
-  check_cmd->add_option("--timeout", check.timeout, "seconds one structure's check may take (an endless loop)")
-      ->check(CLI::Range(1.0, 86400.0))
-      ->capture_default_str();
-  check_cmd->add_option("--memory-limit", check.memory_limit,
-                        "memory one structure's check may use, e.g. 2G (default: 4G or half the memory)");
-  check_cmd->add_option("--worker-progress", check.worker_progress)->group("");  // the child process's
-  check_cmd->add_option("--worker-report", check.worker_report)->group("");
+  grade_cmd->add_flag("--force", grade.force, "grade again even the submissions unchanged since their report");
+  add_judge_options(grade_cmd, &grade.check);
 
   try {
     app.parse(argc, argv);
@@ -165,5 +235,6 @@ int main(int argc, char** argv) {
   if (bench_cmd->parsed()) return check_stdout(cli::run_bench(bench));
   if (params_cmd->parsed()) return check_stdout(print_params());
   if (check_cmd->parsed()) return check_stdout(cli::run_check(check));
+  if (grade_cmd->parsed()) return check_stdout(cli::run_grade_class(grade));
   return cli::kExitBadInput;
 }

@@ -8,6 +8,7 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <thread>
 
 #include "batch.h"
 #include "check_suites.h"
@@ -198,6 +199,10 @@ std::string name_trap(accelviz::Kind kind, const KitStructure& s, const Scene& s
 
 // --- invariants of the logs ----------------------------------------------------------------
 
+/// The grader's query modes of a remote student (worker_protocol.h's kTraced, kFast): each
+/// ray listened to, then on the fast path.
+constexpr uint8_t wire_traced = 1, wire_fast = 2;
+
 /// Faults (exceptions, kit errors) of one case before its other rays are skipped, and cases
 /// with faults before the others are: enough to see the bug, soon enough to see it.
 constexpr size_t kFaultsPerCase = 3;
@@ -313,6 +318,42 @@ double best_seconds(const Structure& s, const std::vector<Ray>& rays) {
   return best;
 }
 
+/// The student's rays per second, nodes and triangles per ray, for a structure whose code
+/// runs in a worker process: the worker answers the whole batch on every core, timed from
+/// the request to the answers, and its answers must be the right ones (a fast wrong answer
+/// says nothing). The counts come from its traversal log over the first rays.
+Status time_remote(RemoteAnswers& remote, KitStructure& mine, const Structure& peer, const std::vector<Ray>& rays,
+                   const Scene& scene, CheckSpeed& sp) {
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<Hit> answers;
+  double best = std::numeric_limits<double>::infinity();
+  for (int run = 0; run < 3; ++run) best = std::min(best, remote.time_rays(rays, mine.kernel(), threads, &answers));
+  const std::vector<Hit> right = trace_all(peer, rays);
+  size_t wrong = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (answers[i].prim == right[i].prim && answers[i].t == right[i].t) continue;
+    if (judge_hit(scene, rays[i], answers[i], reference_closest(scene, rays[i])) != HitVerdict::Correct) ++wrong;
+  }
+  if (wrong)
+    return make_error(std::to_string(wrong) + " of the " + std::to_string(rays.size()) +
+                      " timed answers were wrong: a wrong answer's time says nothing");
+  sp.mrays = double(rays.size()) / best * 1e-6;
+  const std::vector<Ray> counted(rays.begin(), rays.begin() + std::min<size_t>(rays.size(), 20000));
+  remote.expect(counted, mine.kernel(), wire_traced);
+  QueryStats total;
+  for (const Ray& r : counted) {
+    QueryStats q;
+    mine.intersect(r, &q);
+    total.nodes_visited += q.nodes_visited, total.prims_tested += q.prims_tested;
+  }
+  QueryStats q_peer;
+  trace_all(peer, counted, 0, &q_peer);
+  const double n = double(counted.size());
+  sp.nodes = double(total.nodes_visited) / n, sp.peer_nodes = double(q_peer.nodes_visited) / n;
+  sp.tris = double(total.prims_tested) / n, sp.peer_tris = double(q_peer.prims_tested) / n;
+  return {};
+}
+
 CheckSpeed time_structure(const StructureInfo& info, const CheckOptions& o, const CheckProgress& progress) {
   CheckSpeed sp;
 #if !defined(__OPTIMIZE__)
@@ -342,8 +383,17 @@ CheckSpeed time_structure(const StructureInfo& info, const CheckOptions& o, cons
     return sp;
   }
   const double n = double(rays.size());
-  sp.mrays = n / best_seconds(*mine.value(), rays) * 1e-6;
   sp.peer_mrays = n / best_seconds(*peer.value(), rays) * 1e-6;
+  auto* kit = dynamic_cast<KitStructure*>(mine.value().get());
+  if (auto* remote = kit ? dynamic_cast<RemoteAnswers*>(kit->student()) : nullptr) {
+    if (auto timed = time_remote(*remote, *kit, *peer.value(), rays, scene.value(), sp); !timed) {
+      sp.why_not = timed.error().message;
+      return sp;
+    }
+    sp.timed = true;
+    return sp;
+  }
+  sp.mrays = n / best_seconds(*mine.value(), rays) * 1e-6;
   QueryStats q_mine, q_peer;
   trace_all(*mine.value(), rays, 0, &q_mine);
   trace_all(*peer.value(), rays, 0, &q_peer);
@@ -371,6 +421,121 @@ size_t CheckReport::invariant_failures() const {
   return n;
 }
 
+namespace {
+
+/// One case: builds the student's structure over its scene and judges every ray, adding to
+/// `report`. `at` follows where it is ("hard/slivers ray 12"); a StudentProcessLost goes
+/// through to the caller, every other student failure becomes a fault.
+void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind kind, const CheckOptions& options,
+                const CheckProgress& progress, CheckReport& report, size_t& cases_with_faults, std::string& at) {
+  // Counts this case as faulty when it added a fault, whichever way it ends.
+  struct CaseFaults {
+    size_t& cases;
+    const std::vector<std::string>& faults;
+    size_t before;
+    ~CaseFaults() { cases += faults.size() > before; }
+  } case_faults{cases_with_faults, report.faults, report.faults.size()};
+  const std::string where = spec.category + "/" + spec.name;
+  progress(where, 0);
+  auto made = spec.make();
+  if (!made) {
+    report.faults.push_back(where + ": " + made.error().message);
+    return;
+  }
+  auto scene = std::make_shared<const Scene>(std::move(made.value().scene));
+  const std::vector<Ray>& rays = made.value().rays;
+  auto cat = std::find_if(report.categories.begin(), report.categories.end(),
+                          [&](const CheckCategory& c) { return c.name == spec.category; });
+  if (cat == report.categories.end()) {
+    report.categories.push_back({spec.category});
+    cat = report.categories.end() - 1;
+  }
+  ++cat->cases;
+
+  std::vector<ReferenceHit> ref(rays.size());
+  par::parallel_for(size_t(0), rays.size(), [&](size_t i) { ref[i] = reference_closest(*scene, rays[i]); });
+
+  auto created = info.create(ParamSet(info.params, info.name));
+  auto* kit = dynamic_cast<KitStructure*>(created.get());
+  if (!kit) {
+    report.faults.push_back(where + ": not a student structure");
+    return;
+  }
+  kit->set_strict(true);
+  at = where + " (build)";
+  try {
+    auto built = kit->build(*scene, ParamSet(info.params, info.name));
+    if (!built) {
+      report.faults.push_back(where + ": build: " + built.error().message);
+      return;
+    }
+  } catch (const StudentProcessLost&) {
+    throw;
+  } catch (const std::exception& e) {
+    report.faults.push_back(where + ": build " + describe_exception(e));
+    return;
+  } catch (...) {
+    report.faults.push_back(where + ": build threw a non-standard exception");
+    return;
+  }
+  check_tree(report.invariants, *kit, *scene, where);
+  // A worker answers the case's rays in one stream instead of one request a ray.
+  if (auto* remote = dynamic_cast<RemoteAnswers*>(kit->student()))
+    remote->expect(rays, kit->kernel(), wire_traced | wire_fast);
+
+  cat->rays += rays.size();
+  size_t faults_here = 0;
+  std::string fault;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    progress(where, i);
+    at = where + " ray " + std::to_string(i);
+    Hit fast = no_hit(rays[i]), traced = no_hit(rays[i]);
+    TraceRecorder rec(size_t(64) << 20);
+    try {
+      // Listened to first: the log's step budget stops an endless loop that logs.
+      traced = kit->intersect_traced(rays[i], rec);
+      fast = kit->intersect(rays[i]);
+    } catch (const StudentProcessLost&) {
+      throw;
+    } catch (const std::exception& e) {
+      fault = where + " ray " + std::to_string(i) + ": " + describe_exception(e);
+    } catch (...) {
+      fault = where + " ray " + std::to_string(i) + ": threw a non-standard exception";
+    }
+    if (!fault.empty()) {  // counted as a wrong answer; three per case are enough to see
+      report.faults.push_back(std::move(fault));
+      fault.clear();
+      ++cat->wrong[int(HitVerdict::FalseMiss)];
+      if (++faults_here == kFaultsPerCase) {
+        report.faults.push_back(where + ": its other rays skipped after " + std::to_string(kFaultsPerCase) +
+                                " faults");
+        break;
+      }
+      continue;
+    }
+    CheckInvariant& listening = report.invariants[kListening];
+    ++listening.checked;
+    if (fast.prim != traced.prim || !(fast.t == traced.t || (std::isnan(fast.t) && std::isnan(traced.t))))
+      fail(listening, where + " ray " + std::to_string(i),
+           "without a listener prim " + std::to_string(fast.prim) + ", with one prim " + std::to_string(traced.prim));
+    CheckInvariant& reported = report.invariants[kReported];
+    ++reported.checked;
+    if (!rec.truncated() && !hit_was_reported(rec, traced))
+      fail(reported, where + " ray " + std::to_string(i),
+           "triangle " + std::to_string(traced.prim) + " returned without a triangle_tested(hit) at its t");
+    const HitVerdict v = judge_hit(*scene, rays[i], fast, ref[i]);
+    if (v == HitVerdict::Correct) continue;
+    ++cat->wrong[int(v)];
+    if (report.wrong_rays.size() < options.keep_wrong) {
+      WrongRay w{spec.category, spec.name, scene, i, rays[i], v, fast, ref[i], ""};
+      w.trap = name_trap(kind, *kit, *scene, rays[i], rec, traced, ref[i]);
+      report.wrong_rays.push_back(std::move(w));
+    }
+  }
+}
+
+}  // namespace
+
 CheckReport check_structure(const StructureInfo& info, const CheckOptions& options, const CheckProgress& progress) {
   CheckReport report;
   report.structure = info.name;
@@ -383,113 +548,38 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
   report.invariants = invariant_rows(kind);
 
   size_t cases_with_faults = 0;
-  for (const CaseSpec& spec : case_specs(options)) {
-    if (cases_with_faults == kFaultyCases) {
-      report.faults.push_back("the other cases skipped after faults in " + std::to_string(kFaultyCases) + " cases");
-      break;
-    }
-    // Counts this case as faulty when it added a fault, whichever way the iteration ends.
-    struct CaseFaults {
-      size_t& cases;
-      const std::vector<std::string>& faults;
-      size_t before;
-      ~CaseFaults() { cases += faults.size() > before; }
-    } case_faults{cases_with_faults, report.faults, report.faults.size()};
-    const std::string where = spec.category + "/" + spec.name;
-    progress(where, 0);
-    auto made = spec.make();
-    if (!made) {
-      report.faults.push_back(where + ": " + made.error().message);
-      continue;
-    }
-    auto scene = std::make_shared<const Scene>(std::move(made.value().scene));
-    const std::vector<Ray>& rays = made.value().rays;
-    auto cat = std::find_if(report.categories.begin(), report.categories.end(),
-                            [&](const CheckCategory& c) { return c.name == spec.category; });
-    if (cat == report.categories.end()) {
-      report.categories.push_back({spec.category});
-      cat = report.categories.end() - 1;
-    }
-    ++cat->cases;
-
-    std::vector<ReferenceHit> ref(rays.size());
-    par::parallel_for(size_t(0), rays.size(), [&](size_t i) { ref[i] = reference_closest(*scene, rays[i]); });
-
-    auto created = info.create(ParamSet(info.params, info.name));
-    auto* kit = dynamic_cast<KitStructure*>(created.get());
-    if (!kit) {
-      report.faults.push_back(where + ": not a student structure");
-      return report;
-    }
-    kit->set_strict(true);
-    try {
-      auto built = kit->build(*scene, ParamSet(info.params, info.name));
-      if (!built) {
-        report.faults.push_back(where + ": build: " + built.error().message);
-        continue;
+  std::string at = "before the first case";  // where the check is: a lost worker's failure names it
+  try {
+    for (const CaseSpec& spec : case_specs(options)) {
+      if (cases_with_faults == kFaultyCases) {
+        report.faults.push_back("the other cases skipped after faults in " + std::to_string(kFaultyCases) +
+                                " cases");
+        break;
       }
-    } catch (const std::exception& e) {
-      report.faults.push_back(where + ": build " + describe_exception(e));
-      continue;
-    } catch (...) {
-      report.faults.push_back(where + ": build threw a non-standard exception");
-      continue;
+      at = spec.category + "/" + spec.name;
+      check_case(spec, info, kind, options, progress, report, cases_with_faults, at);
     }
-    check_tree(report.invariants, *kit, *scene, where);
-
-    cat->rays += rays.size();
-    size_t faults_here = 0;
-    std::string fault;
-    for (size_t i = 0; i < rays.size(); ++i) {
-      progress(where, i);
-      Hit fast = no_hit(rays[i]), traced = no_hit(rays[i]);
-      TraceRecorder rec(size_t(64) << 20);
-      try {
-        // Listened to first: the log's step budget stops an endless loop that logs.
-        traced = kit->intersect_traced(rays[i], rec);
-        fast = kit->intersect(rays[i]);
-      } catch (const std::exception& e) {
-        fault = where + " ray " + std::to_string(i) + ": " + describe_exception(e);
-      } catch (...) {
-        fault = where + " ray " + std::to_string(i) + ": threw a non-standard exception";
-      }
-      if (!fault.empty()) {  // counted as a wrong answer; three per case are enough to see
-        report.faults.push_back(std::move(fault));
-        fault.clear();
-        ++cat->wrong[int(HitVerdict::FalseMiss)];
-        if (++faults_here == kFaultsPerCase) {
-          report.faults.push_back(where + ": its other rays skipped after " + std::to_string(kFaultsPerCase) +
-                                  " faults");
-          break;
-        }
-        continue;
-      }
-      CheckInvariant& listening = report.invariants[kListening];
-      ++listening.checked;
-      if (fast.prim != traced.prim || !(fast.t == traced.t || (std::isnan(fast.t) && std::isnan(traced.t))))
-        fail(listening, where + " ray " + std::to_string(i),
-             "without a listener prim " + std::to_string(fast.prim) + ", with one prim " + std::to_string(traced.prim));
-      CheckInvariant& reported = report.invariants[kReported];
-      ++reported.checked;
-      if (!rec.truncated() && !hit_was_reported(rec, traced))
-        fail(reported, where + " ray " + std::to_string(i),
-             "triangle " + std::to_string(traced.prim) + " returned without a triangle_tested(hit) at its t");
-      const HitVerdict v = judge_hit(*scene, rays[i], fast, ref[i]);
-      if (v == HitVerdict::Correct) continue;
-      ++cat->wrong[int(v)];
-      if (report.wrong_rays.size() < options.keep_wrong) {
-        WrongRay w{spec.category, spec.name, scene, i, rays[i], v, fast, ref[i], ""};
-        w.trap = name_trap(kind, *kit, *scene, rays[i], rec, traced, ref[i]);
-        report.wrong_rays.push_back(std::move(w));
-      }
-    }
+  } catch (const StudentProcessLost& lost) {
+    report.failure = std::string(lost.what()) + " at " + at + (lost.hint().empty() ? "" : ": " + lost.hint());
+    report.speed.why_not = "the check did not finish";
+    return report;
   }
-  if (options.time && report.faults.empty())
-    report.speed = time_structure(info, options, progress);
-  else if (options.time)
+  if (options.time && report.faults.empty()) {
+    try {
+      std::unique_lock<std::mutex> exclusive;
+      if (options.timing_mutex) exclusive = std::unique_lock<std::mutex>(*options.timing_mutex);
+      report.speed = time_structure(info, options, progress);
+    } catch (const StudentProcessLost& lost) {
+      report.failure = std::string(lost.what()) + " at the timing (procedural/stadium)" +
+                       (lost.hint().empty() ? "" : ": " + lost.hint());
+      report.speed = CheckSpeed{};
+      report.speed.why_not = "the check did not finish";
+    }
+  } else if (options.time) {
     report.speed.why_not = "the structure threw or failed (see above)";
-  else
+  } else {
     report.speed.why_not = "--no-time was given";
+  }
   return report;
 }
 

@@ -3,11 +3,14 @@
 // correctness suites, judges every answer against the double-precision reference by the
 // docs/hits.md rule, names the lecture's traps behind wrong answers, checks invariants from
 // the build and traversal logs, and times the structure against the built-in one of its
-// kind. GL-free; the CLI runs it in a child process so a crash or an endless loop in the
-// student's code is reported, not suffered (app/cli/check_command.cpp).
+// kind. GL-free. In the judge (`accelviz-cli check`) the structure's student object is a
+// proxy of a worker process (app/cli/judge/): the student's code runs there, in a sandbox,
+// and a crash, an endless loop or a flood of output ends that structure's check with the
+// case and the ray it happened on (CheckReport::failure), never the judge.
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,9 @@ struct CheckOptions {
   double ray_scale = 1.0;     ///< ray counts multiplied by this (tests use less)
   size_t keep_wrong = 5;      ///< wrong rays kept with the details and replay files
   bool time = true;           ///< measure speed against the built-in structure
+  /// Held while timing, when several checks run at once (grade-class): two timings never
+  /// share the cores.
+  std::mutex* timing_mutex = nullptr;
 };
 
 /// Rays tried and wrong answers by kind, per suite category.
@@ -67,11 +73,16 @@ struct CheckReport {
   std::vector<CheckInvariant> invariants;
   CheckSpeed speed;
   std::vector<std::string> faults;  ///< exceptions and kit errors, "where: what"
+  /// Why the check stopped early ("crashed (Segmentation fault) at hard/slivers ray 12"),
+  /// "" when it ran to the end; what was judged before is kept.
+  std::string failure;
   size_t rays() const;
   size_t wrong() const;
   size_t invariant_failures() const;
-  /// Every answer right, every invariant kept, nothing thrown.
-  bool passed() const { return wrong() == 0 && invariant_failures() == 0 && faults.empty(); }
+  /// Every answer right, every invariant kept, nothing thrown, nothing stopped.
+  bool passed() const {
+    return wrong() == 0 && invariant_failures() == 0 && faults.empty() && failure.empty();
+  }
 };
 
 /// Called before each case ("hard/slivers") and every ray (its index): where the child

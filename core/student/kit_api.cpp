@@ -46,24 +46,18 @@ Ray KitAccess::make_ray(const accel::Ray& r, accel::Kernel kernel) {
   return ray;
 }
 
-void KitAccess::fill_scene(Scene& out, const accel::Scene& scene) {
-  const uint32_t n = uint32_t(scene.triangle_count());
-  out.triangles_.resize(n);
-  out.boxes_.resize(n);
-  out.degenerate_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) {
-    Triangle& t = out.triangles_[i];
-    const accel::Vec3 &a = scene.vertex(i, 0), &b = scene.vertex(i, 1), &c = scene.vertex(i, 2);
-    t.v0 = {a.x, a.y, a.z};
-    t.v1 = {b.x, b.y, b.z};
-    t.v2 = {c.x, c.y, c.z};
-    out.boxes_[i] = t.box();
-    out.degenerate_[i] = scene.degenerate(i) ? 1 : 0;
-  }
-  out.bounds_ = Box{};
-  if (!scene.bounds().empty()) out.bounds_ = to_box(scene.bounds());
-  out.planar_ = scene.planar();
+void KitAccess::fill_scene(Scene& out, std::vector<Triangle> triangles, std::vector<unsigned char> degenerate,
+                           const Box& bounds, bool planar) {
+  out.boxes_.resize(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i) out.boxes_[i] = triangles[i].box();
+  out.triangles_ = std::move(triangles);
+  degenerate.resize(out.triangles_.size(), 0);
+  out.degenerate_ = std::move(degenerate);
+  out.bounds_ = bounds;
+  out.planar_ = planar;
 }
+
+accel::Kernel KitAccess::kernel(const Ray& ray) { return prepared(ray).triangle.kernel(); }
 
 Box KitAccess::to_box(const accel::Aabb& b) { return Box{{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}; }
 accel::Aabb KitAccess::to_aabb(const Box& b) {

@@ -273,6 +273,27 @@ class KitTraversalListener final : public accelviz::detail::TraversalListener {
 
 }  // namespace
 
+}  // namespace accel
+
+namespace accelviz {
+
+void KitAccess::fill_scene(Scene& out, const accel::Scene& scene) {
+  const uint32_t n = uint32_t(scene.triangle_count());
+  std::vector<Triangle> triangles(n);
+  std::vector<unsigned char> degenerate(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    const accel::Vec3 &a = scene.vertex(i, 0), &b = scene.vertex(i, 1), &c = scene.vertex(i, 2);
+    triangles[i] = Triangle{{a.x, a.y, a.z}, {b.x, b.y, b.z}, {c.x, c.y, c.z}};
+    degenerate[i] = scene.degenerate(i) ? 1 : 0;
+  }
+  fill_scene(out, std::move(triangles), std::move(degenerate),
+             scene.bounds().empty() ? Box{} : to_box(scene.bounds()), scene.planar());
+}
+
+}  // namespace accelviz
+
+namespace accel {
+
 NodeId KitTree::cell_index(int x, int y, int z) const {
   if (!grid || x < 0 || y < 0 || z < 0 || x >= res[0] || y >= res[1] || z >= res[2]) return kNoNode;
   return NodeId(size_t(x) + size_t(res[0]) * (size_t(y) + size_t(res[1]) * size_t(z)));
@@ -293,9 +314,8 @@ void KitTree::problem(std::string what) {
   ++problem_count;
 }
 
-KitStructure::KitStructure(std::string name, accelviz::Kind kind,
-                           std::unique_ptr<accelviz::StudentStructure> (*create)())
-    : name_(std::move(name)), kind_(kind), create_(create) {}
+KitStructure::KitStructure(std::string name, accelviz::Kind kind, StudentFactory create)
+    : name_(std::move(name)), kind_(kind), create_(std::move(create)) {}
 
 Status KitStructure::build_impl(const Scene& scene, const ParamSet&, BuildControl* control, BuildRecorder* recorder) {
   student_.reset();

@@ -9,6 +9,7 @@
 // counts or records (intersect with stats, intersect_traced): a batch query passes a log
 // with no listener, and each of the student's log calls is then one untaken branch.
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -27,6 +28,36 @@ namespace accel {
 class KitError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// The student's code stopped answering for good: its worker process crashed, exited, ran
+/// past the time limit, printed past the output limit or broke the wire. Thrown by a
+/// RemoteAnswers object (the judge's proxy of a worker); the grader ends the structure's
+/// check with it, keeping what it had judged so far. what() says what happened ("crashed
+/// (Segmentation fault)"), hint() what may cause it.
+class StudentProcessLost : public std::runtime_error {
+ public:
+  StudentProcessLost(const std::string& what, std::string hint = "")
+      : std::runtime_error(what), hint_(std::move(hint)) {}
+  const std::string& hint() const { return hint_; }
+
+ private:
+  std::string hint_;
+};
+
+/// A student object whose code runs elsewhere (the judge's proxy of a worker process, in
+/// app/cli/judge/): it can be given a case's rays ahead, so they travel in one request, and
+/// it times a batch of rays in the worker.
+class RemoteAnswers {
+ public:
+  virtual ~RemoteAnswers() = default;
+  /// The next calls of intersect() will be these rays in this order, each listened to
+  /// (modes & 1) and then on the fast path (modes & 2), as the grader asks.
+  virtual void expect(const std::vector<Ray>& rays, Kernel kernel, uint8_t modes) = 0;
+  /// The wall seconds the worker took to answer every ray on the fast path on `threads`
+  /// threads (the request sent, the answers received), and its answers.
+  virtual double time_rays(const std::vector<Ray>& rays, Kernel kernel, unsigned threads,
+                           std::vector<Hit>* answers) = 0;
 };
 
 /// One node (or leaf) as the student's build log described it.
@@ -73,9 +104,13 @@ struct KitTree {
 /// Budget of one traversal's logged steps before the kit calls it endless (strict mode).
 inline constexpr uint64_t kKitStepBudget = 20'000'000;
 
+/// Makes the student's object: the registration's constructor where the student's code is
+/// linked in (the viewer), or a RemoteStudent that talks to a worker process (the judge).
+using StudentFactory = std::function<std::unique_ptr<accelviz::StudentStructure>()>;
+
 class KitStructure final : public Structure {
  public:
-  KitStructure(std::string name, accelviz::Kind kind, std::unique_ptr<accelviz::StudentStructure> (*create)());
+  KitStructure(std::string name, accelviz::Kind kind, StudentFactory create);
 
   std::string name() const override { return name_; }
   Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const override;
@@ -97,6 +132,9 @@ class KitStructure final : public Structure {
   /// The student's answer to `ray` with the log listened to by `listener` (null: nobody),
   /// through the same call as intersect(); strict errors as above.
   Hit run_query(const Ray& ray, accelviz::detail::TraversalListener* listener) const;
+  /// The student's object of the last build (null before one): the grader asks a remote one
+  /// for batches and timings.
+  accelviz::StudentStructure* student() const { return student_.get(); }
 
  protected:
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control,
@@ -108,7 +146,7 @@ class KitStructure final : public Structure {
 
   std::string name_;
   accelviz::Kind kind_;
-  std::unique_ptr<accelviz::StudentStructure> (*create_)();
+  StudentFactory create_;
   std::unique_ptr<accelviz::StudentStructure> student_;
   std::unique_ptr<accelviz::Scene> student_scene_;
   const Scene* scene_ = nullptr;

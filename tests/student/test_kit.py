@@ -5,8 +5,12 @@ is caught in its category (a named trap, a failed invariant, wrong answers on th
 with replay files that, opened in the viewer under Xvfb, show the same wrong answer; and
 structures that crash, loop, throw or allocate without end get a report within the limits.
 
-    python3 tests/student/test_kit.py --cli build/bin/accelviz-cli-kit --plain-cli build/bin/accelviz-cli \
+    python3 tests/student/test_kit.py --cli build/bin/accelviz-cli --worker build/bin/accelviz-worker-kit \
         [--viewer build/bin/accelviz-kit] --work /tmp/kit --sanitized 0
+
+The kit's structures live in the worker (accelviz-worker-kit); accelviz-cli, the judge, links
+none of them and checks them through it, in the sandbox (or with --no-sandbox where
+bubblewrap cannot run: ACCEL_TEST_NO_SANDBOX=1).
 """
 import argparse
 import json
@@ -22,7 +26,7 @@ from viewer_harness import FAILURES, check, run  # noqa: E402
 def check_json(args, name, *extra, scale="0.3", timeout=600):
     """`check --structure NAME --json`: (exit code, the structure's report, seconds)."""
     start = time.monotonic()
-    code, out, err = run([args.cli, "check", "--structure", name, "--json", "--ray-scale", scale,
+    code, out, err = run([args.cli, "check", *args.judge, "--structure", name, "--json", "--ray-scale", scale,
                           "--out-dir", os.path.join(args.work, "check"), *extra], timeout=timeout, cwd=args.work)
     seconds = time.monotonic() - start
     try:
@@ -77,11 +81,12 @@ def replay_in_viewer(args, report, name):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cli", required=True)
-    ap.add_argument("--plain-cli", required=True)
+    ap.add_argument("--worker", required=True)
     ap.add_argument("--viewer", default="")
     ap.add_argument("--work", required=True)
     ap.add_argument("--sanitized", default="0")
     args = ap.parse_args()
+    args.judge = ["--worker", args.worker] + (["--no-sandbox"] if os.environ.get("ACCEL_TEST_NO_SANDBOX") else [])
     sanitized = args.sanitized.lower() in ("1", "on", "true", "yes")
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
@@ -153,7 +158,7 @@ def main():
             replay_in_viewer(args, r, name)
 
     # The table names the trap and prints the replay command.
-    code, out, err = run([args.cli, "check", "--structure", "bug_bvh_first_hit", "--no-time", "--ray-scale", "0.2",
+    code, out, err = run([args.cli, "check", *args.judge, "--structure", "bug_bvh_first_hit", "--no-time", "--ray-scale", "0.2",
                           "--out-dir", os.path.join(args.work, "table")], cwd=args.work)
     check(code == 1 and "the lecture's trap: stopped at the first leaf" in out and " --restore " in out
           and "accelviz-kit --restore" in out and "FAILED" in out, f"table output: {out[-1500:]}")
@@ -178,14 +183,13 @@ def main():
         check(code == 1 and not r["passed"] and reported(r), f"{name}: not reported as expected: {json.dumps(r)[:800]}")
         check(s < 60, f"{name}: took {s:.0f} s")
 
-    # 6. Bad use: no student structure, a built-in, an unknown name.
-    code, out, err = run([args.plain_cli, "check"], cwd=args.work)
+    # 6. Bad use: no worker, a built-in, an unknown name.
+    code, out, err = run([args.cli, "check", "--worker", os.path.join(args.work, "no-such-worker")], cwd=args.work)
     no_students = "no student structure" in err
-    check(code == 2 and len(err.strip().splitlines()) == 1 or code in (0, 1),
-          f"plain check: exit {code}: {err}")
-    code, out, err = run([args.cli, "check", "--structure", "bvh"], cwd=args.work)
+    check(code == 2 and len(err.strip().splitlines()) == 1, f"check without a worker: exit {code}: {err}")
+    code, out, err = run([args.cli, "check", *args.judge, "--structure", "bvh"], cwd=args.work)
     check(code == 2 and "built-in" in err and len(err.strip().splitlines()) == 1, f"check --structure bvh: {code} {err}")
-    code, out, err = run([args.cli, "check", "--structure", "nosuch"], cwd=args.work)
+    code, out, err = run([args.cli, "check", *args.judge, "--structure", "nosuch"], cwd=args.work)
     check(code == 2 and "unknown structure" in err, f"check --structure nosuch: {code} {err}")
     print(f"plain CLI without students: {'one-line error' if no_students else 'has students'}")
 
