@@ -1,8 +1,10 @@
 #include "batch.h"
 
 #include <mutex>
+#include <thread>
 
 #include "parallel.h"
+#include "student/kit_structure.h"
 
 namespace accel {
 
@@ -12,6 +14,21 @@ std::vector<Hit> trace_all(const Structure& s, const std::vector<Ray>& rays, int
 
 std::vector<Hit> trace_all(const Structure& s, const std::vector<Ray>& rays, int threads, QueryStats* total,
                            const std::atomic<bool>* cancel) {
+  // A student's structure whose code runs in a worker process (accelviz-cli's) answers the
+  // batch there, on the worker's threads, not one request a ray. A worker that fails the
+  // batch is asked ray by ray below, where each failure is that ray's miss.
+  const auto* kit = dynamic_cast<const KitStructure*>(&s);
+  if (auto* remote = kit && !total && !cancel ? dynamic_cast<RemoteAnswers*>(kit->student()) : nullptr) {
+    std::vector<Hit> answers;
+    try {
+      remote->time_rays(rays, s.kernel(), threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency()),
+                        &answers);
+      for (Hit& h : answers)
+        if (h.prim < 0 || size_t(h.prim) >= kit->scene_triangles()) h = Hit{};
+      return answers;
+    } catch (const std::exception&) {
+    }
+  }
   std::vector<Hit> hits(rays.size());
   std::mutex total_mutex;
   par::task_arena arena(threads > 0 ? threads : par::task_arena::automatic);

@@ -16,6 +16,7 @@ packages=(
   libgif-dev                                 # viewer: animated GIF recordings
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev  # viewer: MP4 (H.264) recordings
   libembree-dev                              # industry baseline in the benchmark
+  bubblewrap libseccomp-dev libssl-dev       # the kit's judge: its sandbox, the worker's seccomp filter, SHA-256
   xvfb xauth libgl1-mesa-dri                 # headless viewer tests (Xvfb + Mesa llvmpipe)
   xdotool                                    # the playlist's keyboard test presses keys in Xvfb
   clang libclang-rt-dev                      # the sanitizer build and its libFuzzer targets (tests/fuzz)

@@ -373,26 +373,31 @@ int print_reports(const json& reports, const std::string& format, const json& co
   return passed ? 0 : 1;
 }
 
-int run_check(const CheckOptions& options) {
-  CheckOptions o = options;
+int prepare_judge_options(CheckOptions& o, const char* command) {
   if (!o.memory_limit.empty()) {
     auto bytes = accel::parse_memory_size(o.memory_limit, "--memory-limit");
     if (!bytes) {
-      std::fprintf(stderr, "accelviz-cli: check: %s\n", bytes.error().message.c_str());
+      std::fprintf(stderr, "accelviz-cli: %s: %s\n", command, bytes.error().message.c_str());
       return kExitBadInput;
     }
     o.memory_bytes = bytes.value();
   }
   if (!(o.ray_scale > 0.0 && o.ray_scale <= 10.0)) {
-    std::fprintf(stderr, "accelviz-cli: check: --ray-scale must be in (0, 10]\n");
+    std::fprintf(stderr, "accelviz-cli: %s: --ray-scale must be in (0, 10]\n", command);
     return kExitBadInput;
   }
-  if (o.json) o.format = "json";
   if (o.sandbox && !judge::sandbox_unavailable_reason().empty()) {
-    std::fprintf(stderr, "accelviz-cli: check: refusing to grade: %s (--no-sandbox runs the student's code without it)\n",
-                 judge::sandbox_unavailable_reason().c_str());
+    std::fprintf(stderr, "accelviz-cli: %s: refusing to grade: %s (--no-sandbox runs the student's code without it)\n",
+                 command, judge::sandbox_unavailable_reason().c_str());
     return kExitNoSandbox;
   }
+  return 0;
+}
+
+int run_check(const CheckOptions& options) {
+  CheckOptions o = options;
+  if (const int bad = prepare_judge_options(o, "check")) return bad;
+  if (o.json) o.format = "json";
   std::string worker = o.worker.empty() ? default_worker() : o.worker;
   std::string viewer = viewer_beside(worker);
   json compile;

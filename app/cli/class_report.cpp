@@ -133,7 +133,7 @@ std::string csv_row(const json& student) {
   const std::string compile_error =
       compiled(student) ? "" : first_line(text_of(object_of(student, "compile"), "error", "compile error"));
   std::string row = csv_text(text_of(student, "student"));
-  row += std::string(",") + (submission_passed(student) ? "true" : "false");
+  row += std::string(",") + (submission_passed(student) ? "passed" : "failed");
   row += "," + std::to_string(structures.size()) + "," + std::to_string(rays) + "," + std::to_string(wrong);
   row += "," + std::to_string(invariants) + "," + std::to_string(faults);
   row += "," + (speed ? fixed(number_of(*speed, "mrays_per_s"), "%.6g") : "");
@@ -189,6 +189,8 @@ std::string category_cell(const json& structure, const std::string& category) {
   for (const json& c : list_of(structure, "categories")) {
     if (text_of(c, "name", "?") != category) continue;
     const uint64_t wrong = category_wrong(c);
+    // A check that stopped at a case's build judged none of its rays: not "ok".
+    if (count_of(c, "rays") == 0) return "<td class=na title=\"no ray judged\">-</td>";
     return "<td>" + badge(wrong == 0, wrong ? grouped(wrong) : "ok") + "</td>";
   }
   return "<td class=na>-</td>";
@@ -196,7 +198,9 @@ std::string category_cell(const json& structure, const std::string& category) {
 
 std::string invariants_cell(const json& structure) {
   const json& list = list_of(structure, "invariants");
-  if (list.empty()) return "<td class=na>-</td>";
+  uint64_t checked = 0;
+  for (const json& i : list) checked += count_of(i, "checked");
+  if (list.empty() || checked == 0) return "<td class=na>-</td>";
   const size_t failed = failed_invariants(structure);
   std::string names;
   for (const json& i : list)

@@ -14,7 +14,8 @@
 
 namespace cli {
 
-/// One CSV row per student (RFC 4180 quoting, CRLF line ends, one header row):
+/// One CSV row per student (RFC 4180 quoting, CRLF line ends, one header row; `passed` holds
+/// "passed" or "failed"):
 /// student,passed,structures,rays,wrong,invariants_failed,faults,mrays_per_s,speed_vs_builtin,compile_error,report
 /// A student's structures are summed (passed only if all passed; faults counts fault texts and
 /// failures); the speed is the first timed structure's, empty when none was timed;

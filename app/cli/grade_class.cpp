@@ -149,27 +149,11 @@ std::string now_text() {
 int run_grade_class(const GradeClassOptions& options) {
   GradeClassOptions o = options;
   CheckOptions& co = o.check;
-  if (!co.memory_limit.empty()) {
-    auto bytes = accel::parse_memory_size(co.memory_limit, "--memory-limit");
-    if (!bytes) {
-      std::fprintf(stderr, "accelviz-cli: grade-class: %s\n", bytes.error().message.c_str());
-      return kExitBadInput;
-    }
-    co.memory_bytes = bytes.value();
-  }
+  if (const int bad = prepare_judge_options(co, "grade-class")) return bad;
   std::error_code ec;
   if (!fs::is_directory(o.submissions, ec)) {
     std::fprintf(stderr, "accelviz-cli: grade-class: %s: no such folder\n", o.submissions.c_str());
     return kExitBadInput;
-  }
-  if (!(co.ray_scale > 0.0 && co.ray_scale <= 10.0)) {
-    std::fprintf(stderr, "accelviz-cli: grade-class: --ray-scale must be in (0, 10]\n");
-    return kExitBadInput;
-  }
-  if (co.sandbox && !judge::sandbox_unavailable_reason().empty()) {
-    std::fprintf(stderr, "accelviz-cli: grade-class: refusing to grade: %s (--no-sandbox runs the students' code without it)\n",
-                 judge::sandbox_unavailable_reason().c_str());
-    return kExitNoSandbox;
   }
   const fs::path out = fs::absolute(o.out, ec);
   fs::create_directories(out, ec);

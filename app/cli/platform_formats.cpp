@@ -325,8 +325,13 @@ std::string traps_in(const json& structure, const std::string& category) {
 Test category_test(const json& s, const std::string& structure, const json& c) {
   const std::string name = text_of(c, "name", "?");
   const uint64_t rays = count_of(c, "rays"), wrong = category_wrong(c);
-  Test t{structure + ": " + name + " (" + grouped(rays) + " rays)", wrong == 0, "", ""};
-  t.message = wrong ? grouped(wrong) + " wrong answers" : "all answers right";
+  // No ray judged (the check stopped at the case's build) earns nothing.
+  Test t{structure + ": " + name + " (" + grouped(rays) + " rays)", wrong == 0 && rays > 0, "", ""};
+  t.message = wrong ? grouped(wrong) + " wrong answers" : rays ? "all answers right" : "no ray was judged";
+  if (!rays) {
+    t.output = "the check stopped before any ray of this category was judged";
+    return t;
+  }
   t.output = wrong ? "wrong answers: " + wrong_by_kind(c) + "\n" + traps_in(s, name)
                    : "all " + grouped(rays) + " answers right";
   return t;
@@ -334,8 +339,8 @@ Test category_test(const json& s, const std::string& structure, const json& c) {
 
 Test invariant_test(const std::string& structure, const json& i) {
   const uint64_t failed = count_of(i, "failed"), checked = count_of(i, "checked");
-  Test t{structure + ": invariant: " + text_of(i, "name", "?"), failed == 0, "", ""};
-  t.message = failed ? "failed " + grouped(failed) + " times" : "kept";
+  Test t{structure + ": invariant: " + text_of(i, "name", "?"), failed == 0 && checked > 0, "", ""};
+  t.message = failed ? "failed " + grouped(failed) + " times" : checked ? "kept" : "never checked";
   t.output = failed ? "failed " + grouped(failed) + " of " + grouped(checked) + " checks; the first:\n" +
                           text_of(i, "first_failure")
                     : "kept in all " + grouped(checked) + " checks";

@@ -336,7 +336,7 @@ void time_rays(Channel& ch, const std::string& payload, const Built& built) {
   const auto kernel = accel::Kernel(c.get<uint8_t>());
   const uint32_t threads = std::clamp<uint32_t>(c.get<uint32_t>(), 1, 256);
   const std::vector<accelviz::Ray> rays = read_rays(c, kernel);
-  std::vector<accel::wire::WireShortHit> hits(rays.size(), accel::wire::WireShortHit{-1, accelviz::kInfinity});
+  std::vector<accel::wire::WireHit> hits(rays.size(), accel::wire::WireHit{-1, accelviz::kInfinity, 0.0f, 0.0f});
   std::vector<std::string> errors(threads);
   if (built.structure) {
     std::vector<std::thread> pool;
@@ -345,7 +345,7 @@ void time_rays(Channel& ch, const std::string& payload, const Built& built) {
         try {
           for (size_t i = k; i < rays.size(); i += threads) {
             const accelviz::Hit h = built.structure->intersect(rays[i], accelviz::TraversalLog());
-            hits[i] = {h.prim, h.t};
+            hits[i] = {h.prim, h.t, h.u, h.v};
           }
         } catch (const std::exception& e) {
           errors[k] = e.what();

@@ -332,6 +332,10 @@ Status time_remote(RemoteAnswers& remote, KitStructure& mine, const Structure& p
   size_t wrong = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     if (answers[i].prim == right[i].prim && answers[i].t == right[i].t) continue;
+    if (answers[i].prim >= int64_t(scene.triangle_count()) || answers[i].prim < -1) {  // not a triangle at all
+      ++wrong;
+      continue;
+    }
     if (judge_hit(scene, rays[i], answers[i], reference_closest(scene, rays[i])) != HitVerdict::Correct) ++wrong;
   }
   if (wrong)

@@ -135,6 +135,8 @@ class KitStructure final : public Structure {
   /// The student's object of the last build (null before one): the grader asks a remote one
   /// for batches and timings.
   accelviz::StudentStructure* student() const { return student_.get(); }
+  /// Triangles of the scene of the last build (0 before one): an answer's valid range.
+  size_t scene_triangles() const { return scene_ ? scene_->triangle_count() : 0; }
 
  protected:
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control,

@@ -59,7 +59,7 @@ enum class Msg : uint32_t {
   OctreeChildren,
   Answer,  ///< {prim, t, u, v}
   Threw,   ///< {kit, message}: the student's code threw (kit: the kit's own check, e.g. the step budget)
-  Hits,    ///< {count, (prim, t)*}
+  Hits,    ///< {count, (prim, t, u, v)*}
 };
 
 /// Query modes: the grader asks for each ray listened to, then on the fast path.
@@ -160,10 +160,6 @@ struct WireTriangle {
 struct WireHit {
   int32_t prim;
   float t, u, v;
-};
-struct WireShortHit {
-  int32_t prim;
-  float t;
 };
 
 }  // namespace accel::wire

@@ -104,6 +104,20 @@ std::string bwrap_path() {
   return "";
 }
 
+/// Whether this bubblewrap takes --size (0.7 and later; Ubuntu 22.04 has 0.6): without it
+/// the private /tmp is bounded by the file-size limit alone.
+bool bwrap_takes_size() {
+  static const bool takes = [] {
+    FILE* p = popen((bwrap_path() + " --version 2>/dev/null").c_str(), "r");
+    if (!p) return false;
+    int major = 0, minor = 0;
+    const bool read = std::fscanf(p, "bubblewrap %d.%d", &major, &minor) == 2;
+    pclose(p);
+    return read && (major > 0 || minor >= 7);
+  }();
+  return takes;
+}
+
 /// bubblewrap's arguments before the command: namespaces, the read-only system, the private
 /// /tmp and home, the paths the judge names.
 std::vector<std::string> bwrap_arguments(const Confinement& c, bool seccomp) {
@@ -118,9 +132,12 @@ std::vector<std::string> bwrap_arguments(const Confinement& c, bool seccomp) {
     else if (fs::is_directory(top, ec))
       a.insert(a.end(), {"--ro-bind", top, top});
   }
-  a.insert(a.end(), {"--proc", "/proc", "--dev", "/dev", "--size", std::to_string(c.file_bytes), "--tmpfs", "/tmp",
-                     "--size", std::to_string(c.file_bytes), "--tmpfs", "/home", "--dir", "/home/student",
-                     "--setenv", "HOME", "/home/student", "--setenv", "TMPDIR", "/tmp"});
+  a.insert(a.end(), {"--proc", "/proc", "--dev", "/dev"});
+  for (const char* tmpfs : {"/tmp", "/home"}) {
+    if (bwrap_takes_size()) a.insert(a.end(), {"--size", std::to_string(c.file_bytes)});
+    a.insert(a.end(), {"--tmpfs", tmpfs});
+  }
+  a.insert(a.end(), {"--dir", "/home/student", "--setenv", "HOME", "/home/student", "--setenv", "TMPDIR", "/tmp"});
   for (const std::string& p : c.read_only) a.insert(a.end(), {"--ro-bind", p, p});
   for (const std::string& p : c.writable) a.insert(a.end(), {"--bind", p, p});
   a.insert(a.end(), {"--chdir", c.workdir.empty() ? "/home/student" : c.workdir});

@@ -27,6 +27,10 @@ nlohmann::json failed_report(const std::string& structure, const std::string& fa
 /// The table a person reads.
 void print_report(const nlohmann::json& r);
 
+/// Reads --memory-limit, checks --ray-scale, and refuses to grade when the sandbox cannot run
+/// and --no-sandbox was not given: 0, or the exit code after one line on stderr.
+int prepare_judge_options(CheckOptions& o, const char* command);
+
 /// The worker's limits and confinement from check's options.
 std::shared_ptr<judge::WorkerBudget> make_budget(const std::string& worker, const CheckOptions& o);
 accel::CheckOptions grader_options(const CheckOptions& o);

@@ -586,10 +586,10 @@ double RemoteStudent::time_rays(const std::vector<accel::Ray>& rays, accel::Kern
   if (m == Msg::Threw) rethrow(payload);
   if (m != Msg::Hits) garbled(m);
   Cursor c(payload);
-  const auto hits = c.get_array<accel::wire::WireShortHit>(c.get<uint32_t>());
+  const auto hits = c.get_array<accel::wire::WireHit>(c.get<uint32_t>());
   if (!c.complete() || hits.size() != rays.size()) garbled(m);
   answers->resize(rays.size());
-  for (size_t i = 0; i < hits.size(); ++i) (*answers)[i] = accel::Hit{hits[i].prim, hits[i].t, 0.0f, 0.0f};
+  for (size_t i = 0; i < hits.size(); ++i) (*answers)[i] = accel::Hit{hits[i].prim, hits[i].t, hits[i].u, hits[i].v};
   return seconds;
 }
 
