@@ -8,6 +8,11 @@
 
 namespace accel {
 
+bool answered_in_batches(const Structure& s) {
+  const auto* kit = dynamic_cast<const KitStructure*>(&s);
+  return kit && dynamic_cast<RemoteAnswers*>(kit->student());
+}
+
 std::vector<Hit> trace_all(const Structure& s, const std::vector<Ray>& rays, int threads) {
   return trace_all(s, rays, threads, nullptr);
 }
@@ -15,16 +20,18 @@ std::vector<Hit> trace_all(const Structure& s, const std::vector<Ray>& rays, int
 std::vector<Hit> trace_all(const Structure& s, const std::vector<Ray>& rays, int threads, QueryStats* total,
                            const std::atomic<bool>* cancel) {
   // A student's structure whose code runs in a worker process (accelviz-cli's) answers the
-  // batch there, on the worker's threads, not one request a ray. A worker that fails the
-  // batch is asked ray by ray below, where each failure is that ray's miss.
-  const auto* kit = dynamic_cast<const KitStructure*>(&s);
-  if (auto* remote = kit && !total && !cancel ? dynamic_cast<RemoteAnswers*>(kit->student()) : nullptr) {
+  // batch there, on the worker's threads, not one request a ray; `cancel` is looked at
+  // before, not during. A worker that fails the batch is asked ray by ray below, where each
+  // failure is that ray's miss.
+  if (answered_in_batches(s) && !total && !(cancel && cancel->load())) {
+    const auto& kit = dynamic_cast<const KitStructure&>(s);
     std::vector<Hit> answers;
     try {
-      remote->time_rays(rays, s.kernel(), threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency()),
-                        &answers);
+      dynamic_cast<RemoteAnswers*>(kit.student())
+          ->time_rays(rays, s.kernel(), threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency()),
+                      &answers);
       for (Hit& h : answers)
-        if (h.prim < 0 || size_t(h.prim) >= kit->scene_triangles()) h = Hit{};
+        if (h.prim < 0 || size_t(h.prim) >= kit.scene_triangles()) h = Hit{};
       return answers;
     } catch (const std::exception&) {
     }

@@ -522,7 +522,10 @@ int run_bench(const BenchOptions& o) {
         row.memory_bytes = stats.memory_bytes;
         row.threads = threads;
         row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          run_serial(rays, [&](const accel::Ray& r) { return structure->intersect(r); });
+          if (accel::answered_in_batches(*structure))
+            accel::trace_all(*structure, rays, 1, nullptr, interrupt_flag());
+          else
+            run_serial(rays, [&](const accel::Ray& r) { return structure->intersect(r); });
         });
         std::vector<accel::Hit> hits;
         row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {

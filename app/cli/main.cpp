@@ -112,7 +112,8 @@ void use_worker_for_queries(int argc, char** argv) {
     if (access(worker.c_str(), X_OK) != 0) return;
   }
   auto budget = std::make_shared<judge::WorkerBudget>();
-  budget->worker = worker;
+  char full[PATH_MAX];
+  budget->worker = realpath(worker.c_str(), full) ? full : worker;  // it starts in another folder
   budget->confinement.sandbox = false;
   budget->confinement.allow_processes = true;
   budget->output_limit = SIZE_MAX;

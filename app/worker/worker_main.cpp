@@ -280,22 +280,24 @@ void build(Channel& ch, const std::string& payload, Built& built) {
   ch.flush();
 }
 
-std::vector<accelviz::Ray> read_rays(accel::wire::Cursor& c, accel::Kernel kernel) {
+/// The rays of a request, as they travel: each is prepared for the kit's tests just before
+/// its query (on the stack, in the cache, as the in-process adapter does), not all at once
+/// into an array six times their size.
+std::vector<accel::wire::WireRay> read_rays(accel::wire::Cursor& c) {
   const uint32_t n = c.get<uint32_t>();
   if (n > kMaxRays) throw ChannelClosed{};
-  const auto wire_rays = c.get_array<accel::wire::WireRay>(n);
+  auto rays = c.get_array<accel::wire::WireRay>(n);
   if (!c.complete()) throw ChannelClosed{};
-  std::vector<accelviz::Ray> rays(n);
-  for (uint32_t i = 0; i < n; ++i) {
-    const auto& w = wire_rays[i];
-    accel::Ray r;
-    r.org = accel::Vec3(w.org[0], w.org[1], w.org[2]);
-    r.dir = accel::Vec3(w.dir[0], w.dir[1], w.dir[2]);
-    r.tmin = w.tmin;
-    r.tmax = w.tmax;
-    rays[i] = accelviz::KitAccess::make_ray(r, kernel);
-  }
   return rays;
+}
+
+accelviz::Ray prepared(const accel::wire::WireRay& w, accel::Kernel kernel) {
+  accel::Ray r;
+  r.org = accel::Vec3(w.org[0], w.org[1], w.org[2]);
+  r.dir = accel::Vec3(w.dir[0], w.dir[1], w.dir[2]);
+  r.tmin = w.tmin;
+  r.tmax = w.tmax;
+  return accelviz::KitAccess::make_ray(r, kernel);
 }
 
 void send_answer(Channel& ch, const accelviz::Hit& h) {
@@ -309,8 +311,8 @@ void query(Channel& ch, const std::string& payload, const Built& built) {
   accel::wire::Cursor c(payload);
   const uint8_t modes = c.get<uint8_t>();
   const auto kernel = accel::Kernel(c.get<uint8_t>());
-  const std::vector<accelviz::Ray> rays = read_rays(c, kernel);
-  for (const accelviz::Ray& ray : rays) {
+  for (const accel::wire::WireRay& wire : read_rays(c)) {
+    const accelviz::Ray ray = prepared(wire, kernel);
     for (const uint8_t mode : {accel::wire::kTraced, accel::wire::kFast}) {
       if (!(modes & mode)) continue;
       if (!built.structure) {
@@ -335,7 +337,7 @@ void time_rays(Channel& ch, const std::string& payload, const Built& built) {
   accel::wire::Cursor c(payload);
   const auto kernel = accel::Kernel(c.get<uint8_t>());
   const uint32_t threads = std::clamp<uint32_t>(c.get<uint32_t>(), 1, 256);
-  const std::vector<accelviz::Ray> rays = read_rays(c, kernel);
+  const std::vector<accel::wire::WireRay> rays = read_rays(c);
   std::vector<accel::wire::WireHit> hits(rays.size(), accel::wire::WireHit{-1, accelviz::kInfinity, 0.0f, 0.0f});
   std::vector<std::string> errors(threads);
   if (built.structure) {
@@ -344,7 +346,7 @@ void time_rays(Channel& ch, const std::string& payload, const Built& built) {
       pool.emplace_back([&, k] {
         try {
           for (size_t i = k; i < rays.size(); i += threads) {
-            const accelviz::Hit h = built.structure->intersect(rays[i], accelviz::TraversalLog());
+            const accelviz::Hit h = built.structure->intersect(prepared(rays[i], kernel), accelviz::TraversalLog());
             hits[i] = {h.prim, h.t, h.u, h.v};
           }
         } catch (const std::exception& e) {

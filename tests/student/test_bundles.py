@@ -8,7 +8,10 @@ with a prebuilt CLI (ACCELVIZ_GRADER) on
   gradable; GitHub: exit 0);
 - the bvh skeleton: less than full marks (GitHub: a non-zero exit);
 - tests/student/hostile/forged_report, told (ACCELVIZ_FORGE_PATH) where the real results file
-  is: the file is the judge's failing one, never the forgery;
+  is, and (since the judge passes the student's code no such variable) a copy with the real
+  results paths written into its code, with the sandbox and without: results.json is the
+  judge's failing one, never the forgery, and nothing else appears in the results folder; a
+  control run shows the same code does write where anyone may;
 - a compile error: score 0 with the compiler's error (PrairieLearn: gradable);
 - no sandbox here (a grader that answers exit 3 without --no-sandbox, as on the platforms):
   the entry point grades again with --no-sandbox, and the student's code, as nobody when
@@ -23,6 +26,7 @@ installed. No network, no apt: nothing is built here.
 import argparse
 import json
 import os
+import shlex
 import shutil
 import stat
 import subprocess
@@ -36,7 +40,7 @@ from viewer_harness import FAILURES, check, run  # noqa: E402
 
 MAKE = os.path.join(ROOT, "scripts", "make_autograder.sh")
 EXTRA_ARGS = "--ray-scale 0.02 --no-time"
-ENTRY = {"gradescope": "run_autograder", "prairielearn": "grade.sh", "github": os.path.join(".github", "accelviz-grade.sh")}
+ENTRY = {"gradescope": "run_autograder", "prairielearn": "grade.sh", "github": ".github/accelviz-grade.sh"}
 # What every bundle holds besides its source copy (paths relative to the bundle).
 FILES = {
     "gradescope": ["README.md", "setup.sh", "run_autograder", "packages.txt", "build_grader.sh"],
@@ -74,14 +78,14 @@ def make_bundles(work):
     for argv, what in (([], "no platform"), (["moodle"], "an unknown platform"),
                        (["gradescope", os.path.join(work, "x"), "extra"], "an extra argument"),
                        (["gradescope", ""], "an empty output folder name")):
-        code, said, err = run(["bash", MAKE, *argv], cwd=work)
+        code, said, err = run([MAKE, *argv], cwd=work)
         check(code == 2 and len(err.strip().splitlines()) == 1 and not os.path.exists(os.path.join(work, "x")),
               f"make_autograder.sh with {what}: exit {code}, expected 2 and one line: {err!r}")
     bundles = {}
     for platform in ENTRY:
         out = os.path.join(work, "bundle-" + platform)
         start = time.monotonic()
-        code, said, err = run(["bash", MAKE, platform, out], cwd=work)
+        code, said, err = run([MAKE, platform, out], cwd=work)
         print(f"make_autograder.sh {platform}: exit {code} in {time.monotonic() - start:.1f} s: {said.strip()}")
         check(code == 0, f"make_autograder.sh {platform}: exit {code}: {err}")
         bundles[platform] = out
@@ -89,7 +93,8 @@ def make_bundles(work):
             check(os.path.isfile(os.path.join(out, f)), f"{platform} bundle: no {f}")
         for f in SCRIPTS[platform] + [ENTRY[platform]]:
             path = os.path.join(out, f)
-            check(os.path.isfile(path) and os.stat(path).st_mode & stat.S_IXUSR, f"{platform} bundle: {f} not executable")
+            check(os.path.isfile(path) and os.stat(path).st_mode & stat.S_IXUSR,
+                  f"{platform} bundle: {f} not executable")
         src = os.path.join(out, SOURCE[platform])
         for f in ("CMakeLists.txt", "app/CMakeLists.txt", "app/cli/main.cpp", "app/worker/CMakeLists.txt",
                   "student/accelviz_student.h", "student/example/median_bvh.cpp",
@@ -100,7 +105,7 @@ def make_bundles(work):
         with open(os.path.join(out, "README.md"), encoding="utf-8") as f:
             check("--no-sandbox" in f.read(), f"{platform} bundle: README.md does not explain the sandbox fallback")
         # Again into the same folder: refused, the bundle left as it is.
-        code, _, err = run(["bash", MAKE, platform, out], cwd=work)
+        code, _, err = run([MAKE, platform, out], cwd=work)
         check(code == 2 and os.path.isfile(os.path.join(out, FILES[platform][1])),
               f"make_autograder.sh {platform} into a non-empty folder: exit {code}: {err}")
     listed = subprocess.run(["git", "-C", ROOT, "ls-files", "--", "CMakeLists.txt", "cmake", "core", "app/cli",
@@ -133,13 +138,31 @@ def make_bundles(work):
     return bundles
 
 
+def forging_submission(work, case, paths):
+    """tests/student/hostile/forged_report aimed at `paths` written into its code: the judge
+    hands the student's code only PATH, HOME and LANG, so ACCELVIZ_FORGE_PATH never reaches it,
+    and the results folders under --work are not /autograder or /grade. None when the hostile
+    file no longer has the line this replaces."""
+    with open(os.path.join(HERE, "hostile", "forged_report", "forged_report.cpp"), encoding="utf-8") as f:
+        code = f.read()
+    line = 'if (const char* forge_path = std::getenv("ACCELVIZ_FORGE_PATH")) paths.push_back(forge_path);'
+    if line not in code:
+        return None
+    literal = ", ".join(json.dumps(p) for p in paths)
+    folder = os.path.join(work, "subs", case)
+    os.makedirs(folder)
+    with open(os.path.join(folder, "forged_here.cpp"), "w", encoding="utf-8") as f:
+        f.write(code.replace(line, "for (const char* p : {" + literal + "}) paths.push_back(p);"))
+    return folder
+
+
 def no_sandbox_grader(work, cli):
     """A grader that answers as the real one does where bubblewrap cannot run (exit 3, nothing
     graded) unless --no-sandbox is given: then it is the real one."""
     path = os.path.join(work, "grader-without-sandbox.sh")
     with open(path, "w") as f:
         f.write("#!/usr/bin/env bash\n"
-                'for a in "$@"; do if [ "$a" = --no-sandbox ]; then exec ' + cli + ' "$@"; fi; done\n'
+                'for a in "$@"; do if [ "$a" = --no-sandbox ]; then exec ' + shlex.quote(cli) + ' "$@"; fi; done\n'
                 'echo "accelviz-cli: check: refusing to grade: bubblewrap cannot make a sandbox here" >&2\n'
                 "exit 3\n")
     os.chmod(path, 0o755)
@@ -179,12 +202,13 @@ class Platform:
             copy_files(submission, root)
             env.pop("ACCELVIZ_SUBMISSION", None)
             results = None
-            entry = os.path.join(".github", "accelviz-grade.sh")
+            entry = ENTRY["github"]
             cwd = root
         if forge:
             env["ACCELVIZ_FORGE_PATH"] = os.path.join(results or root, forge)
         start = time.monotonic()
-        code, said, err = run(["bash", entry], timeout=600, env=env, cwd=cwd)
+        # As the platform starts it: Gradescope and PrairieLearn run the file, the workflow runs bash on it.
+        code, said, err = run(["bash", entry] if self.name == "github" else [entry], timeout=600, env=env, cwd=cwd)
         print(f"{self.name} {case}: exit {code} in {time.monotonic() - start:.1f} s")
         result = load(os.path.join(results, "results.json")) if results else None
         return code, said + err, result, results
@@ -249,7 +273,9 @@ def main():
         code, said, result = p.grade("skeleton", skeleton, cli)[:3]
         check(less_than_full(name, code, result), f"{name} skeleton: exit {code}, {result}: {said[-800:]}")
 
-        # The forgery aimed at the very file the platform reads.
+        # The forgery aimed at the very file the platform reads, through the variable the
+        # hostile submission reads (the judge gives its code only PATH, HOME and LANG: the
+        # literal paths below are the attack that arrives).
         code, said, result, results = p.grade("forged", hostile, cli, forge="results.json")
         if results:
             check(result is not None and not forged(result) and less_than_full(name, code, result),
@@ -279,16 +305,37 @@ def main():
         check(full_marks(name, code, said, result) and "--no-sandbox" in said,
               f"{name} without a sandbox: exit {code}, {result}: {said[-1500:]}")
         if results:
-            # The student's code, unconfined (as nobody when this runs as root), aims at a new
-            # file in the results folder: it must not appear.
-            code, said, result, results = p.grade("fallback-forged", hostile, without_sandbox, forge="forged.json")
-            check(result is not None and not forged(result) and less_than_full(name, code, result),
-                  f"{name} forged_report without a sandbox: {result}")
-            check(sorted(os.listdir(results)) == ["results.json"],
-                  f"{name} forged_report without a sandbox: the results folder holds {sorted(os.listdir(results))}")
-            if os.geteuid() != 0:
-                print(f"{name}: not root, so the student's code ran as this user: the results folder was not "
-                      "protected by the user nobody in this run")
+            # The forgery written into the code, aimed at results.json and at a new file
+            # beside it, with the sandbox and without it (the student's code unconfined, as
+            # nobody when this runs as root): results.json is the judge's, the new file absent.
+            for case, grader in (("forged-here", cli), ("fallback-forged-here", without_sandbox)):
+                case_results = os.path.join(work, f"{name}-{case}", "results")
+                sub = forging_submission(work, f"{name}-{case}", [os.path.join(case_results, "results.json"),
+                                                                  os.path.join(case_results, "forged.json")])
+                if not check(sub, "forged_report.cpp no longer reads ACCELVIZ_FORGE_PATH: update forging_submission"):
+                    break
+                code, said, result = p.grade(case, sub, grader)[:3]
+                check(result is not None and not forged(result) and less_than_full(name, code, result),
+                      f"{name} {case}: results.json is not the judge's failing one: {result}")
+                if os.geteuid() != 0 and "--no-sandbox" in said:
+                    print(f"{name} {case}: graded without the sandbox and not as root: the student's code ran as "
+                          "this user, who owns the results folder (on the platforms it runs as nobody): not checked")
+                    continue
+                held = sorted(os.listdir(case_results))
+                check(held == ["results.json"], f"{name} {case}: the student's code wrote there: {held}")
+        if name == "gradescope" and os.geteuid() == 0:
+            # The control: the same code, without the sandbox, aimed at a folder anyone may
+            # write: the file appears, so the attack above was real and the folder's owner
+            # (root, not nobody) is what stopped it.
+            open_folder = os.path.join(work, "anyone-may-write")
+            os.makedirs(open_folder)
+            os.chmod(open_folder, 0o777)
+            sub = forging_submission(work, "control", [os.path.join(open_folder, "forged.json")])
+            if sub:
+                p.grade("control", sub, without_sandbox)
+                check(os.path.exists(os.path.join(open_folder, "forged.json")),
+                      "control: the forging code wrote nothing even where anyone may write: the checks above "
+                      "prove nothing")
 
         code, said, result = p.grade("grader-missing", example, missing)[:3]
         if name == "gradescope":

@@ -159,6 +159,7 @@ def main():
         "exit_intersect": "exited with code 0",
         "sleep_build": "no answer within the time limit",
         "flood_output": "printed more than",
+        "forge_channel": "broke the kit's channel",
     }
     for name, text in expect_failure.items():
         failure = structure(hostile(name)).get("failure", "")
