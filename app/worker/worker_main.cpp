@@ -34,6 +34,10 @@ using accel::wire::Payload;
 /// Budget of one traversal's logged steps before the worker calls it endless: the same
 /// number as the kit's (kit_structure.h); the judge counts again and holds the same line.
 constexpr uint64_t kStepBudget = 20'000'000;
+/// The most traversal frames sent for one ray: more than the judge's recorder keeps (64 MB of
+/// events). Past it the steps are still counted against the budget, but not sent: an
+/// endless loop that logs costs the judge a megabyte-sized stream, not 20 million frames.
+constexpr uint64_t kFramesPerRay = 1'000'000;
 /// The most rays one Query or Time request may carry.
 constexpr uint32_t kMaxRays = 2'000'000;
 /// The most triangles one Build request may carry.
@@ -143,56 +147,67 @@ class WireTraversalListener final : public accelviz::detail::TraversalListener {
   void visit(uint32_t node, int depth, float t0, float t1) override { node_step(Msg::Visit, node, depth, t0, t1); }
   void enter_cell(int x, int y, int z, float t0, float t1) override {
     step();
+    if (!sending()) return;
     Payload p;
-    ch_.send(Msg::EnterCell, p.put(int32_t(x)).put(int32_t(y)).put(int32_t(z)).put(t0).put(t1).bytes());
+    send(Msg::EnterCell, p.put(int32_t(x)).put(int32_t(y)).put(int32_t(z)).put(t0).put(t1).bytes());
   }
   void cull(uint32_t node, int depth, accelviz::Cull why, float t) override {
     step();
+    if (!sending()) return;
     Payload p;
-    ch_.send(Msg::Cull, p.put(node).put(int32_t(depth)).put(int32_t(why)).put(t).bytes());
+    send(Msg::Cull, p.put(node).put(int32_t(depth)).put(int32_t(why)).put(t).bytes());
   }
   void push(uint32_t node, int depth, float key) override { node_step(Msg::Push, node, depth, key, 0.0f); }
   void pop(uint32_t node, int depth, float key) override { node_step(Msg::Pop, node, depth, key, 0.0f); }
   void triangle_tested(uint32_t prim, bool hit, float t) override {
     step();
+    if (!sending()) return;
     Payload p;
-    ch_.send(Msg::Tested, p.put(prim).put(uint8_t(hit)).put(t).bytes());
+    send(Msg::Tested, p.put(prim).put(uint8_t(hit)).put(t).bytes());
   }
   void new_closest(uint32_t prim, float t) override {
     step();
+    if (!sending()) return;
     Payload p;
-    ch_.send(Msg::NewClosest, p.put(prim).put(t).bytes());
+    send(Msg::NewClosest, p.put(prim).put(t).bytes());
   }
   void grid_dda(const int cell[3], const int step_[3], const float t_max[3], const float t_delta[3]) override {
+    if (!sending()) return;
     Payload p;
     p.put_bytes(cell, 3 * sizeof(int)).put_bytes(step_, 3 * sizeof(int));
     p.put_bytes(t_max, 3 * sizeof(float)).put_bytes(t_delta, 3 * sizeof(float));
-    ch_.send(Msg::GridDda, p.bytes());
+    send(Msg::GridDda, p.bytes());
   }
   void kd_split(float t_min, float t_split, float t_max, uint32_t near_child, uint32_t far_child, int axis) override {
+    if (!sending()) return;
     Payload p;
-    ch_.send(Msg::KdSplit, p.put(t_min).put(t_split).put(t_max).put(near_child).put(far_child).put(int32_t(axis)).bytes());
+    send(Msg::KdSplit, p.put(t_min).put(t_split).put(t_max).put(near_child).put(far_child).put(int32_t(axis)).bytes());
   }
   void kd_far_pop(float t_hit, float t_split, uint32_t far_child, bool exits) override {
+    if (!sending()) return;
     Payload p;
-    ch_.send(Msg::KdFarPop, p.put(t_hit).put(t_split).put(far_child).put(uint8_t(exits)).bytes());
+    send(Msg::KdFarPop, p.put(t_hit).put(t_split).put(far_child).put(uint8_t(exits)).bytes());
   }
   void octree_children(unsigned mask, const accelviz::OctreeChild* children, int count) override {
+    if (!sending()) return;
     const int n = std::clamp(count, 0, 8);
     Payload p;
     p.put(uint32_t(mask)).put(int32_t(n)).put_bytes(children, size_t(n) * sizeof(accelviz::OctreeChild));
-    ch_.send(Msg::OctreeChildren, p.bytes());
+    send(Msg::OctreeChildren, p.bytes());
   }
 
  private:
   void node_step(Msg type, uint32_t node, int depth, float a, float b) {
     step();
+    if (!sending()) return;
     Payload p;
-    ch_.send(type, p.put(node).put(int32_t(depth)).put(a).put(b).bytes());
+    send(type, p.put(node).put(int32_t(depth)).put(a).put(b).bytes());
   }
   void step() {
     if (++steps_ > kStepBudget) throw StepBudgetExceeded{};
   }
+  bool sending() const { return steps_ <= kFramesPerRay; }
+  void send(Msg type, const std::string& payload) { ch_.send(type, payload); }
   Channel& ch_;
   uint64_t steps_ = 0;
 };

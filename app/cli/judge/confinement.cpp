@@ -58,8 +58,9 @@ const std::vector<sock_filter>& worker_filter() {
     deny(SCMP_SYS(fork), EPERM);
     deny(SCMP_SYS(vfork), EPERM);
     deny(SCMP_SYS(clone3), ENOSYS);
-    ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(clone), 1,
-                                SCMP_A0(SCMP_CMP_MASKED_EQ, CLONE_THREAD, 0)) == 0;
+    // clone's first argument (its flags) without CLONE_THREAD: a new process, not a thread.
+    const scmp_arg_cmp not_a_thread{0, SCMP_CMP_MASKED_EQ, CLONE_THREAD, 0};
+    ok = ok && seccomp_rule_add_array(ctx, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(clone), 1, &not_a_thread) == 0;
     for (int sc : {SCMP_SYS(socket), SCMP_SYS(socketpair), SCMP_SYS(kill), SCMP_SYS(tkill), SCMP_SYS(ptrace),
                    SCMP_SYS(process_vm_readv), SCMP_SYS(process_vm_writev), SCMP_SYS(unshare), SCMP_SYS(setns),
                    SCMP_SYS(mount), SCMP_SYS(pidfd_open), SCMP_SYS(pidfd_send_signal), SCMP_SYS(rt_sigqueueinfo),
@@ -185,9 +186,15 @@ accel::Result<Confined> start_confined(const std::vector<std::string>& argv, con
   std::vector<char*> args;
   for (std::string& s : full) args.push_back(s.data());
   args.push_back(nullptr);
-  std::string home = c.sandbox ? "HOME=/home/student" : "HOME=/nonexistent";
-  std::string path = "PATH=/usr/bin:/bin", lang = "LANG=C.UTF-8";
-  char* env[] = {path.data(), home.data(), lang.data(), nullptr};
+  // A clean environment: nothing of the judge's but, in the sanitizer build, its sanitizers'
+  // options (abort_on_error turns a student's crash into the signal the report names).
+  std::vector<std::string> environment = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8",
+                                          c.sandbox ? "HOME=/home/student" : "HOME=/nonexistent"};
+  for (const char* name : {"ASAN_OPTIONS", "UBSAN_OPTIONS", "LSAN_OPTIONS"})
+    if (const char* value = getenv(name)) environment.push_back(std::string(name) + "=" + value);
+  std::vector<char*> env;
+  for (std::string& e : environment) env.push_back(e.data());
+  env.push_back(nullptr);
   const std::string workdir = c.workdir.empty() ? "/" : c.workdir;
   const auto& program = worker_filter();
   sock_fprog fprog{static_cast<unsigned short>(program.size()), const_cast<sock_filter*>(program.data())};
@@ -224,7 +231,7 @@ accel::Result<Confined> start_confined(const std::vector<std::string>& argv, con
       if (prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) _exit(126);
       if (seccomp && prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &fprog) != 0) _exit(126);
     }
-    execve(args[0], args.data(), env);
+    execve(args[0], args.data(), env.data());
     _exit(127);
   }
   close_all({child_out, child_req, child_ans, dev_null, seccomp_fd});
