@@ -208,6 +208,19 @@ def main():
     check(code == 0 and changed not in reused and len(reused) == len(again) - 1,
           f"second run: exit {code}, reused {reused} (changed: {changed})")
 
+    # No sandbox to be had (a bubblewrap that cannot make namespaces, as in a container that
+    # forbids them): one line, exit 3, nothing graded.
+    if not no_sandbox:
+        fake = os.path.join(args.work, "bwrap-without-namespaces")
+        with open(fake, "w") as f:
+            f.write("#!/bin/sh\necho 'bwrap: No permissions to create new namespace' >&2\nexit 1\n")
+        os.chmod(fake, 0o755)
+        env = dict(os.environ, ACCELVIZ_BWRAP=fake)
+        for cmd in (["check", "--submission", os.path.join(subs, changed)], ["grade-class", subs, "--out", out]):
+            code, said, err = run([args.cli, *cmd], env=env, cwd=args.work)
+            check(code == 3 and len(err.strip().splitlines()) == 1 and "refusing to grade" in err and not said,
+                  f"{cmd[0]} without a sandbox: exit {code}, stdout {said[-300:]!r}, stderr {err!r}")
+
     # check --submission: the printed output quoted; the platforms' result files.
     fake_dir = os.path.join(subs, "hostile_fake_stdout")
     code, said, err = run([args.cli, "check", "--submission", fake_dir, "--ray-scale", "0.02", "--no-time",

@@ -99,7 +99,10 @@ int filter_fd() {
   return fd;
 }
 
+/// bubblewrap: Debian's, or $ACCELVIZ_BWRAP (the lecturer's environment, never the student's:
+/// the tests point it at a missing program to see the judge refuse to grade).
 std::string bwrap_path() {
+  if (const char* chosen = getenv("ACCELVIZ_BWRAP")) return access(chosen, X_OK) == 0 ? chosen : "";
   for (const char* p : {"/usr/bin/bwrap", "/bin/bwrap", "/usr/local/bin/bwrap"})
     if (access(p, X_OK) == 0) return p;
   return "";
