@@ -327,7 +327,7 @@ accel::Result<json> check_worker(const std::shared_ptr<judge::WorkerBudget>& bud
   return reports;
 }
 
-std::string default_worker() {
+std::string worker_beside_cli() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   return ec ? std::string() : (exe.parent_path() / "accelviz-worker").native();
@@ -398,7 +398,7 @@ int run_check(const CheckOptions& options) {
   CheckOptions o = options;
   if (const int bad = prepare_judge_options(o, "check")) return bad;
   if (o.json) o.format = "json";
-  std::string worker = o.worker.empty() ? default_worker() : o.worker;
+  std::string worker = o.worker.empty() ? worker_beside_cli() : o.worker;
   std::string viewer = viewer_beside(worker);
   json compile;
   if (!o.submission.empty()) {

@@ -196,14 +196,10 @@ int run_grade_class(const GradeClassOptions& options) {
   for (std::thread& t : pool) t.join();
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
-  judge::Confinement shown;
-  shown.sandbox = co.sandbox;
-  shown.memory_bytes = co.memory_bytes;
-  shown.cpu_seconds = co.timeout * 2.0 + 10.0;
   json cls = {{"title", "accelviz class report"},
               {"generated", now_text()},
               {"submissions_dir", subs.native()},
-              {"sandbox", judge::describe_confinement(shown)},
+              {"sandbox", judge::describe_confinement(make_budget("", co)->confinement)},  // every worker's
               {"ray_scale", co.ray_scale},
               {"wall_seconds", wall},
               {"jobs", jobs},

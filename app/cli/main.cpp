@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "judge/grading.h"
 #include "judge/remote_student.h"
 #include "student/kit_registry.h"
 #include "interrupt.h"
@@ -104,12 +105,8 @@ void use_worker_for_queries(int argc, char** argv) {
   const char* env = std::getenv("ACCELVIZ_WORKER");
   std::string worker = env && *env ? env : "";
   if (worker.empty()) {
-    char self[4096];
-    const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n <= 0) return;
-    std::string dir(self, size_t(n));
-    worker = dir.substr(0, dir.rfind('/') + 1) + "accelviz-worker";
-    if (access(worker.c_str(), X_OK) != 0) return;
+    worker = cli::worker_beside_cli();
+    if (worker.empty() || access(worker.c_str(), X_OK) != 0) return;
   }
   auto budget = std::make_shared<judge::WorkerBudget>();
   char full[PATH_MAX];

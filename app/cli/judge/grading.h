@@ -31,6 +31,10 @@ void print_report(const nlohmann::json& r);
 /// and --no-sandbox was not given: 0, or the exit code after one line on stderr.
 int prepare_judge_options(CheckOptions& o, const char* command);
 
+/// accelviz-worker beside this program (what `scripts/build.sh --student DIR` builds), "" when
+/// this program's path cannot be read.
+std::string worker_beside_cli();
+
 /// The worker's limits and confinement from check's options.
 std::shared_ptr<judge::WorkerBudget> make_budget(const std::string& worker, const CheckOptions& o);
 accel::CheckOptions grader_options(const CheckOptions& o);

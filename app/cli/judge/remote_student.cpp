@@ -285,10 +285,9 @@ bool same_ray(const accel::wire::WireRay& a, const accel::wire::WireRay& b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-std::string rays_payload(const std::vector<accel::wire::WireRay>& rays) {
-  Payload p;
-  p.put(uint32_t(rays.size())).put_bytes(rays.data(), rays.size() * sizeof(rays[0]));
-  return p.bytes();
+/// Appends a request's rays: their count, then each ray.
+Payload& put_rays(Payload& p, const std::vector<accel::wire::WireRay>& rays) {
+  return p.put(uint32_t(rays.size())).put_bytes(rays.data(), rays.size() * sizeof(rays[0]));
 }
 
 /// Replays one build-log frame onto `log`; false for a frame that is not one.
@@ -550,7 +549,7 @@ accelviz::Hit RemoteStudent::intersect(const accelviz::Ray& ray, accelviz::Trave
     }
   }
   Payload p;
-  p.put(mode).put(uint8_t(accelviz::KitAccess::kernel(ray))).put_bytes(rays_payload({wire}).data(), 4 + sizeof wire);
+  put_rays(p.put(mode).put(uint8_t(accelviz::KitAccess::kernel(ray))), {wire});
   channel().send(Msg::Query, p.bytes());
   return take_answer(log);
 }
@@ -565,7 +564,7 @@ void RemoteStudent::expect(const std::vector<accel::Ray>& rays, accel::Kernel ke
       if (modes & mode) pending_.push_back({wire[i], mode});
   }
   Payload p;
-  p.put(modes).put(uint8_t(kernel)).put_bytes(rays_payload(wire).data(), rays_payload(wire).size());
+  put_rays(p.put(modes).put(uint8_t(kernel)), wire);
   channel().send(Msg::Query, p.bytes());
 }
 
@@ -576,10 +575,9 @@ double RemoteStudent::time_rays(const std::vector<accel::Ray>& rays, accel::Kern
   std::vector<accel::wire::WireRay> wire(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) wire[i] = to_wire(rays[i]);
   Payload p;
-  p.put(uint8_t(kernel)).put(uint32_t(threads));
-  const std::string request = p.bytes() + rays_payload(wire);
+  put_rays(p.put(uint8_t(kernel)).put(uint32_t(threads)), wire);
   const auto start = Clock::now();
-  channel().send(Msg::Time, request);
+  channel().send(Msg::Time, p.bytes());
   std::string payload;
   const Msg m = channel().receive(payload);
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
