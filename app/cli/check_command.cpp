@@ -33,6 +33,7 @@
 #include "rays_io.h"
 #include "registry.h"
 #include "student/grader.h"
+#include "student/walk_audit.h"
 
 extern char** environ;
 
@@ -92,6 +93,74 @@ std::string viewer_beside(const std::string& worker) {
   return viewer.native();
 }
 
+/// 25775 -> "25,775".
+std::string thousands(size_t n) {
+  const std::string digits = std::to_string(n);
+  std::string out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+/// "miss" / "triangle 12 at t=0.5" (`verb` before a hit: "hits ").
+std::string hit_text(const json& h, const std::string& verb) {
+  if (h.value("prim", -1) < 0 || h["t"].is_null()) return verb.empty() ? "miss" : "misses";
+  return verb + "triangle " + std::to_string(h["prim"].get<int64_t>()) + " at t=" + fmt(h["t"].get<double>(), "%.9g");
+}
+
+/// A hit in --json: a miss is prim -1 and t null (JSON has no infinity; docs/student.md).
+json hit_json(int64_t prim, bool hit, double t) {
+  return {{"prim", hit ? prim : int64_t(-1)}, {"t", hit ? json(t) : json(nullptr)}};
+}
+
+/// The causes that are the lecture's traps (the class report counts students per trap).
+bool is_lecture_trap(const std::string& cause) {
+  return cause != "unexplained" && cause != "fault" && cause != "skipped" && cause != "nothing_built";
+}
+
+/// The scene of a wrong ray or a failed build as a file the viewer opens: procedural scenes
+/// by name, the others written as OBJ beside the state ("" for an empty scene).
+std::string replay_scene(const std::string& category, const std::string& case_name, const accel::Scene& scene,
+                         const std::string& dir, std::string* error) {
+  if (category == "procedural") return "procedural:" + case_name;
+  if (scene.triangle_count() == 0) return "";
+  const std::string path = fs::absolute(fs::path(dir) / (safe_name(category + "_" + case_name) + ".obj")).native();
+  if (!fs::exists(path))
+    if (auto s = accel::write_scene_obj(scene, path); !s) {
+      *error = s.error().message;
+      return "";
+    }
+  return path;
+}
+
+/// Writes the replay of a failed build: the case's scene and a state that plays the
+/// construction up to the build-log call where it failed.
+std::string write_build_replay(const accel::BuildFault& f, const std::string& structure, const std::string& dir,
+                               size_t k, std::string* error) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    *error = dir + ": cannot create the folder: " + ec.message();
+    return "";
+  }
+  const std::string scene = replay_scene(f.category, f.case_name, *f.scene, dir, error);
+  if (scene.empty()) return "";
+  const std::string state = (fs::path(dir) / ("build_fault" + std::to_string(k) + ".state")).native();
+  std::string what = f.what;
+  for (char& c : what)
+    if (c == '\n' || c == '\r') c = ' ';
+  const std::string text = "# accelviz-cli check: " + structure + ", " + f.category + "/" + f.case_name + ": " + what +
+                           "\n# " + f.node + "\nscene " + scene + "\nstructure " + structure + "\nconstruct-until " +
+                           std::to_string(f.log_calls) + "\n";
+  if (auto s = accel::write_file_atomic(state, text); !s) {
+    *error = s.error().message;
+    return "";
+  }
+  return state;
+}
+
 /// Writes the replay of one wrong ray: a viewer state file (a script of the commands that
 /// rebuild the state: scene, structure, ray) and, for generated scenes, their OBJ.
 std::string write_replay(const accel::WrongRay& w, const std::string& structure, const std::string& dir, size_t k,
@@ -102,24 +171,13 @@ std::string write_replay(const accel::WrongRay& w, const std::string& structure,
     *error = dir + ": cannot create the folder: " + ec.message();
     return "";
   }
-  std::string scene;
-  if (w.category == "procedural") {
-    scene = "procedural:" + w.case_name;
-  } else if (w.scene->triangle_count() == 0) {
-    return "";  // an empty scene has no file to open
-  } else {
-    scene = fs::absolute(fs::path(dir) / (safe_name(w.category + "_" + w.case_name) + ".obj")).native();
-    if (!fs::exists(scene)) {
-      if (auto s = accel::write_scene_obj(*w.scene, scene); !s) {
-        *error = s.error().message;
-        return "";
-      }
-    }
-  }
+  const std::string scene = replay_scene(w.category, w.case_name, *w.scene, dir, error);
+  if (scene.empty()) return "";
   const std::string state = (fs::path(dir) / ("wrong" + std::to_string(k) + ".state")).native();
   const std::string text = "# accelviz-cli check: " + structure + ", " + w.category + "/" + w.case_name + " ray " +
-                           std::to_string(w.index) + ": " + kVerdictKeys[int(w.verdict)] + "\n" + "scene " + scene +
-                           "\nstructure " + structure + "\nray " + accel::format_ray_line(w.ray) + "\n";
+                           std::to_string(w.index) + ": " + kVerdictKeys[int(w.verdict)] + ": " + w.cause + "\n" +
+                           "scene " + scene + "\nstructure " + structure + "\nray " + accel::format_ray_line(w.ray) +
+                           "\n" + (w.step != size_t(-1) ? "step " + std::to_string(w.step + 1) + "\n" : "");
   if (auto s = accel::write_file_atomic(state, text); !s) {
     *error = s.error().message;
     return "";
@@ -142,29 +200,73 @@ json report_json(const accel::CheckReport& r, const std::string& out_dir, const 
   for (const auto& c : r.categories) {
     json wrong;
     for (int v = 1; v < 5; ++v) wrong[kVerdictKeys[v]] = c.wrong[v];
-    j["categories"].push_back({{"name", c.name}, {"cases", c.cases}, {"rays", c.rays}, {"wrong", wrong}});
+    j["categories"].push_back({{"name", c.name},
+                               {"cases", c.cases},
+                               {"rays", c.rays},
+                               {"wrong", wrong},
+                               {"skipped_cases", c.skipped_cases},
+                               {"skipped_rays", c.skipped_rays}});
   }
-  j["wrong_rays"] = json::array();
+  j["cases"] = json::array();
+  for (const auto& c : r.cases)
+    j["cases"].push_back(
+        {{"case", c.category + "/" + c.name}, {"rays", c.rays}, {"wrong", c.wrong}, {"skipped", c.skipped}});
+  // Every wrong ray's cause, the most rays first, with examples from the cases that have most.
   const std::string dir = (fs::path(out_dir) / r.structure).native();
-  for (size_t k = 0; k < r.wrong_rays.size(); ++k) {
-    const accel::WrongRay& w = r.wrong_rays[k];
-    std::string error;
-    const std::string state = write_replay(w, r.structure, dir, k + 1, &error);
-    json jw = {{"category", w.category},
-               {"case", w.case_name},
-               {"ray", w.index},
-               {"verdict", kVerdictKeys[int(w.verdict)]},
-               {"got", {{"prim", w.got.prim}, {"t", w.got.valid() ? double(w.got.t) : -1.0}}},
-               {"reference", {{"prim", w.ref.prim}, {"t", w.ref.prim >= 0 ? w.ref.t : -1.0}}},
-               {"trap", w.trap}};
-    if (!state.empty()) {
-      jw["state_file"] = state;
-      jw["replay"] = viewer + " --restore " + state;
-    } else if (!error.empty()) {
-      jw["replay_error"] = error;
+  j["causes"] = json::array();
+  j["wrong_rays"] = json::array();
+  size_t k = 0;
+  for (const accel::CheckCause& c : r.causes) {
+    const accel::CauseInfo& info = accel::cause_info(c.id);
+    json jc = {{"cause", c.id}, {"title", info.title}, {"lecture", info.lecture}, {"rays", c.rays}};
+    jc["cases"] = json::array();
+    for (const auto& [where, n] : c.cases) jc["cases"].push_back({{"case", where}, {"rays", n}});
+    jc["examples"] = json::array();
+    for (const accel::WrongRay& w : c.examples) {
+      std::string error;
+      const std::string state = write_replay(w, r.structure, dir, ++k, &error);
+      json jw = {{"category", w.category},
+                 {"case", w.case_name},
+                 {"ray", w.index},
+                 {"verdict", kVerdictKeys[int(w.verdict)]},
+                 {"got", hit_json(w.got.prim, w.got.valid(), double(w.got.t))},
+                 {"reference", hit_json(w.ref.prim, w.ref.prim >= 0, w.ref.t)},
+                 {"cause", w.cause},
+                 {"title", info.title},
+                 {"detail", w.detail},
+                 {"trap", is_lecture_trap(w.cause) ? info.title : ""}};
+      if (w.step != size_t(-1)) jw["step"] = w.step;
+      if (!state.empty()) {
+        jw["state_file"] = state;
+        jw["replay"] = viewer + " --restore " + state;
+      } else if (!error.empty()) {
+        jw["replay_error"] = error;
+      }
+      jc["examples"].push_back(jw);
+      j["wrong_rays"].push_back(jw);
     }
-    j["wrong_rays"].push_back(jw);
+    j["causes"].push_back(jc);
   }
+  j["build_faults"] = json::array();
+  for (size_t b = 0; b < r.build_faults.size(); ++b) {
+    const accel::BuildFault& f = r.build_faults[b];
+    json jf = {{"case", f.category + "/" + f.case_name}, {"what", f.what}, {"node", f.node}, {"build_calls", f.log_calls}};
+    std::string error;
+    const std::string state = write_build_replay(f, r.structure, dir, b + 1, &error);
+    if (!state.empty()) {
+      jf["state_file"] = state;
+      jf["replay"] = viewer + " --restore " + state;
+    } else if (!error.empty()) {
+      jf["replay_error"] = error;
+    }
+    j["build_faults"].push_back(jf);
+  }
+  j["notices"] = r.notices;
+  j["waste"] = {{"measured", r.waste.measured}, {"compared_with", r.waste.peer}, {"over_limit", r.waste.over_limit}};
+  j["waste"]["findings"] = json::array();
+  for (const accel::WasteFinding& f : r.waste.findings)
+    j["waste"]["findings"].push_back(
+        {{"name", f.name}, {"value", f.value}, {"limit", f.limit}, {"sentence", f.sentence}, {"over", f.over}});
   j["invariants"] = json::array();
   for (const auto& i : r.invariants)
     j["invariants"].push_back({{"name", i.name},
@@ -199,30 +301,71 @@ void print_report(const json& r) {
               r.value("source", "").empty() ? "" : (" from " + r.value("source", "")).c_str());
   if (!r.value("failure", "").empty()) std::printf("FAILED: %s\n", r["failure"].get<std::string>().c_str());
   if (!r["categories"].empty()) {
-    std::printf("%-12s %6s %9s %11s %10s %15s %8s\n", "category", "cases", "rays", "false miss", "false hit",
-                "wrong triangle", "wrong t");
+    std::printf("%-12s %6s %9s %11s %10s %15s %8s %8s\n", "category", "cases", "rays", "false miss", "false hit",
+                "wrong triangle", "wrong t", "skipped");
     for (const auto& c : r["categories"]) {
       const auto& w = c["wrong"];
-      std::printf("%-12s %6zu %9zu %11zu %10zu %15zu %8zu\n", c["name"].get<std::string>().c_str(),
+      std::printf("%-12s %6zu %9zu %11zu %10zu %15zu %8zu %8zu\n", c["name"].get<std::string>().c_str(),
                   c["cases"].get<size_t>(), c["rays"].get<size_t>(), w["false_miss"].get<size_t>(),
-                  w["false_hit"].get<size_t>(), w["wrong_triangle"].get<size_t>(), w["wrong_t"].get<size_t>());
+                  w["false_hit"].get<size_t>(), w["wrong_triangle"].get<size_t>(), w["wrong_t"].get<size_t>(),
+                  c.value("skipped_rays", size_t(0)));
     }
   }
-  size_t k = 0;
-  for (const auto& w : r["wrong_rays"]) {
-    std::printf(
-        "wrong %zu: %s/%s ray %zu: %s: answered %s, the reference %s\n", ++k, w["category"].get<std::string>().c_str(),
-        w["case"].get<std::string>().c_str(), w["ray"].get<size_t>(), w["verdict"].get<std::string>().c_str(),
-        w["got"]["prim"].get<int>() < 0 ? "miss"
-                                        : ("triangle " + std::to_string(w["got"]["prim"].get<int>()) +
-                                           " at t=" + fmt(w["got"]["t"].get<double>(), "%.9g"))
-                                              .c_str(),
-        w["reference"]["prim"].get<int>() < 0 ? "misses"
-                                              : ("hits triangle " + std::to_string(w["reference"]["prim"].get<int>()) +
-                                                 " at t=" + fmt(w["reference"]["t"].get<double>(), "%.9g"))
-                                                    .c_str());
-    if (!w.value("trap", "").empty()) std::printf("  the lecture's trap: %s\n", w["trap"].get<std::string>().c_str());
-    if (w.contains("replay")) std::printf("  replay: %s\n", w["replay"].get<std::string>().c_str());
+  for (const auto& n : r.value("notices", json::array())) std::printf("notice: %s\n", n.get<std::string>().c_str());
+  const json causes = r.value("causes", json::array());
+  if (!causes.empty())
+    std::printf("wrong answers by cause (%zu cause%s; each cause's first rays, from the cases with the most):\n",
+                causes.size(), causes.size() == 1 ? "" : "s");
+  size_t k = 0, c_index = 0;
+  for (const auto& c : causes) {
+    const json cases = c.value("cases", json::array());
+    std::printf("cause %zu: %s rays in %zu case%s: %s\n", ++c_index, thousands(c.value("rays", size_t(0))).c_str(),
+                cases.size(), cases.size() == 1 ? "" : "s", c.value("title", "").c_str());
+    std::printf("  lecture: %s\n", c.value("lecture", "").c_str());
+    std::string most;
+    for (size_t i = 0; i < cases.size() && i < 4; ++i)
+      most += (i ? ", " : "") + cases[i].value("case", "") + " " + thousands(cases[i].value("rays", size_t(0)));
+    if (cases.size() > 4) most += ", and " + std::to_string(cases.size() - 4) + " more";
+    std::printf("  in: %s\n", most.c_str());
+    for (const auto& w : c.value("examples", json::array())) {
+      std::printf("  wrong %zu: %s/%s ray %zu: %s: answered %s, the reference %s\n", ++k,
+                  w["category"].get<std::string>().c_str(), w["case"].get<std::string>().c_str(),
+                  w["ray"].get<size_t>(), w["verdict"].get<std::string>().c_str(), hit_text(w["got"], "").c_str(),
+                  hit_text(w["reference"], "hits ").c_str());
+      if (!w.value("detail", "").empty()) std::printf("    why: %s\n", w["detail"].get<std::string>().c_str());
+      if (w.contains("replay")) std::printf("    replay: %s\n", w["replay"].get<std::string>().c_str());
+    }
+  }
+  if (!causes.empty()) {
+    std::string per_case;
+    size_t shown = 0, with_wrong = 0;
+    for (const auto& c : r.value("cases", json::array())) {
+      if (c.value("wrong", size_t(0)) == 0) continue;
+      ++with_wrong;
+      if (shown++ < 12)
+        per_case += (per_case.empty() ? "" : ", ") + c.value("case", "") + " " +
+                    thousands(c.value("wrong", size_t(0))) + "/" + thousands(c.value("rays", size_t(0)));
+    }
+    if (with_wrong > shown) per_case += ", and " + std::to_string(with_wrong - shown) + " more";
+    std::printf("wrong answers per case: %s\n", per_case.c_str());
+  }
+  for (const auto& f : r.value("build_faults", json::array())) {
+    std::printf("build fault: %s: %s\n  the node being built: %s\n", f.value("case", "").c_str(),
+                f.value("what", "").c_str(), f.value("node", "").c_str());
+    if (f.contains("replay"))
+      std::printf("  replay (plays the construction up to the fault): %s\n", f["replay"].get<std::string>().c_str());
+  }
+  const json waste = r.value("waste", json::object());
+  if (waste.value("measured", false)) {
+    const json findings = waste.value("findings", json::array());
+    if (findings.empty()) {
+      std::printf("waste: none worth saying against the built-in %s\n", waste.value("compared_with", "").c_str());
+    } else {
+      std::printf("waste (right answers, but against the built-in %s):\n", waste.value("compared_with", "").c_str());
+      for (const auto& f : findings)
+        std::printf("  %s%s\n", f.value("over", false) ? "OVER THE --strict LIMIT: " : "",
+                    f.value("sentence", "").c_str());
+    }
   }
   for (const auto& i : r["invariants"]) {
     if (!i["applies"].get<bool>()) continue;
@@ -259,7 +402,11 @@ void print_report(const json& r) {
   }
   std::printf("sandbox: %s\n", r.value("sandbox", "").c_str());
   std::printf("%s: %s\n", name.c_str(),
-              r.value("passed", false) ? "PASSED (every answer right, every invariant kept)" : "FAILED");
+              r.value("passed", false) ? "PASSED (every answer right, every invariant kept)"
+              : r.value("wrong", size_t(0)) == 0 && r.value("failure", "").empty() && r["faults"].empty() &&
+                      r.value("waste", json::object()).value("over_limit", false)
+                  ? "FAILED (--strict: waste over a limit)"
+                  : "FAILED");
 }
 
 /// A report for a structure, or a whole worker, that could not be checked at all.
@@ -317,7 +464,11 @@ accel::Result<json> check_worker(const std::shared_ptr<judge::WorkerBudget>& bud
     std::error_code ec;
     fs::remove_all(fs::path(out_dir) / info.name, ec);
     budget->start_check();
-    accel::CheckReport report = accel::check_structure(info, co, [](const std::string&, size_t) {});
+    accel::CheckOptions with_timing = co;
+    // The timing has its own time limit: a check that used most of it still gets timed,
+    // and a timing cut short never takes the correctness report with it.
+    with_timing.before_timing = [&budget] { budget->restart_deadline(); };
+    accel::CheckReport report = accel::check_structure(info, with_timing, [](const std::string&, size_t) {});
     for (std::string& f : report.faults)
       if (f.find("std::bad_alloc") != std::string::npos)
         f += " (ran out of memory: a runaway allocation? the worker's limit is " +
@@ -351,6 +502,8 @@ accel::CheckOptions grader_options(const CheckOptions& o) {
   co.shared_scenes = o.shared;
   co.ray_scale = o.ray_scale;
   co.time = o.time;
+  co.strict = o.strict;
+  for (const std::string& l : o.limits) accel::set_waste_limit(co.limits, l);  // validated before
   return co;
 }
 
@@ -382,6 +535,12 @@ int prepare_judge_options(CheckOptions& o, const char* command) {
     }
     o.memory_bytes = bytes.value();
   }
+  accel::WasteLimits limits;
+  for (const std::string& l : o.limits)
+    if (const std::string bad = accel::set_waste_limit(limits, l); !bad.empty()) {
+      std::fprintf(stderr, "accelviz-cli: %s: %s\n", command, bad.c_str());
+      return kExitBadInput;
+    }
   if (!(o.ray_scale > 0.0 && o.ray_scale <= 10.0)) {
     std::fprintf(stderr, "accelviz-cli: %s: --ray-scale must be in (0, 10]\n", command);
     return kExitBadInput;

@@ -60,7 +60,9 @@ struct CheckOptions {
   std::string shared;         ///< ../shared/scenes for the meshes category
   double ray_scale = 1.0;
   bool time = true;
-  double timeout = 300.0;     ///< seconds per structure before its worker is stopped
+  bool strict = false;        ///< --strict: waste past a limit fails
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE
+  double timeout = 300.0;     ///< seconds per structure before its worker is stopped (the timing has its own)
   std::string memory_limit;   ///< per structure's worker (default: 4 GiB or half the memory)
   size_t memory_bytes = 0;
   std::string worker;         ///< the worker program (default: accelviz-worker beside accelviz-cli)

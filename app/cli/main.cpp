@@ -62,6 +62,12 @@ void add_judge_options(CLI::App* cmd, cli::CheckOptions* o) {
   cmd->add_option("--shared", o->shared, "folder of the shared meshes (skipped when absent)")->capture_default_str();
   cmd->add_option("--ray-scale", o->ray_scale, "multiply every case's ray count (0 < F <= 10)")->capture_default_str();
   cmd->add_flag("!--no-time", o->time, "skip the speed measurement");
+  cmd->add_flag("--strict", o->strict,
+                "also fail a right structure that wastes past a limit against its built-in (--limit; for course "
+                "autograders: the default is correctness only)");
+  cmd->add_option("--limit", o->limits,
+                  "NAME=VALUE (repeatable): --strict's limits, uncrossed=0.25 (share of visited nodes the ray does "
+                  "not cross), triangles=3, leaf_size=4, references=3 (multiples of the built-in's); 0: none");
   cmd->add_option("--timeout", o->timeout, "seconds one structure's check may take (an endless loop)")
       ->check(CLI::Range(1.0, 86400.0))
       ->capture_default_str();

@@ -16,7 +16,7 @@
 #include "ray_gen.h"
 #include "rays_io.h"
 #include "student/kit_structure.h"
-#include "traps.h"
+#include "student/walk_audit.h"
 
 namespace accel {
 namespace {
@@ -90,111 +90,6 @@ std::vector<CaseSpec> case_specs(const CheckOptions& o) {
                        }});
     }
   return specs;
-}
-
-// --- the lecture's traps, recognised in a wrong answer ----------------------------------
-
-/// The answer is a real hit farther than the reference's (or a miss where it hits): the
-/// traversal stopped too early or never looked where the nearer triangle is.
-bool answered_too_far(const Hit& got, const ReferenceHit& ref) {
-  return ref.prim >= 0 && (!got.valid() || double(got.t) > ref.t);
-}
-
-/// kd-tree: the final closest hit lies beyond the t_split of a node whose far child the ray
-/// never visited: a near-child hit accepted beyond t_split ("if t_hit < t_split return").
-bool kd_hit_beyond_t_split(const TraceRecorder& rec, const Hit& got) {
-  if (!got.valid()) return false;
-  const auto& events = rec.events();
-  for (const RecordedVars& rv : rec.recorded_vars()) {
-    const auto* kd = std::get_if<KdSplitVars>(&rv.vars);
-    if (!kd || kd->kase != KdCase::Both || !(kd->t_split < got.t)) continue;
-    const bool far_visited = std::any_of(events.begin(), events.end(), [&](const TraceEvent& e) {
-      return e.kind == TraceEventKind::Visit && e.node == kd->far_child;
-    });
-    if (!far_visited) return true;
-  }
-  return false;
-}
-
-/// Grid: the final closest hit was taken in a cell it lies beyond, and the walk stopped there.
-bool grid_hit_outside_cell(const TraceRecorder& rec, const Hit& got) {
-  if (!got.valid()) return false;
-  const auto& events = rec.events();
-  const TraceEvent* cell = nullptr;
-  bool found = false;
-  for (const TraceEvent& e : events) {
-    if (e.kind == TraceEventKind::EnterCell) {
-      if (found) return false;  // the walk went on after the hit: not this trap
-      cell = &e;
-    }
-    if (e.kind == TraceEventKind::NewClosest && e.prim == got.prim) found = true;
-  }
-  return found && cell && double(got.t) > double(cell->t1) * (1.0 + 1e-6) + 1e-30;
-}
-
-/// Octree / kd-tree / grid: the reference triangle is missing from every leaf or cell that
-/// holds the reference hit point although it touches it there: lost at a split or a cell
-/// boundary.
-bool triangle_lost_at_split(const KitStructure& s, const Scene& scene, const Ray& ray, const ReferenceHit& ref) {
-  if (ref.prim < 0) return false;
-  const Vec3 p = ray.org + float(ref.t) * ray.dir;
-  const KitTree& tree = s.tree();
-  const Aabb tri = scene.triangle_bounds(uint32_t(ref.prim));
-  auto holds_point = [&](const Aabb& box) {
-    const Vec3 pad = 1e-5f * (glm::abs(box.max - box.min) + Vec3(1e-30f));
-    return glm::all(glm::greaterThanEqual(p, box.min - pad)) && glm::all(glm::lessThanEqual(p, box.max + pad));
-  };
-  bool some_leaf = false;
-  auto check = [&](const Aabb& box, const std::vector<uint32_t>& prims) {
-    if (!holds_point(box) || !glm::all(glm::lessThanEqual(tri.min, box.max)) ||
-        !glm::all(glm::greaterThanEqual(tri.max, box.min)))
-      return false;
-    some_leaf = true;
-    return std::find(prims.begin(), prims.end(), uint32_t(ref.prim)) != prims.end();
-  };
-  if (tree.grid) {
-    for (NodeId c = 0; c < tree.cells.size(); ++c)
-      if (check(tree.cell_box(c), tree.cells[c])) return false;
-  } else {
-    for (const KitNode& k : tree.nodes)
-      if ((k.leaf || k.children.empty()) && check(k.box, k.prims)) return false;
-  }
-  return some_leaf;
-}
-
-/// Hierarchies: the answer is the first leaf's hit and the traversal ended right after that
-/// leaf although nodes were still pending (or it logs no stack): it stopped at the first hit.
-bool stopped_at_first_leaf_hit(const TraceRecorder& rec, const Hit& got) {
-  const auto& events = rec.events();
-  const NaiveAnswer naive = naive_first_leaf_hit(events);
-  if (!naive.hit || !got.valid() || naive.prim != got.prim || naive.t != got.t) return false;
-  int64_t pending = 0;
-  bool pushes = false;
-  for (size_t i = 0; i < events.size(); ++i) {
-    const TraceEventKind k = events[i].kind;
-    if (i > naive.stop_step && k != TraceEventKind::Done && k != TraceEventKind::NewClosest &&
-        k != TraceEventKind::TestPrim)
-      return false;  // the walk went on after that leaf
-    if (i <= naive.stop_step && k == TraceEventKind::Push) ++pending, pushes = true;
-    if (i <= naive.stop_step && k == TraceEventKind::Pop) --pending;
-  }
-  return pending > 0 || !pushes;
-}
-
-std::string name_trap(accelviz::Kind kind, const KitStructure& s, const Scene& scene, const Ray& ray,
-                      const TraceRecorder& rec, const Hit& got, const ReferenceHit& ref) {
-  using K = accelviz::Kind;
-  if (!answered_too_far(got, ref)) return "";
-  if ((kind == K::octree || kind == K::kdtree || kind == K::grid) && triangle_lost_at_split(s, scene, ray, ref))
-    return kind == K::grid ? "a triangle missing from a cell it overlaps (the insertion lost it)"
-                           : "a triangle that straddles a split is missing from a child it overlaps";
-  if (kind == K::kdtree && kd_hit_beyond_t_split(rec, got))
-    return "a near-child hit beyond t_split was returned (check t_hit <= t_split before stopping)";
-  if (kind == K::grid && grid_hit_outside_cell(rec, got))
-    return "a hit outside the current cell was accepted (it must lie inside the cell to stop the walk)";
-  if ((kind == K::bvh || kind == K::spheretree || kind == K::octree) && stopped_at_first_leaf_hit(rec, got))
-    return "stopped at the first leaf with a hit (a farther bounding volume can hold a nearer triangle)";
-  return "";
 }
 
 // --- invariants of the logs ----------------------------------------------------------------
@@ -427,11 +322,109 @@ size_t CheckReport::invariant_failures() const {
 
 namespace {
 
+/// The wrong rays of every cause while the check runs: counts per case, and the first ray of
+/// each case kept as a candidate example.
+struct CauseBook {
+  struct Entry {
+    size_t rays = 0;
+    std::vector<std::pair<std::string, size_t>> cases;  // in the order met
+    std::vector<WrongRay> firsts;                       // the first ray of each case (bounded)
+  };
+  std::vector<std::pair<std::string, Entry>> entries;
+
+  void add(WrongRay w) {
+    auto it = std::find_if(entries.begin(), entries.end(), [&](const auto& e) { return e.first == w.cause; });
+    if (it == entries.end()) it = entries.insert(entries.end(), {w.cause, Entry{}});
+    Entry& e = it->second;
+    ++e.rays;
+    const std::string where = w.category + "/" + w.case_name;
+    auto c = std::find_if(e.cases.begin(), e.cases.end(), [&](const auto& p) { return p.first == where; });
+    if (c == e.cases.end()) {
+      e.cases.push_back({where, 0});
+      c = e.cases.end() - 1;
+      if (e.firsts.size() < 64) e.firsts.push_back(std::move(w));
+    }
+    ++c->second;
+  }
+  /// The causes, the most rays first; the examples from the cases with the most rays.
+  std::vector<CheckCause> causes(size_t per_cause) const {
+    std::vector<CheckCause> out;
+    for (const auto& [id, e] : entries) {
+      CheckCause c{id, e.rays, e.cases, {}};
+      std::stable_sort(c.cases.begin(), c.cases.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+      for (const auto& [where, n] : c.cases) {
+        if (c.examples.size() == per_cause) break;
+        for (const WrongRay& w : e.firsts)
+          if (w.category + "/" + w.case_name == where) c.examples.push_back(w);
+      }
+      out.push_back(std::move(c));
+    }
+    std::stable_sort(out.begin(), out.end(), [](const CheckCause& a, const CheckCause& b) { return a.rays > b.rays; });
+    return out;
+  }
+};
+
+CheckCategory& category_of(CheckReport& report, const std::string& name) {
+  auto cat = std::find_if(report.categories.begin(), report.categories.end(),
+                          [&](const CheckCategory& c) { return c.name == name; });
+  if (cat != report.categories.end()) return *cat;
+  report.categories.push_back({name});
+  return report.categories.back();
+}
+
+/// What the build had made when it failed: the last node, its depth and triangles, and how
+/// the triangle counts grew on the way down to it (a runaway split copies them).
+std::string build_fault_node(const KitTree& tree) {
+  if (tree.grid) return "after " + std::to_string(tree.cells.size()) + " cells were made";
+  if (tree.nodes.empty()) return "before its first node() call";
+  const KitNode& last = tree.nodes.back();
+  std::vector<uint32_t> path;
+  for (uint32_t n = uint32_t(tree.nodes.size() - 1); n != kNoBuildNode && path.size() < 64; n = tree.nodes[n].parent)
+    path.push_back(tree.nodes[n].prim_count);
+  std::reverse(path.begin(), path.end());
+  std::string growth;
+  const size_t shown = std::min<size_t>(path.size(), 8);
+  for (size_t i = path.size() - shown; i < path.size(); ++i)
+    growth += (growth.empty() ? "" : " -> ") + std::to_string(path[i]);
+  double refs = 0;
+  for (const KitNode& k : tree.nodes) refs += double(k.prim_count);
+  char total[96];
+  std::snprintf(total, sizeof total, "%zu nodes made over %.3g triangle references in all", tree.nodes.size(), refs);
+  return "at node " + std::to_string(last.student_id) + " (depth " + std::to_string(last.depth) + ", " +
+         std::to_string(last.prim_count) + " triangles; down its path: " + (path.size() > shown ? "... -> " : "") +
+         growth + "); " + total;
+}
+
+/// Counts the built-in's triangles and nodes per ray over `rays`, set up like the student's
+/// tree, and both trees' leaves and references: the waste report's comparison.
+void tally_peer(const StructureInfo& info, accelviz::Kind kind, const KitStructure& kit, const Scene& scene,
+                const std::vector<Ray>& rays, WasteTally& tally) {
+  auto peer_info = find_structure(info.builtin_peer);
+  if (!peer_info) return;
+  ParamSet params(peer_info.value()->params, info.builtin_peer);
+  std::string setup;
+  for (const auto& [key, value] : peer_setup_like(kit.tree(), kind, scene))
+    if (params.set(key, value)) setup += (setup.empty() ? "" : " ") + key + "=" + value;
+  auto peer = build_structure(*peer_info.value(), scene, params);
+  if (!peer) return;
+  QueryStats q;
+  trace_all(*peer.value(), rays, 0, &q);
+  tally.peer_tris += double(q.prims_tested);
+  tally.peer_setup = setup;
+  const BuildStats mine = kit.build_stats(), theirs = peer.value()->build_stats();
+  tally.leaves += double(mine.leaves - mine.empty_leaves), tally.leaf_refs += double(mine.prim_references);
+  tally.peer_leaves += double(theirs.leaves - theirs.empty_leaves), tally.peer_leaf_refs += double(theirs.prim_references);
+  tally.refs += double(mine.prim_references), tally.peer_refs += double(theirs.prim_references);
+  tally.prims += double(scene.valid_prims().size());
+}
+
 /// One case: builds the student's structure over its scene and judges every ray, adding to
-/// `report`. `at` follows where it is ("hard/slivers ray 12"); a StudentProcessLost goes
-/// through to the caller, every other student failure becomes a fault.
-void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind kind, const CheckOptions& options,
-                const CheckProgress& progress, CheckReport& report, size_t& cases_with_faults, std::string& at) {
+/// `report`; every wrong ray's cause goes to `book`, the procedural cases' waste to `tally`.
+/// `at` follows where it is ("hard/slivers ray 12"); a StudentProcessLost goes through to
+/// the caller, every other student failure becomes a fault.
+void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind kind,
+                const CheckProgress& progress, CheckReport& report, CauseBook& book, WasteTally& tally,
+                size_t& cases_with_faults, std::string& at) {
   // Counts this case as faulty when it added a fault, whichever way it ends.
   struct CaseFaults {
     size_t& cases;
@@ -448,13 +441,14 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
   }
   auto scene = std::make_shared<const Scene>(std::move(made.value().scene));
   const std::vector<Ray>& rays = made.value().rays;
-  auto cat = std::find_if(report.categories.begin(), report.categories.end(),
-                          [&](const CheckCategory& c) { return c.name == spec.category; });
-  if (cat == report.categories.end()) {
-    report.categories.push_back({spec.category});
-    cat = report.categories.end() - 1;
-  }
-  ++cat->cases;
+  CheckCategory& cat = category_of(report, spec.category);
+  ++cat.cases;
+  report.cases.push_back({spec.category, spec.name, 0, 0, 0});
+  const size_t case_index = report.cases.size() - 1;
+  auto skip_rest = [&](size_t from) {
+    report.cases[case_index].skipped += rays.size() - from;
+    cat.skipped_rays += rays.size() - from;
+  };
 
   std::vector<ReferenceHit> ref(rays.size());
   par::parallel_for(size_t(0), rays.size(), [&](size_t i) { ref[i] = reference_closest(*scene, rays[i]); });
@@ -463,23 +457,29 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
   auto* kit = dynamic_cast<KitStructure*>(created.get());
   if (!kit) {
     report.faults.push_back(where + ": not a student structure");
+    skip_rest(0);
     return;
   }
   kit->set_strict(true);
   at = where + " (build)";
+  std::string build_fault;
   try {
     auto built = kit->build(*scene, ParamSet(info.params, info.name));
-    if (!built) {
-      report.faults.push_back(where + ": build: " + built.error().message);
-      return;
-    }
-  } catch (const StudentProcessLost&) {
+    if (!built) build_fault = "build: " + built.error().message;
+  } catch (const StudentProcessLost& lost) {
+    report.build_faults.push_back({spec.category, spec.name, scene, lost.what(), build_fault_node(kit->tree()),
+                                   kit->build_log_calls()});
     throw;
   } catch (const std::exception& e) {
-    report.faults.push_back(where + ": build " + describe_exception(e));
-    return;
+    build_fault = "build " + describe_exception(e);
   } catch (...) {
-    report.faults.push_back(where + ": build threw a non-standard exception");
+    build_fault = "build threw a non-standard exception";
+  }
+  if (!build_fault.empty()) {
+    const std::string node = build_fault_node(kit->tree());
+    report.faults.push_back(where + ": " + build_fault + ", " + node);
+    report.build_faults.push_back({spec.category, spec.name, scene, build_fault, node, kit->build_log_calls()});
+    skip_rest(0);
     return;
   }
   check_tree(report.invariants, *kit, *scene, where);
@@ -487,7 +487,9 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
   if (auto* remote = dynamic_cast<RemoteAnswers*>(kit->student()))
     remote->expect(rays, kit->kernel(), wire_traced | wire_fast);
 
-  cat->rays += rays.size();
+  const WalkAuditor auditor(kit->tree(), kind, *scene);
+  const bool measure_waste = spec.category == "procedural";
+  WasteTally here;
   size_t faults_here = 0;
   std::string fault;
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -506,13 +508,19 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
     } catch (...) {
       fault = where + " ray " + std::to_string(i) + ": threw a non-standard exception";
     }
+    ++cat.rays;
+    ++report.cases[case_index].rays;
     if (!fault.empty()) {  // counted as a wrong answer; three per case are enough to see
+      WrongRay w{spec.category, spec.name, scene, i, rays[i], HitVerdict::FalseMiss, Hit{}, ref[i], "fault", fault};
       report.faults.push_back(std::move(fault));
       fault.clear();
-      ++cat->wrong[int(HitVerdict::FalseMiss)];
+      ++cat.wrong[int(HitVerdict::FalseMiss)];
+      ++report.cases[case_index].wrong;
+      book.add(std::move(w));
       if (++faults_here == kFaultsPerCase) {
-        report.faults.push_back(where + ": its other rays skipped after " + std::to_string(kFaultsPerCase) +
-                                " faults");
+        report.faults.push_back(where + ": its other " + std::to_string(rays.size() - i - 1) + " rays skipped after " +
+                                std::to_string(kFaultsPerCase) + " faults");
+        skip_rest(i + 1);
         break;
       }
       continue;
@@ -528,17 +536,47 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
       fail(reported, where + " ray " + std::to_string(i),
            "triangle " + std::to_string(traced.prim) + " returned without a triangle_tested(hit) at its t");
     const HitVerdict v = judge_hit(*scene, rays[i], fast, ref[i]);
-    if (v == HitVerdict::Correct) continue;
-    ++cat->wrong[int(v)];
-    if (report.wrong_rays.size() < options.keep_wrong) {
-      WrongRay w{spec.category, spec.name, scene, i, rays[i], v, fast, ref[i], ""};
-      w.trap = name_trap(kind, *kit, *scene, rays[i], rec, traced, ref[i]);
-      report.wrong_rays.push_back(std::move(w));
+    const bool wrong = v != HitVerdict::Correct;
+    if (!wrong && !measure_waste) continue;
+    // The kit's own reading of the walk: every claim against the geometry.
+    const WalkAudit audit = auditor.audit(rays[i], rec.events(), rec.recorded_vars(), wrong);
+    if (measure_waste) {
+      ++here.rays;
+      here.visits += audit.visits, here.uncrossed += audit.visits_not_crossed;
+      here.kd_inner += audit.kd_inner, here.kd_far_only += audit.kd_far_only;
+      here.kd_needs_far_only += audit.kd_needs_far_only;
+      for (const TraceEvent& e : rec.events()) here.tris += e.kind == TraceEventKind::TestPrim;
     }
+    if (!wrong) continue;
+    ++cat.wrong[int(v)];
+    ++report.cases[case_index].wrong;
+    const Diagnosis d = auditor.diagnose(rays[i], rec.events(), rec.recorded_vars(), audit, traced, ref[i]);
+    book.add(WrongRay{spec.category, spec.name, scene, i, rays[i], v, fast, ref[i], d.cause, d.detail, d.step});
+  }
+  if (measure_waste && report.cases[case_index].wrong == 0 && report.cases[case_index].skipped == 0) {
+    tally_peer(info, kind, *kit, *scene, rays, here);
+    tally.add(here);
   }
 }
 
+/// The rays of a case the check did not reach (after faults in other cases), counted as skipped.
+void count_skipped_case(const CaseSpec& spec, CheckReport& report) {
+  auto made = spec.make();
+  const size_t n = made ? made.value().rays.size() : 0;
+  CheckCategory& cat = category_of(report, spec.category);
+  ++cat.skipped_cases;
+  cat.skipped_rays += n;
+  report.cases.push_back({spec.category, spec.name, 0, 0, n});
+}
+
 }  // namespace
+
+std::vector<const WrongRay*> CheckReport::examples() const {
+  std::vector<const WrongRay*> out;
+  for (const CheckCause& c : causes)
+    for (const WrongRay& w : c.examples) out.push_back(&w);
+  return out;
+}
 
 CheckReport check_structure(const StructureInfo& info, const CheckOptions& options, const CheckProgress& progress) {
   CheckReport report;
@@ -550,42 +588,60 @@ CheckReport check_structure(const StructureInfo& info, const CheckOptions& optio
   const accelviz::Kind kind = kit_probe ? kit_probe->kind() : accelviz::Kind::bvh;
   report.kind = info.builtin_peer.empty() ? info.name : info.builtin_peer;
   report.invariants = invariant_rows(kind);
+  if (options.shared_scenes.empty() || !std::filesystem::is_directory(options.shared_scenes))
+    report.notices.push_back("meshes: skipped: no folder of shared meshes" +
+                             (options.shared_scenes.empty() ? std::string() : " at " + options.shared_scenes) +
+                             " (put cornell_box.obj, teapot.obj and bunny_lowres.obj in ../shared/scenes beside the "
+                             "repository, or give --shared DIR)");
 
   size_t cases_with_faults = 0;
+  CauseBook book;
+  WasteTally tally;
   std::string at = "before the first case";  // where the check is: a lost worker's failure names it
+  const std::vector<CaseSpec> specs = case_specs(options);
+  size_t next = 0;
+  auto finish_causes = [&] { report.causes = book.causes(options.examples_per_cause); };
   try {
-    for (const CaseSpec& spec : case_specs(options)) {
+    for (; next < specs.size(); ++next) {
       if (cases_with_faults == kFaultyCases) {
-        report.faults.push_back("the other cases skipped after faults in " + std::to_string(kFaultyCases) +
-                                " cases");
+        report.faults.push_back("the other " + std::to_string(specs.size() - next) + " cases skipped after faults in " +
+                                std::to_string(kFaultyCases) + " cases");
+        for (; next < specs.size(); ++next) count_skipped_case(specs[next], report);
         break;
       }
-      at = spec.category + "/" + spec.name;
-      check_case(spec, info, kind, options, progress, report, cases_with_faults, at);
+      at = specs[next].category + "/" + specs[next].name;
+      check_case(specs[next], info, kind, progress, report, book, tally, cases_with_faults, at);
     }
   } catch (const StudentProcessLost& lost) {
     report.failure = std::string(lost.what()) + " at " + at + (lost.hint().empty() ? "" : ": " + lost.hint());
+    for (++next; next < specs.size(); ++next) count_skipped_case(specs[next], report);
     report.speed.why_not = "the check did not finish";
+    finish_causes();
     return report;
   }
-  if (options.time && report.faults.empty()) {
+  finish_causes();
+  const bool right = report.passed();
+  if (right) report.waste = waste_report(tally, kind, report.kind, options.limits, options.strict);
+  if (options.time && right) {
     try {
       std::unique_lock<std::mutex> exclusive;
       if (options.timing_mutex) exclusive = std::unique_lock<std::mutex>(*options.timing_mutex);
+      if (options.before_timing) options.before_timing();
       report.speed = time_structure(info, options, progress);
     } catch (const StudentProcessLost& lost) {
-      report.failure = std::string(lost.what()) + " at the timing (procedural/stadium)" +
-                       (lost.hint().empty() ? "" : ": " + lost.hint());
+      // The correctness report stands: only the speed is missing.
       report.speed = CheckSpeed{};
-      report.speed.why_not = "the check did not finish";
+      report.speed.why_not = std::string("the timing stopped: ") + lost.what() + " at procedural/stadium" +
+                             (lost.hint().empty() ? "" : ": " + lost.hint());
     }
   } else if (options.time) {
-    report.speed.why_not = "the structure threw or failed (see above)";
+    report.speed.why_not = "a structure that is not right is not timed (a wrong answer's time says nothing)";
   } else {
     report.speed.why_not = "--no-time was given";
   }
   return report;
 }
+
 
 Status write_scene_obj(const Scene& scene, const std::string& path) {
   std::string text = "# written by accelviz-cli check: " + std::to_string(scene.triangle_count()) +

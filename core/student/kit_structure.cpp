@@ -36,12 +36,13 @@ LeafReason to_core(accelviz::LeafWhy why) {
 /// Listens to the student's build log: keeps the tree, forwards to the recorder if any.
 class KitBuildListener final : public accelviz::detail::BuildListener {
  public:
-  KitBuildListener(KitTree& tree, const Scene& scene, BuildRecorder* recorder)
-      : tree_(tree), scene_(scene), recorder_(recorder) {}
+  KitBuildListener(KitTree& tree, const Scene& scene, BuildRecorder* recorder, size_t call_limit)
+      : tree_(tree), scene_(scene), recorder_(recorder), call_limit_(call_limit) {}
 
   bool records() const override { return recorder_ != nullptr; }
 
   void node(uint32_t id, uint32_t parent, int depth, const Box& box, const uint32_t* prims, size_t n) override {
+    count_call();
     flush_insert();
     if (tree_.dense_of.count(id)) {
       tree_.problem("node(" + std::to_string(id) + "): a node with this id was made before");
@@ -71,6 +72,7 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     }
   }
   void sphere(uint32_t id, const accelviz::Sphere& s) override {
+    count_call();
     KitNode* k = find(id, "sphere");
     if (!k) return;
     k->sphere = BoundingSphere{Vec3(s.center.x, s.center.y, s.center.z), s.radius};
@@ -78,6 +80,7 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
   }
   void split(uint32_t id, int axis, float position, float cost, float leaf_cost, uint32_t left,
              uint32_t right) override {
+    count_call();
     KitNode* k = find(id, "split");
     if (!k) return;
     k->split_axis = std::clamp(axis, 0, 2);
@@ -85,19 +88,23 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     if (recorder_) recorder_->split(tree_.dense(id), k->split_axis, position, cost, leaf_cost, left, right, 0);
   }
   void candidates(uint32_t id, int axis, const accelviz::Candidate* c, size_t n) override {
+    count_call();
     if (!recorder_ || !find(id, "candidates")) return;
     std::vector<SplitCandidate> out(n);
     for (size_t i = 0; i < n; ++i) out[i] = SplitCandidate{c[i].position, c[i].cost, c[i].left, c[i].right};
     recorder_->candidates(tree_.dense(id), std::clamp(axis, 0, 2), out.data(), out.size());
   }
   void leaf(uint32_t id, const uint32_t* prims, size_t n, accelviz::LeafWhy why) override {
+    count_call();
     KitNode* k = find(id, "leaf");
     if (!k) return;
     k->leaf = true;
+    k->leaf_why = why;
     k->prims.assign(prims, prims + n);
     if (recorder_) recorder_->leaf(tree_.dense(id), to_core(why), prims, n);
   }
   void grid_resolution(const Box& box, int nx, int ny, int nz) override {
+    count_call();
     if (nx < 1 || ny < 1 || nz < 1 || size_t(nx) * size_t(ny) * size_t(nz) > kMaxKitCells) {
       tree_.problem("grid_resolution(" + std::to_string(nx) + ", " + std::to_string(ny) + ", " + std::to_string(nz) +
                     "): each count must be at least 1, and at most 2^26 cells in all");
@@ -116,6 +123,7 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     }
   }
   void cell_filled(int x, int y, int z, uint32_t prim) override {
+    count_call();
     const NodeId cell = tree_.cell_index(x, y, z);
     if (cell == kNoNode) {
       tree_.problem("cell_filled(" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
@@ -147,6 +155,13 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     }
     return &tree_.nodes[dense];
   }
+  /// Counts one build-log call; past the replay's limit, stops the build there.
+  void count_call() {
+    if (call_limit_ && tree_.log_calls >= call_limit_)
+      throw KitBuildStopped("the build stopped after " + std::to_string(call_limit_) +
+                            " build-log calls, where it failed in the check");
+    ++tree_.log_calls;
+  }
   /// The grid's construction is recorded per triangle (the lecture's loop): the cells one
   /// triangle was put into, in one step.
   void flush_insert() {
@@ -160,6 +175,7 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
   KitTree& tree_;
   const Scene& scene_;
   BuildRecorder* recorder_;
+  size_t call_limit_;
   uint32_t pending_prim_ = kNoBuildNode;
   int lo_[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi_[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
   std::vector<uint32_t> pending_cells_;
@@ -326,19 +342,23 @@ Status KitStructure::build_impl(const Scene& scene, const ParamSet&, BuildContro
   auto student_scene = std::make_unique<accelviz::Scene>();
   KitAccess::fill_scene(*student_scene, scene);
   auto student = create_();
-  KitBuildListener listener(tree_, scene, recorder);
+  KitBuildListener listener(tree_, scene, recorder, build_call_limit_);
   if (recorder) recorder->scene_box(scene.bounds());
   accelviz::BuildLog log(&listener);
   try {
     student->build(*student_scene, log);
     listener.finish();
+  } catch (const KitBuildStopped& stop) {
+    // The replay of a failed build: what was logged up to the fault stays for playback.
+    listener.finish();
+    return make_error(name_ + ": " + stop.what());
   } catch (const std::exception& e) {
+    if (strict_) throw;  // the grader reads the tree made so far (the node being built)
     tree_ = KitTree{};
-    if (strict_) throw;
     return make_error(name_ + ": the student's build threw: " + e.what());
   } catch (...) {
-    tree_ = KitTree{};
     if (strict_) throw;
+    tree_ = KitTree{};
     return make_error(name_ + ": the student's build threw a non-standard exception");
   }
   student_ = std::move(student);

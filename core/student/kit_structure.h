@@ -30,6 +30,13 @@ class KitError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Thrown by the kit's build listener when a replay's build-log call limit is reached
+/// (KitStructure::set_build_call_limit): the build ends there, keeping what it logged.
+class KitBuildStopped : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// The student's code stopped answering for good: its worker process crashed, exited, ran
 /// past the time limit, printed past the output limit or broke the wire. Thrown by a
 /// RemoteAnswers object (the judge's proxy of a worker); the grader ends the structure's
@@ -74,6 +81,7 @@ struct KitNode {
   int split_axis = -1;
   float split_pos = 0.0f;
   bool leaf = false;
+  accelviz::LeafWhy leaf_why = accelviz::LeafWhy::FewTriangles;
 };
 
 /// What the student's build log said, with the students' ids made dense (0, 1, ... in the
@@ -89,6 +97,7 @@ struct KitTree {
   /// Calls the log could not make sense of (first few), e.g. "leaf(7): node 7 was never made".
   std::vector<std::string> problems;
   size_t problem_count = 0;
+  size_t log_calls = 0;  ///< build-log calls heard (a failed build's replay stops after as many)
 
   uint32_t dense(uint32_t student_id) const {
     auto it = dense_of.find(student_id);
@@ -137,6 +146,11 @@ class KitStructure final : public Structure {
   accelviz::StudentStructure* student() const { return student_.get(); }
   /// Triangles of the scene of the last build (0 before one): an answer's valid range.
   size_t scene_triangles() const { return scene_ ? scene_->triangle_count() : 0; }
+  /// Build-log calls of the last build, whole or failed.
+  size_t build_log_calls() const { return tree_.log_calls; }
+  /// The viewer's replay of a failed build: stop the student's build after `calls` build-log
+  /// calls (0: never), as if it had failed there, keeping what was logged for playback.
+  void set_build_call_limit(size_t calls) { build_call_limit_ = calls; }
 
  protected:
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control,
@@ -154,6 +168,7 @@ class KitStructure final : public Structure {
   const Scene* scene_ = nullptr;
   KitTree tree_;
   bool strict_ = false;
+  size_t build_call_limit_ = 0;
   mutable std::mutex error_mutex_;
   mutable std::string last_error_;
 };

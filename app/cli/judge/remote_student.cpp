@@ -24,11 +24,16 @@ using Clock = std::chrono::steady_clock;
 
 // --- WorkerBudget ---------------------------------------------------------------------------
 
-void WorkerBudget::start_check() {
+void WorkerBudget::restart_deadline() {
   std::lock_guard<std::mutex> lock(mutex_);
   deadline_ = timeout_seconds > 0 ? Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                          std::chrono::duration<double>(timeout_seconds))
                                    : Clock::time_point::max();
+}
+
+void WorkerBudget::start_check() {
+  restart_deadline();
+  std::lock_guard<std::mutex> lock(mutex_);
   output_.clear();
   output_bytes_ = 0;
 }

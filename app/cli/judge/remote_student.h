@@ -32,6 +32,8 @@ struct WorkerBudget {
 
   /// Starts a check's clock and forgets the last one's output.
   void start_check();
+  /// A new wall-clock allowance, the output kept (the timing after the correctness check).
+  void restart_deadline();
   /// Past the check's time limit.
   std::chrono::steady_clock::time_point deadline() const;
   /// What the student's code printed (the first kOutputKept bytes) and how much in all.

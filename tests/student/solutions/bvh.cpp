@@ -5,6 +5,10 @@
 // Planted bug (off by default), compiled as a variant by the kit's tests:
 //   PLANT_BUG_BVH_FIRST_HIT  the traversal returns as soon as a leaf produced a hit (the
 //                            first leaf hit, not the closest: the lecture's warning).
+//   PLANT_BUG_BVH_FALSE_CULL a popped node is culled as "beyond the closest hit" when its exit
+//                            (not its entry) lies beyond it.
+//   PLANT_BUG_BVH_SLAB_NAN   a hand-written slab test: (lo - o) * (1/d) is NaN for d = -0 with
+//                            the origin on the box's plane, and the box counts as missed.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -54,7 +58,11 @@ class MedianBvh : public StudentStructure {
       const Node& n = nodes_[e.node];
       log.pop(e.node, n.depth, e.t_enter);
       // A node pushed before a closer hit was found may now start beyond it.
+#ifdef PLANT_BUG_BVH_FALSE_CULL
+      if (e.t_exit > closest.t) {
+#else
       if (e.t_enter > closest.t) {
+#endif
         log.cull(e.node, n.depth, Cull::BeyondClosestHit, e.t_enter);
         continue;
       }
@@ -73,7 +81,7 @@ class MedianBvh : public StudentStructure {
       int hits = 0;
       for (uint32_t child : {n.left, n.right}) {
         float c_enter, c_exit;
-        if (intersect_box(ray, nodes_[child].box, ray.tmin, closest.t, c_enter, c_exit))
+        if (box_test(ray, nodes_[child].box, ray.tmin, closest.t, c_enter, c_exit))
           hit[hits++] = {child, c_enter, c_exit};
         else
           log.cull(child, n.depth + 1, Cull::MissedBounds);
@@ -88,6 +96,22 @@ class MedianBvh : public StudentStructure {
   }
 
  private:
+  static bool box_test(const Ray& ray, const Box& box, float t_min, float t_max, float& t_enter, float& t_exit) {
+#ifdef PLANT_BUG_BVH_SLAB_NAN
+    for (int a = 0; a < 3; ++a) {  // the textbook slab test, without a guard for 0 * inf
+      float t0 = (box.lo[a] - ray.origin[a]) * ray.inv_direction[a];
+      float t1 = (box.hi[a] - ray.origin[a]) * ray.inv_direction[a];
+      if (t0 > t1) std::swap(t0, t1);
+      t_min = t0 > t_min ? t0 : t_min;
+      t_max = t1 < t_max ? t1 : t_max;
+    }
+    t_enter = t_min, t_exit = t_max;
+    return t_min <= t_max;
+#else
+    return intersect_box(ray, box, t_min, t_max, t_enter, t_exit);
+#endif
+  }
+
   static constexpr int kMaxLeaf = 4;    // triangles per leaf
   static constexpr int kMaxDepth = 48;  // a safety net: median splits halve, so ~log2(n)
 

@@ -11,6 +11,17 @@
 //                                 treated as case (b), so only the near child is visited.
 //   PLANT_BUG_KD_NO_TSPLIT_CHECK  a hit found in the near child ends the traversal even when
 //                                 it lies beyond t_split.
+//   PLANT_BUG_KD_SLIDE_NEAR       the slide as written: near = the child holding the origin, and
+//                                 case (c) whenever t_split < t_min -- wrong when the plane lies
+//                                 behind the origin (t_split < 0).
+//   PLANT_BUG_KD_MINUS_ZERO       t_split = (split - o) * (1/d) for every ray and near chosen by
+//                                 d >= 0: a direction component of -0 (1/d = -inf) goes astray.
+//   PLANT_BUG_KD_C_AS_A           case (c) is missing and falls through to case (a): right
+//                                 answers, but the near child is visited where the ray is not.
+//   PLANT_BUG_KD_FALSE_EARLY_EXIT the early exit compares t_hit with the far child's t_max
+//                                 instead of its t_split.
+//   PLANT_BUG_KD_NO_PROGRESS      no "little progress" rule: overlapping triangles are copied
+//                                 into both children again and again (a runaway allocation).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -71,20 +82,32 @@ class SolutionKdTree : public StudentStructure {
         const int axis = n.axis;
         // t_split = signed distance along r to the splitting plane. A ray parallel to the
         // plane never crosses it (+inf), unless it lies in it (NaN: both children, below).
+#if defined(PLANT_BUG_KD_SLIDE_NEAR) || defined(PLANT_BUG_KD_MINUS_ZERO)
+        const float t_split = (n.split - ray.origin[axis]) * ray.inv_direction[axis];
+#else
         const float t_split = ray.direction[axis] == 0.0f && ray.origin[axis] != n.split
                                   ? kInfinity
                                   : (n.split - ray.origin[axis]) * ray.inv_direction[axis];
+#endif
         // near = the child the ray is in before t_split (for a ray starting before the plane
         // the child containing its origin): the lower one when it runs up the axis.
+#if defined(PLANT_BUG_KD_SLIDE_NEAR)
+        const bool lower_first = ray.origin[axis] <= n.split;  // "the child containing the origin"
+#elif defined(PLANT_BUG_KD_MINUS_ZERO)
+        const bool lower_first = ray.direction[axis] >= 0.0f;  // true for -0 too
+#else
         const bool lower_first = ray.direction[axis] > 0.0f ||
                                  (ray.direction[axis] == 0.0f && ray.origin[axis] <= n.split);
+#endif
         const uint32_t near = lower_first ? n.left : n.right;
         const uint32_t far = lower_first ? n.right : n.left;
         log.kd_split(t_min, t_split, t_max, near, far, axis);
         ++depth;
         // t_split carries a few roundings: cases (b) and (c) only when the plane is clearly
         // outside [t_min, t_max]; near the ends both children are visited (harmless).
-#ifdef PLANT_BUG_KD_NO_CASE_C
+#if defined(PLANT_BUG_KD_SLIDE_NEAR) || defined(PLANT_BUG_KD_MINUS_ZERO)
+        if (t_split > t_max) {  // (b), compared as the slide writes it
+#elif defined(PLANT_BUG_KD_NO_CASE_C)
         if (below(t_max, t_split) || below(t_split, t_min)) {  // (b) ... and (c) mistaken for it
 #else
         if (below(t_max, t_split)) {  // (b) the plane lies beyond t_max: near only
@@ -93,7 +116,14 @@ class SolutionKdTree : public StudentStructure {
           id = near;
           continue;
         }
-        if (below(t_split, t_min)) {  // (c) the plane lies before t_min: far only
+#if defined(PLANT_BUG_KD_SLIDE_NEAR) || defined(PLANT_BUG_KD_MINUS_ZERO)
+        const bool case_c = t_split < t_min;  // compared as the slide writes it
+#elif defined(PLANT_BUG_KD_C_AS_A)
+        const bool case_c = false;  // forgotten: falls through to case (a)
+#else
+        const bool case_c = below(t_split, t_min);
+#endif
+        if (case_c) {  // (c) the plane lies before t_min: far only
           log.cull(near, depth, Cull::MissedBounds, t_split);
           id = far;
           continue;
@@ -116,8 +146,10 @@ class SolutionKdTree : public StudentStructure {
       while (size > 0) {
         const Entry e = stack[--size];
         log.pop(e.node, e.depth, e.t_min);
-#ifdef PLANT_BUG_KD_NO_TSPLIT_CHECK
+#if defined(PLANT_BUG_KD_NO_TSPLIT_CHECK)
         const bool exits = closest.valid();
+#elif defined(PLANT_BUG_KD_FALSE_EARLY_EXIT)
+        const bool exits = closest.valid() && below(closest.t, e.t_max);
 #else
         const bool exits = closest.valid() && below(closest.t, e.t_min);
 #endif
@@ -192,7 +224,11 @@ class SolutionKdTree : public StudentStructure {
     // Little progress: most triangles would go to both children (identical or heavily
     // overlapping triangles never separate; splitting them again and again only copies them,
     // and in a flat scene the cost function alone would allow it).
+#ifdef PLANT_BUG_KD_NO_PROGRESS
+    if (false) {
+#else
     if (4 * (left.size() + right.size()) > 7 * prims.size()) {
+#endif
       make_leaf(id, prims, LeafWhy::NoProgress, log);
       return id;
     }
