@@ -26,7 +26,9 @@ PseudoCode listing(std::string title, std::vector<std::pair<const char*, const c
 }
 
 // The lecture's listings (acceleration-structures-lecture.txt), kept verbatim where the
-// lecture gives code; lines marked "(added)" state what the lecture says in prose.
+// lecture gives code; lines marked "(added)" state what the lecture says in prose, lines
+// marked "(fix)" what the slide leaves out and a correct traversal needs (each is a cause
+// `accelviz-cli check` names: core/student/walk_audit.cpp).
 const PseudoCode& brute_code() {
   static const PseudoCode code = listing("Brute force: test every triangle", {
       {"visit", "closest_hit = inf"},
@@ -127,6 +129,8 @@ const PseudoCode& octree_code() {
       {"closest", "          update collision with current intersection"},
       {"visit_inner", "  else:"},
       {"", "    for each child_node:"},
+      {"", "    // (fix) in the order the ray enters them, front to back:"},
+      {"", "    // else the entry test above rarely skips a child"},
       {"push", "      child_node.Trace(ray, collision)"},
       {"", "}"},
   });
@@ -145,6 +149,9 @@ const PseudoCode& kd_code() {
       {"", "near = child of n containing origin of r"},
       {"", "far  = the \"other\" child of n"},
       {"", "if t_split > t_max:"},
+      {"", "  // (fix) or t_split <= 0: the plane is behind the origin,"},
+      {"", "  // the ray never crosses it (pbrt: tSplit > tMax || tSplit <= 0);"},
+      {"", "  // a ray parallel to it (d = -0) has t_split = -inf: near too"},
       {"case_b", "    return traverse( r, near, t_min, t_max )   // (b)"},
       {"", "else if t_split < t_min:"},
       {"case_c", "    return traverse( r, far, t_min, t_max )    // (c)"},

@@ -26,10 +26,12 @@ PanelLayout compute_layout(glm::vec2 display, float em, bool lecture, bool main_
   l.ray = {{rx, pad}, {right, ray_h}};
   l.code = {{rx, 2.0f * pad + ray_h}, {right, code_h}};
   l.steps = {{rx, 3.0f * pad + ray_h + code_h}, {right, std::max(h - ray_h - code_h - 4.0f * pad, 4.0f * em)}};
-  // Compare table and sweep plot: temporary, wide, over the lower left (they need the width).
+  // Compare table and sweep plot: temporary and wide (they need the width), right of the left
+  // column to the right edge -- over the 3D view's lower part and the steps list, never over
+  // the Variables panel, which a student reads beside the comparison.
   const float cx = left + 2.0f * pad;
   const float bottom_h = std::min(0.34f * h, 16.0f * em);
-  l.bottom = {{pad, h - bottom_h - pad}, {std::max(rx - 2.0f * pad, 10.0f * em), bottom_h}};
+  l.bottom = {{cx, h - bottom_h - pad}, {std::max(w - cx - pad, 10.0f * em), bottom_h}};
   l.legend = {{cx, pad}, {0.0f, 0.0f}};
   // The bench chart needs room more than the debug ray does: everything right of the
   // controls (the whole width when they are hidden or collapsed).

@@ -1,97 +1,14 @@
 #include "student/trace_diff.h"
 
+#include "student/kit_structure.h"
+#include "student/walk_audit.h"
+#include "student/waste.h"
+
 #include <cmath>
 #include <cstdio>
 
 namespace accel {
 namespace {
-
-/// One step as the lecture shows it, independent of node ids.
-struct Step {
-  TraceEventKind kind = TraceEventKind::Done;
-  Aabb box;           ///< Visit / EnterCell
-  int32_t prim = -1;  ///< TestPrim / NewClosest / Done
-  bool hit = false;   ///< TestPrim
-  size_t index = 0;   ///< into the recording
-};
-
-std::vector<Step> lecture_steps(const Structure& s, const TraceRecorder& rec) {
-  std::vector<Step> out;
-  const auto& events = rec.events();
-  for (size_t i = 0; i < events.size(); ++i) {
-    const TraceEvent& e = events[i];
-    Step st;
-    st.kind = e.kind;
-    st.index = i;
-    switch (e.kind) {
-      case TraceEventKind::Visit:
-      case TraceEventKind::EnterCell:
-        st.box = s.node_view(e.node).box;
-        break;
-      case TraceEventKind::TestPrim:
-        st.prim = e.prim, st.hit = e.hit;
-        break;
-      case TraceEventKind::NewClosest:
-      case TraceEventKind::Done:
-        st.prim = e.prim;
-        break;
-      default:
-        continue;
-    }
-    out.push_back(st);
-  }
-  return out;
-}
-
-bool same_box(const Aabb& a, const Aabb& b, float tolerance) {
-  if (a.empty() || b.empty()) return a.empty() == b.empty();
-  return glm::all(glm::lessThanEqual(glm::abs(a.min - b.min), Vec3(tolerance))) &&
-         glm::all(glm::lessThanEqual(glm::abs(a.max - b.max), Vec3(tolerance)));
-}
-
-bool same_step(const Step& a, const Step& b, float tolerance) {
-  if (a.kind != b.kind) {
-    // A grid's cell and a tree's node are both "the region entered".
-    const bool a_enter = a.kind == TraceEventKind::Visit || a.kind == TraceEventKind::EnterCell;
-    const bool b_enter = b.kind == TraceEventKind::Visit || b.kind == TraceEventKind::EnterCell;
-    return a_enter && b_enter && same_box(a.box, b.box, tolerance);
-  }
-  switch (a.kind) {
-    case TraceEventKind::Visit:
-    case TraceEventKind::EnterCell:
-      return same_box(a.box, b.box, tolerance);
-    case TraceEventKind::TestPrim:
-      return a.prim == b.prim && a.hit == b.hit;
-    default:
-      return a.prim == b.prim;
-  }
-}
-
-std::string box_text(const Aabb& b) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "[%.4g %.4g %.4g .. %.4g %.4g %.4g]", double(b.min.x), double(b.min.y),
-                double(b.min.z), double(b.max.x), double(b.max.y), double(b.max.z));
-  return buf;
-}
-
-std::string step_text(const std::vector<Step>& steps, size_t k) {
-  if (k >= steps.size()) return "(ended)";
-  const Step& s = steps[k];
-  switch (s.kind) {
-    case TraceEventKind::Visit:
-      return "visit box " + box_text(s.box);
-    case TraceEventKind::EnterCell:
-      return "enter cell " + box_text(s.box);
-    case TraceEventKind::TestPrim:
-      return "test triangle " + std::to_string(s.prim) + (s.hit ? " (hit)" : " (miss)");
-    case TraceEventKind::NewClosest:
-      return "closest hit: triangle " + std::to_string(s.prim);
-    case TraceEventKind::Done:
-      return s.prim >= 0 ? "answer: triangle " + std::to_string(s.prim) : "answer: miss";
-    default:
-      return "?";
-  }
-}
 
 std::string hit_text(const Hit& h) {
   if (!h.valid()) return "miss";
@@ -110,15 +27,29 @@ std::string TraceDifference::answers_line() const {
 }
 
 std::string TraceDifference::difference_line() const {
-  if (!differs) return "no difference: every step agrees";
-  return "first difference: your step " + std::to_string(mine_step + 1) + ", the built-in's step " +
-         std::to_string(builtin_step + 1) + ": yours " + mine_text + " / built-in " + builtin_text;
+  const std::string counts = "; yours tests " + std::to_string(mine_tests) + " triangles, the built-in " +
+                             std::to_string(builtin_tests);
+  if (!differs) return "no difference in what the walks mean: the same answer" + counts;
+  return "first difference: " + mine_text + (builtin_text.empty() ? "" : " / built-in: " + builtin_text) + counts;
 }
 
-std::vector<std::string> builtin_compare_params(const std::string& peer) {
-  if (peer == "bvh") return {"builder=median", "axis=longest", "leaf_size=4", "traversal=ordered", "width=2"};
-  if (peer == "spheretree") return {"builder=median", "axis=longest", "leaf_size=4", "traversal=ordered"};
-  return {};
+std::vector<std::string> builtin_compare_params(const std::string& peer, const Structure* mine, const Scene* scene) {
+  std::vector<std::string> out;
+  if (const auto* kit = dynamic_cast<const KitStructure*>(mine); kit && scene)
+    for (const auto& [key, value] : peer_setup_like(kit->tree(), kit->kind(), *scene)) out.push_back(key + "=" + value);
+  auto add = [&](const std::string& key, const std::string& value) {
+    for (const std::string& kv : out)
+      if (kv.rfind(key + "=", 0) == 0) return;
+    out.push_back(key + "=" + value);
+  };
+  if (peer == "bvh" || peer == "spheretree") {
+    add("builder", "median");
+    add("axis", "longest");
+    add("leaf_size", "4");
+    add("traversal", "ordered");
+    if (peer == "bvh") add("width", "2");
+  }
+  return out;
 }
 
 TraceDifference compare_with_builtin(const Scene& scene, const Ray& ray, const Structure& mine,
@@ -130,17 +61,59 @@ TraceDifference compare_with_builtin(const Scene& scene, const Ray& ray, const S
   d.reference = reference_closest(scene, ray);
   d.mine_verdict = judge_hit(scene, ray, d.mine_hit, d.reference);
   d.builtin_verdict = judge_hit(scene, ray, d.builtin_hit, d.reference);
-  const std::vector<Step> a = lecture_steps(mine, rm), b = lecture_steps(builtin, rb);
-  const Vec3 extent = scene.bounds().extent();
-  const float tolerance = 1e-5f * std::max({extent.x, extent.y, extent.z, 1e-30f});
-  size_t k = 0;
-  while (k < a.size() && k < b.size() && same_step(a[k], b[k], tolerance)) ++k;
-  if (k == a.size() && k == b.size()) return d;
-  d.differs = true;
-  d.mine_step = k < a.size() ? a[k].index : rm.events().size() - 1;
-  d.builtin_step = k < b.size() ? b[k].index : rb.events().size() - 1;
-  d.mine_text = step_text(a, k);
-  d.builtin_text = step_text(b, k);
+  const auto& em = rm.events();
+  const auto& eb = rb.events();
+  auto tested = [](const std::vector<TraceEvent>& ev, int32_t prim) -> size_t {
+    for (size_t i = 0; i < ev.size(); ++i)
+      if (ev[i].kind == TraceEventKind::TestPrim && ev[i].prim == prim) return i;
+    return size_t(-1);
+  };
+  for (const TraceEvent& e : em) d.mine_tests += e.kind == TraceEventKind::TestPrim;
+  for (const TraceEvent& e : eb) d.builtin_tests += e.kind == TraceEventKind::TestPrim;
+  d.mine_step = em.empty() ? 0 : em.size() - 1;
+  d.builtin_step = eb.empty() ? 0 : eb.size() - 1;
+
+  // 1. The student's walk against the geometry: its first false claim is the bug.
+  if (const auto* kit = dynamic_cast<const KitStructure*>(&mine)) {
+    const WalkAuditor auditor(kit->tree(), kit->kind(), scene);
+    const WalkAudit audit = auditor.audit(ray, em, rm.recorded_vars(), true);
+    const FalseClaim* c = audit.first_lossy();
+    if (!c && !audit.claims.empty()) c = &audit.claims.front();
+    if (c && (c->loses_hit || d.mine_verdict != HitVerdict::Correct)) {
+      d.differs = true;
+      d.mine_step = c->step;
+      d.mine_text = "your step " + std::to_string(c->step + 1) + " claims " + c->claim + " -- false: " + c->truth;
+      return d;
+    }
+  }
+  // 2. The nearest hit: tested by one walk and not by the other.
+  const int32_t target = d.reference.prim >= 0 ? d.reference.prim : d.builtin_hit.prim;
+  if (target >= 0) {
+    const size_t in_mine = tested(em, target), in_builtin = tested(eb, target);
+    char t[64];
+    std::snprintf(t, sizeof t, "%.9g", d.reference.prim >= 0 ? d.reference.t : double(d.builtin_hit.t));
+    if (in_mine == size_t(-1) && in_builtin != size_t(-1)) {
+      d.differs = true;
+      d.builtin_step = in_builtin;
+      d.mine_text = "your walk never tests triangle " + std::to_string(target) + " (the nearest hit, t=" + t + ")";
+      d.builtin_text = "its step " + std::to_string(in_builtin + 1) + " tests it";
+      return d;
+    }
+    if (in_mine != size_t(-1) && d.mine_hit.prim != d.builtin_hit.prim && d.mine_verdict != HitVerdict::Correct) {
+      d.differs = true;
+      d.mine_step = in_mine;
+      d.mine_text = "your step " + std::to_string(in_mine + 1) + " tests triangle " + std::to_string(target) +
+                    " (the nearest hit, t=" + t + "), but your answer is " + hit_text(d.mine_hit);
+      return d;
+    }
+  }
+  // 3. The answers themselves.
+  if (d.mine_hit.prim != d.builtin_hit.prim &&
+      (d.mine_verdict != HitVerdict::Correct || d.builtin_verdict != HitVerdict::Correct)) {
+    d.differs = true;
+    d.mine_text = "your answer is " + hit_text(d.mine_hit);
+    d.builtin_text = hit_text(d.builtin_hit);
+  }
   return d;
 }
 

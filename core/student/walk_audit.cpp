@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <unordered_map>
+#include <unordered_set>
 #include <variant>
 
 #include "planar_geometry.h"
@@ -20,7 +21,7 @@ constexpr CauseInfo kCauses[] = {
      "the split plane lies behind the ray's origin (t_split < 0): case (c) sent the ray to the far child, but it "
      "never crosses the plane and stays in the near one",
      "kd-tree traversal: the slide's 'if t_split < t_min: far only' needs 'near only when t_split <= 0' first "
-     "(pbrt: tSplit > tMax || tSplit <= 0)"},
+     "(pbrt: near only when tSplit > tMax or tSplit <= 0)"},
     {"kd_parallel_ray",
      "a ray parallel to the split plane (a direction component of +-0) has t_split = +-inf or NaN and was sent to a "
      "child it never enters",
@@ -30,6 +31,10 @@ constexpr CauseInfo kCauses[] = {
      "kd-tree traversal: t_split = (split - o[axis]) / d[axis]"},
     {"kd_near_far_swapped", "near and far children swapped: near is the side the ray is on before t_split",
      "kd-tree traversal: near = the child containing the ray's origin (for a ray starting before the plane)"},
+    {"kd_wrong_case",
+     "the walk did not take the children of the case its own t_split gives: (b) near only when t_split > t_max, "
+     "(c) far only when t_split < t_min, (a) both",
+     "kd-tree traversal: the three cases"},
     {"kd_case_drops_child",
      "case (b) or (c) taken although the ray crosses the split plane within [t_min, t_max]: a child it crosses was "
      "left out",
@@ -76,10 +81,13 @@ constexpr CauseInfo kCauses[] = {
     {"not_a_hit", "the returned triangle is not hit by the ray", "the ray/triangle test (docs/hits.md)"},
     {"wrong_t", "the returned t is not where the ray hits the returned triangle", "the ray/triangle test"},
     {"outside_interval", "the returned hit lies outside [tmin, tmax]", "docs/hits.md: tmin <= t <= tmax"},
+    {"unreferenced", "the triangle hit first is in no leaf or cell: the build left it out",
+     "construction: every triangle goes into at least one leaf (or every cell it overlaps)"},
+    {"nothing_walked", "intersect() logged no visit and answered a miss (still the skeleton's traversal?)",
+     "traversal: log visit() for every node (enter_cell() for every cell) the walk enters"},
     {"nothing_built", "the build logged no node or cell: there is nothing to traverse (still the skeleton?)",
      "construction: log every node and leaf (student/README.md)"},
     {"fault", "the structure threw, or the kit stopped it, on this ray (see the faults)", "docs/student.md"},
-    {"skipped", "not run: the case's other rays were skipped after faults", "docs/student.md"},
     {"unexplained", "no logged claim is false and the answer's cause was not found: open the replay",
      "docs/student.md"},
 };
@@ -179,6 +187,8 @@ const FalseClaim* WalkAudit::at(size_t step) const {
 struct WalkAuditor::Index {
   std::unordered_map<uint32_t, std::vector<uint32_t>> holders;  ///< prim -> dense leaf ids or cell indexes
   bool has_split = false;                                       ///< some inner node (or a grid)
+  /// Triangles some node was made over (the grader keeps them; a grid: every triangle).
+  std::unordered_set<uint32_t> given_to_some_node;
 };
 
 WalkAuditor::WalkAuditor(const KitTree& tree, accelviz::Kind kind, const Scene& scene)
@@ -192,9 +202,15 @@ const WalkAuditor::Index& WalkAuditor::index() const {
     index_->has_split = true;
     for (uint32_t c = 0; c < tree_.cells.size(); ++c)
       for (uint32_t p : tree_.cells[c]) index_->holders[p].push_back(c);
+    for (uint32_t p : scene_.valid_prims()) index_->given_to_some_node.insert(p);
   } else {
+    bool made_over_kept = false;
+    for (const KitNode& k : tree_.nodes) made_over_kept |= !k.made_over.empty();
     for (uint32_t id = 0; id < tree_.nodes.size(); ++id) {
       const KitNode& k = tree_.nodes[id];
+      for (uint32_t p : k.made_over) index_->given_to_some_node.insert(p);
+      if (!made_over_kept && k.prim_count > 0 && id == 0)  // the viewer keeps no lists: trust the root's count
+        for (uint32_t p : scene_.valid_prims()) index_->given_to_some_node.insert(p);
       if (!k.children.empty()) index_->has_split = true;
       if (k.leaf || k.children.empty())
         for (uint32_t p : k.prims) index_->holders[p].push_back(id);
@@ -351,7 +367,13 @@ void audit_kd_split(Audit& a, const KdSplitVars& kd, NodeId node, size_t step, s
   const ExactHit* lost = a.lost_in(dropped);
   const char* cause = "kd_case_drops_child";
   std::string truth;
-  if (d == 0.0) {
+  const bool case_near = kd.kase != KdCase::FarOnly, case_far = kd.kase != KdCase::NearOnly;
+  if (known && (near_taken != case_near || far_taken != case_far)) {
+    cause = "kd_wrong_case";
+    truth = std::string("its own numbers give case ") + kd_case_name(kd.kase) + ", which " +
+            (dropped == kd.near_child ? "takes the near child" : "takes the far child") + "; the ray " +
+            (need_near && need_far ? "crosses both children" : need_far ? "is in the far child" : "is in the near child");
+  } else if (d == 0.0) {
     cause = "kd_parallel_ray";
     truth = std::string("the ray runs parallel to the plane ") + axis_name(axis) + "=" + num(pos) + " (direction " +
             axis_name(axis) + " = " + (std::signbit(d) ? "-0" : "+0") + "), so it stays in the child holding its origin";
@@ -647,6 +669,15 @@ Diagnosis WalkAuditor::diagnose(const Ray& ray, std::span<const TraceEvent> even
   const std::string nearer = "triangle " + std::to_string(ref.prim) + " at t=" + num(ref.t);
   if (!tree_.grid && tree_.nodes.empty())
     return {"nothing_built", "no node was logged; " + answered + ", the reference " + nearer};
+  // In no leaf at all: lost at a split when the build handed it to a node that split (the
+  // straddle trap), left out from the start otherwise (the skeleton's empty root).
+  if (!index().holders.count(uint32_t(ref.prim)) &&
+      (index().holders.empty() || !index().has_split || !index().given_to_some_node.count(uint32_t(ref.prim))))
+    return {"unreferenced", nearer + " is in no leaf or cell; " + answered};
+  if (!got.valid() && std::none_of(events.begin(), events.end(), [](const TraceEvent& e) {
+        return e.kind == TraceEventKind::Visit || e.kind == TraceEventKind::EnterCell;
+      }))
+    return {"nothing_walked", "no visit was logged; the reference " + nearer};
   if (kind_ == K::kdtree && kd_hit_beyond_t_split(events, vars, got))
     return {"kd_hit_beyond_t_split", answered + " lies beyond the t_split of a node whose far child was never visited; "
                                                 "the reference " + nearer};

@@ -122,7 +122,7 @@ WasteReport waste_report(const WasteTally& t, accelviz::Kind kind, const std::st
   }
   if (t.peer_tris > 0) {
     const double ratio = t.tris / t.peer_tris;
-    add("triangles", ratio, limits.triangles, 1.5,
+    add("triangles", ratio, limits.triangles, 2.0,
         fmt(t.tris / double(t.rays)) + " triangles tested per ray against " + fmt(t.peer_tris / double(t.rays)) +
             " for the built-in " + r.peer + ": " + fmt(ratio, "%.2f") +
             "x -- the structure exists to test few triangles: small leaves, tight bounds, a front-to-back walk that "

@@ -20,6 +20,16 @@ DockEdges docked(glm::vec2 display, float em) {
   return d;
 }
 
+TEST(ViewLayout, TheCompareTableNeverCoversTheVariables) {
+  for (glm::vec2 display : {glm::vec2(1280, 720), glm::vec2(1600, 900), glm::vec2(1920, 1080)})
+    for (bool lecture : {false, true}) {
+      const float em = lecture ? 30.0f : 16.0f;
+      const PanelLayout l = compute_layout(display, em, lecture, /*main_open=*/true);
+      EXPECT_GE(l.bottom.pos.x, l.vars.pos.x + l.vars.size.x) << display.x << "x" << display.y;
+      EXPECT_LE(l.bottom.pos.x + l.bottom.size.x, display.x);
+    }
+}
+
 TEST(ViewLayout, VariablesSitUnderTheControlsInTheLeftColumn) {
   const glm::vec2 display(1600, 900);
   for (bool lecture : {false, true}) {

@@ -124,44 +124,104 @@ def main():
         check(code == 0 and not r["speed"]["timed"] and "without optimisation" in r["speed"]["why_not"],
               f"sol_bvh_unoptimised: expected a refusal to time: {r['speed']}")
 
-    # 3. Skeletons: wrong answers, reported, no crash.
+    # 3. Skeletons: wrong answers, reported, no crash, never timed, no trap a skeleton cannot have.
     for kind in ["grid", "octree", "kdtree", "bvh", "spheretree"]:
-        code, r, _ = check_json(args, "my_" + kind, "--no-time", scale=scale("0.05"))
+        code, r, _ = check_json(args, "my_" + kind, scale=scale("0.05"))
         if r is None:
             continue
         check(code == 1 and not r["passed"] and not r.get("failure") and wrong_total(r) > 0,
               f"my_{kind}: expected wrong answers and no crash: exit {code}, {r.get('failure')}, {wrong_total(r)}")
+        check(not r["speed"]["timed"] and "not right" in r["speed"]["why_not"],
+              f"my_{kind}: a wrong structure must not be timed: {r['speed']}")
+        check([c["cause"] for c in r["causes"]] == ["unreferenced"],
+              f"my_{kind}: expected only 'unreferenced' (an empty tree): {[c['cause'] for c in r['causes']]}")
 
-    # 4. Planted bugs, each in its category, with replays that show the wrong answer.
-    def any_trap(r, text):
-        return any(text in w.get("trap", "") for w in r["wrong_rays"])
+    # 4. Planted bugs: every wrong ray has a cause; the expected cause comes first (or is
+    # there: a bug hidden behind another shows as its own cause), with replays that show
+    # the wrong answer.
+    def causes(r):
+        return [c["cause"] for c in r["causes"]]
+
+    def top(*ids):
+        return lambda r: bool(r["causes"]) and r["causes"][0]["cause"] in ids
+
+    def has(*ids):
+        return lambda r: all(i in causes(r) for i in ids)
 
     bugs = {
-        "bug_grid_tie": lambda r: any(c["name"] == "hard" and sum(c["wrong"].values()) for c in r["categories"]),
-        "bug_kd_no_case_c": lambda r: wrong_total(r) > 0,
-        "bug_kd_no_tsplit": lambda r: any_trap(r, "beyond t_split"),
-        "bug_bvh_first_hit": lambda r: any_trap(r, "first leaf"),
-        "bug_octree_boundary": lambda r: any_trap(r, "straddles a split") or invariant(r, "referenced")["failed"] > 0,
+        "bug_grid_tie": lambda r: top("grid_dda_tie", "grid_cell_skipped")(r)
+        and r["causes"][0]["cases"][0]["case"] == "hard/cube_diagonals",
+        "bug_kd_no_case_c": top("kd_wrong_case"),
+        "bug_kd_no_tsplit": top("kd_false_early_exit", "kd_hit_beyond_t_split"),
+        "bug_kd_slide_near": lambda r: top("kd_plane_behind_origin")(r) and has("kd_parallel_ray")(r),
+        "bug_kd_minus_zero": top("kd_parallel_ray"),
+        "bug_kd_false_exit": top("kd_false_early_exit"),
+        "bug_kd_two_bugs": has("kd_plane_behind_origin", "kd_false_early_exit"),
+        "bug_bvh_false_cull": top("false_cull_beyond"),
+        "bug_bvh_slab_nan": top("slab_nan"),
+        "bug_bvh_first_hit": top("stopped_first_leaf"),
+        "bug_octree_boundary": lambda r: top("straddle_lost")(r) or invariant(r, "referenced")["failed"] > 0,
         "bug_sphere_too_small": lambda r: invariant(r, "contains its triangles")["failed"] > 0,
     }
     if sanitized:
-        bugs = {k: v for k, v in bugs.items() if k in ("bug_bvh_first_hit", "bug_sphere_too_small")}
+        bugs = {k: v for k, v in bugs.items() if k in ("bug_bvh_first_hit", "bug_sphere_too_small", "bug_kd_slide_near")}
     for name, caught in bugs.items():
         code, r, s = check_json(args, name, "--no-time", scale=scale("0.3"))
         if r is None:
             continue
-        traps = sorted({w["trap"] for w in r["wrong_rays"] if w["trap"]})
-        print(f"{name}: exit {code}, {wrong_total(r)} wrong, traps {traps}, {s:.1f} s")
+        print(f"{name}: exit {code}, {wrong_total(r)} wrong, causes "
+              f"{[(c['cause'], c['rays']) for c in r['causes']]}, {s:.1f} s")
         check(code == 1 and not r["passed"] and not r.get("failure"), f"{name}: expected a clean FAILED report: exit {code}")
         check(caught(r), f"{name}: not caught in its category: {json.dumps(r)[:1500]}")
+        # Every wrong ray is counted under one cause, and per case.
+        check(sum(c["rays"] for c in r["causes"]) == wrong_total(r),
+              f"{name}: the causes count {sum(c['rays'] for c in r['causes'])} rays, the categories {wrong_total(r)}")
+        check(sum(c["wrong"] for c in r["cases"]) == wrong_total(r), f"{name}: the per-case counts disagree")
+        unexplained = sum(c["rays"] for c in r["causes"] if c["cause"] == "unexplained")
+        check(unexplained * 20 <= max(1, wrong_total(r)), f"{name}: {unexplained} of {wrong_total(r)} rays unexplained")
+        check(all(c["examples"] for c in r["causes"]), f"{name}: a cause without an example ray")
+        misses = [w for w in r["wrong_rays"] if w["got"]["prim"] < 0]
+        check(all(w["got"]["t"] is None for w in misses), f"{name}: a miss must be t null in --json: {misses[:1]}")
         if r["wrong_rays"]:
             replay_in_viewer(args, r, name)
 
-    # The table names the trap and prints the replay command.
+    # Waste: case (c) falling through to (a) answers right, so it passes, with the waste
+    # named; --strict fails it.
+    if not sanitized:
+        code, r, _ = check_json(args, "bug_kd_c_as_a", "--no-time", scale="0.1")
+        if r is not None:
+            said = " ".join(f["sentence"] for f in r["waste"]["findings"])
+            check(code == 0 and r["passed"] and "case (c) was never taken" in said,
+                  f"bug_kd_c_as_a: expected a pass with the waste named: exit {code}, {r['waste']}")
+        code, r, _ = check_json(args, "bug_kd_c_as_a", "--no-time", "--strict", scale="0.1")
+        if r is not None:
+            check(code == 1 and not r["passed"] and r["waste"]["over_limit"],
+                  f"bug_kd_c_as_a --strict: expected to fail: exit {code}, {r['waste']}")
+        code, r, _ = check_json(args, "sol_kdtree", "--no-time", "--strict", scale="0.1")
+        if r is not None:
+            check(code == 0 and r["passed"], f"sol_kdtree --strict: expected to pass: exit {code}, {r['waste']}")
+        code, out, err = run([args.cli, "check", *args.judge, "--structure", "sol_kdtree", "--limit", "nosuch=1"],
+                             cwd=args.work)
+        check(code == 2 and "--limit nosuch=1" in err and len(err.strip().splitlines()) == 1, f"--limit: {code} {err}")
+
+    # A runaway build: a fault naming the node being built, with a replay of the construction.
+    if not sanitized:
+        code, r, s = check_json(args, "bug_kd_no_progress", "--no-time", "--memory-limit", "1G", scale="0.05",
+                                timeout=300)
+        if r is not None:
+            bf = r.get("build_faults", [])
+            print(f"bug_kd_no_progress: exit {code}, {len(bf)} build faults, {s:.1f} s: {bf[:1]}")
+            check(code == 1 and bf and "depth" in bf[0]["node"] and "state_file" in bf[0],
+                  f"bug_kd_no_progress: expected a build fault with its node and replay: {json.dumps(r)[:1200]}")
+            if bf and "state_file" in bf[0]:
+                text = open(bf[0]["state_file"]).read()
+                check("construct-until " in text and "scene " in text, f"build replay state: {text}")
+
+    # The text names each cause with its rays and prints the replay command.
     code, out, err = run([args.cli, "check", *args.judge, "--structure", "bug_bvh_first_hit", "--no-time", "--ray-scale", "0.2",
                           "--out-dir", os.path.join(args.work, "table")], cwd=args.work)
-    check(code == 1 and "the lecture's trap: stopped at the first leaf" in out and " --restore " in out
-          and "accelviz-kit --restore" in out and "FAILED" in out, f"table output: {out[-1500:]}")
+    check(code == 1 and "stopped at the first leaf" in out and "cause 1: " in out and "wrong answers per case:" in out
+          and " --restore " in out and "accelviz-kit --restore" in out and "FAILED" in out, f"table output: {out[-1500:]}")
 
     # 5. Faults: a report within the limits, naming the case and the ray.
     faults = {
@@ -192,6 +252,11 @@ def main():
     code, out, err = run([args.cli, "check", *args.judge, "--structure", "nosuch"], cwd=args.work)
     check(code == 2 and "unknown structure" in err, f"check --structure nosuch: {code} {err}")
     print(f"plain CLI without students: {'one-line error' if no_students else 'has students'}")
+    # No shared meshes: the category is skipped with a one-line notice saying where to put them.
+    code, r, _ = check_json(args, "sol_bvh", "--no-time", "--shared", os.path.join(args.work, "no-shared"), scale="0.02")
+    if r is not None:
+        check(any(n.startswith("meshes: skipped") and "--shared" in n for n in r["notices"])
+              and "meshes" not in [c["name"] for c in r["categories"]], f"no meshes notice: {r['notices']}")
 
     print(f"{len(FAILURES)} failed")
     return 1 if FAILURES else 0

@@ -30,7 +30,10 @@ void CompareTool::start(std::shared_ptr<const accel::Scene> scene, const accel::
         if (!info || !info.value()->student || !shown || cancel) return result;
         // A student's structure: the same ray through the built-in of its kind, step by step.
         result.peer = info.value()->builtin_peer;
-        const std::vector<std::string> peer_params = accel::builtin_compare_params(result.peer);
+        // Set up like the student's (its split rule and leaf size, from its build log): the
+        // difference found is then the bug, not the other tree's split planes.
+        const std::vector<std::string> peer_params =
+            accel::builtin_compare_params(result.peer, shown->structure.get(), scene.get());
         for (const std::string& p : peer_params) result.peer_params += (result.peer_params.empty() ? "" : " ") + p;
         auto peer = accel::build_structure(result.peer, *scene, peer_params, current.kernel);
         if (!peer) {
