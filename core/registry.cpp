@@ -91,11 +91,17 @@ Result<StructureChoice> parse_structure(const std::string& name, const std::vect
   return StructureChoice{info.value(), std::move(set.value())};
 }
 
+std::unique_ptr<Structure> create_structure(const StructureInfo& info, const Scene& scene, const ParamSet& params,
+                                            Kernel kernel) {
+  std::unique_ptr<Structure> s = info.create(params);
+  s->set_kernel(scene.planar() ? Kernel::Planar : kernel);  // a 2D scene has one hit rule
+  return s;
+}
+
 Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
                                                    const ParamSet& params, Kernel kernel, BuildControl* control,
                                                    BuildRecorder* recorder) {
-  std::unique_ptr<Structure> s = info.create(params);
-  s->set_kernel(scene.planar() ? Kernel::Planar : kernel);  // a 2D scene has one hit rule
+  std::unique_ptr<Structure> s = create_structure(info, scene, params, kernel);
   auto built = recorder ? s->build_recorded(scene, params, *recorder, control) : s->build(scene, params, control);
   if (!built) return built.error();
   return s;

@@ -79,11 +79,16 @@ struct StructureChoice {
 /// structure (listing the valid ones) or the parameter and its valid range.
 Result<StructureChoice> parse_structure(const std::string& name, const std::vector<std::string>& params);
 
+/// The class the parameters ask for, unbuilt, with its kernel set (Kernel::Planar over a 2D
+/// scene, whatever `kernel` says): build_structure()'s first half, for a caller that sets
+/// the structure up before its build (the viewer's replay of a student's failed build).
+std::unique_ptr<Structure> create_structure(const StructureInfo& info, const Scene& scene, const ParamSet& params,
+                                            Kernel kernel = Kernel::Watertight);
+
 /// The one way the CLI, the bench, the tests and the viewer build a structure: create
-/// the class the parameters ask for, set the kernel (Kernel::Planar over a 2D scene,
-/// whatever `kernel` says), build. Errors name the parameter
-/// or the internal limit. `control` (optional) reports progress and can cancel the build
-/// (then the error is cancelled_error()). With a `recorder` the build is recorded step by
+/// the class the parameters ask for, set the kernel (create_structure()), build. Errors
+/// name the parameter or the internal limit. `control` (optional) reports progress and can
+/// cancel the build (then the error is cancelled_error()). With a `recorder` the build is recorded step by
 /// step (Structure::build_recorded()).
 Result<std::unique_ptr<Structure>> build_structure(const StructureInfo& info, const Scene& scene,
                                                    const ParamSet& params, Kernel kernel = Kernel::Watertight,

@@ -177,7 +177,7 @@ std::string write_replay(const accel::WrongRay& w, const std::string& structure,
   const std::string text = "# accelviz-cli check: " + structure + ", " + w.category + "/" + w.case_name + " ray " +
                            std::to_string(w.index) + ": " + kVerdictKeys[int(w.verdict)] + ": " + w.cause + "\n" +
                            "scene " + scene + "\nstructure " + structure + "\nray " + accel::format_ray_line(w.ray) +
-                           "\n" + (w.step != size_t(-1) ? "step " + std::to_string(w.step + 1) + "\n" : "");
+                           "\n" + (w.step != size_t(-1) && w.step > 0 ? "step " + std::to_string(w.step) + "\n" : "");
   if (auto s = accel::write_file_atomic(state, text); !s) {
     *error = s.error().message;
     return "";

@@ -164,7 +164,8 @@ void App::sync_session() {
     heatmap_.invalidate();
   }
   if (e.structure_installed) {
-    nodes_.install(*session_.shown());
+    static const BuiltStructure kNothing;  // a failed build's replay: no structure to draw
+    nodes_.install(session_.shown() ? *session_.shown() : kNothing);
     ray_.replay(session_.current());
     build_.reset();  // recorded on another structure
   }
@@ -388,7 +389,7 @@ void App::update(float dt) {
   dock_ = {0.0f, io.DisplaySize.x};
   // The highlights (and the numbers the panels show) of the step this frame starts at.
   ray_.update(session_.scene(), session_.current());
-  trap_.update(ray_.ray(), session_.scene());
+  trap_.update(ray_.ray(), session_.scene(), session_.current());
   ray_.set_marked_step(trap_.marked_step(), "a naive traversal stops here");
   // The Variables panel shares the left column with the controls in the traversal mode
   // only; when it comes or goes the controls change height: lay out again.
@@ -519,7 +520,8 @@ KeyGroup App::global_keys() {
                act([this] { lecture_mode_ = !lecture_mode_; })},
               // The notice says what happened.
               {GLFW_KEY_R, "R", "start / stop recording a GIF or MP4", act([this] { (void)toggle_recording(); })},
-              {GLFW_KEY_F12, "F12", "screenshot: writes a numbered accelviz_NNNN.png and says where",
+              {GLFW_KEY_F12, "F12",
+               "screenshot: writes a numbered accelviz_NNNN.png into the pictures folder and says where",
                act([this] { recorder_.request_screenshot(); })},
           }};
 }

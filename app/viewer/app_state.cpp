@@ -35,6 +35,12 @@ std::string App::state_script() const {
     }
     out += "\n";
   }
+  if (request.build_call_limit) {
+    // A failed build's replay: reopened as one (its structure line then builds only as far);
+    // there is no structure to trace a ray through.
+    out += "construct-until " + std::to_string(request.build_call_limit) + "\n";
+    return out;
+  }
   const DebugRay& ray = ray_.ray();
   if (ray.active && !mode_2d()) {
     out += "ray " + accel::format_ray_line(ray.ray) + "\n";

@@ -1,6 +1,20 @@
 #include "built_structure.h"
 
+#include "student/kit_structure.h"
+
 namespace viz {
+
+std::unique_ptr<accel::Structure> create_requested(const accel::StructureInfo& info, const accel::Scene& scene,
+                                                   const accel::ParamSet& params, const StructureRequest& request) {
+  std::unique_ptr<accel::Structure> s = accel::create_structure(info, scene, params, request.kernel);
+  if (auto* kit = dynamic_cast<accel::KitStructure*>(s.get())) kit->set_build_call_limit(request.build_call_limit);
+  return s;
+}
+
+bool stopped_at_call_limit(const accel::Structure& structure) {
+  const auto* kit = dynamic_cast<const accel::KitStructure*>(&structure);
+  return kit && kit->build_stopped();
+}
 
 accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
                                             accel::BuildControl* control) {
@@ -12,11 +26,11 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   built->scene = std::move(scene);
   built->request = request;
   built->params_text = params.to_string_all();
-  auto structure = accel::build_structure(*info, *built->scene, params, request.kernel, control);
-  if (!structure) return structure.error();
+  std::unique_ptr<accel::Structure> structure = create_requested(*info, *built->scene, params, request);
+  if (auto st = structure->build(*built->scene, params, control); !st) return st.error();
   // Listing a big structure's nodes takes a while too: no point once superseded.
   if (accel::build_cancelled(control)) return accel::cancelled_error();
-  built->structure = std::move(structure.value());
+  built->structure = std::move(structure);
   built->stats = built->structure->build_stats();
   built->geometry = structure_geometry(*built->structure, request.geometry);
   if (params.has("traversal")) built->traversal = params.get_choice("traversal");

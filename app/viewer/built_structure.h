@@ -21,6 +21,10 @@ struct StructureRequest {
   std::vector<std::string> params;  ///< key=value
   accel::Kernel kernel = accel::Kernel::Watertight;
   GeometryOptions geometry;
+  /// A student's failed build replayed up to the fault (construct-until): its build stops
+  /// right after this many build-log calls, where it failed in the check; 0: the whole build.
+  /// Only a student's structure counts calls (other structures ignore it).
+  size_t build_call_limit = 0;
 };
 
 /// A built structure with everything the viewer shows about it, made on the build thread.
@@ -37,9 +41,18 @@ struct BuiltStructure {
 };
 using BuiltPtr = std::shared_ptr<const BuiltStructure>;
 
+/// The structure `request` names, unbuilt (accel::create_structure), set up for its build:
+/// a student's gets the request's build-log call limit.
+std::unique_ptr<accel::Structure> create_requested(const accel::StructureInfo& info, const accel::Scene& scene,
+                                                   const accel::ParamSet& params, const StructureRequest& request);
+/// After a failed build of `structure`: true when it stopped at its build-log call limit (a
+/// failed build's replay: what it logged up to there is kept), false for a fault of its own.
+bool stopped_at_call_limit(const accel::Structure& structure);
+
 /// Validates, builds and lists the nodes of a structure over `scene` (any thread).
 /// Errors name the structure or parameter (from the registry). `control` (optional) gets
-/// the build's progress and can cancel it (then the error is accel::cancelled_error()).
+/// the build's progress and can cancel it (then the error is accel::cancelled_error()). A
+/// build stopped at the request's call limit is an error too: there is nothing to query.
 accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
                                             accel::BuildControl* control = nullptr);
 

@@ -61,4 +61,16 @@ std::string last_state_path() {
   return "";
 }
 
+std::string pictures_dir() {
+  // XDG user directories (xdg-user-dirs): relative values are to be ignored, as for
+  // XDG_STATE_HOME above.
+  const char* xdg = std::getenv("XDG_PICTURES_DIR");
+  if (xdg && xdg[0] == '/') return (fs::path(xdg) / "accelviz").string();
+  const char* home = std::getenv("HOME");
+  std::error_code ec;
+  if (home && home[0] != '\0' && fs::is_directory(fs::path(home) / "Pictures", ec))
+    return (fs::path(home) / "Pictures" / "accelviz").string();
+  return "accelviz-pictures";
+}
+
 }  // namespace viz

@@ -1,5 +1,6 @@
 #pragma once
-// Where the viewer finds its run-time files (the GLSL shaders).
+// Where the viewer finds its run-time files (the GLSL shaders) and puts the user's files
+// (the last state, F12's screenshots).
 #include <string>
 #include <vector>
 
@@ -24,5 +25,11 @@ accel::Result<std::string> find_shader_dir(const std::vector<std::string>& requi
 /// file: $XDG_STATE_HOME/accelviz/last.state, else ~/.local/state/accelviz/last.state
 /// (empty when neither variable is set).
 std::string last_state_path();
+
+/// Where F12 writes its numbered screenshots: $XDG_PICTURES_DIR/accelviz when that variable
+/// is set (an absolute path), else ~/Pictures/accelviz when ~/Pictures exists, else
+/// ./accelviz-pictures -- never the working directory itself, which is the repository's
+/// root when the viewer is run from there. Not created here.
+std::string pictures_dir();
 
 }  // namespace viz

@@ -21,6 +21,23 @@ std::vector<std::string> tokens_of(const std::string& line) {
   return tokens;
 }
 
+/// A failed build's replay, as `accelviz-cli check` writes it: comment lines saying what
+/// failed, `scene`, `structure NAME`, `construct-until N`. The structure line's own build must
+/// stop at N too, or the viewer would run the failing build in full first (the crash, the
+/// runaway allocation) before the replay: it gets the N of the first construct-until after
+/// it. A construct-until gets check's comment lines (`header`, the comments above the first
+/// command, when they begin "accelviz-cli check:") to show what failed.
+void bind_replays(std::vector<ScriptCommand>& commands, const std::vector<std::string>& header) {
+  const bool from_check = !header.empty() && header[0].rfind("accelviz-cli check:", 0) == 0;
+  ScriptCommand* structure = nullptr;
+  for (ScriptCommand& c : commands) {
+    if (c.kind == CommandKind::Structure) structure = &c;
+    if (c.kind != CommandKind::ConstructUntil) continue;
+    if (structure && structure->calls == 0) structure->calls = c.calls;
+    if (from_check) c.params = header;
+  }
+}
+
 /// The row of `verb`, or nullptr.
 const ScriptVerb* find_verb(const std::string& verb) {
   for (const ScriptVerb& v : script_verbs())
@@ -123,6 +140,7 @@ std::string script_error(const std::string& script_name, int line, const std::st
 
 accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, const std::string& script_name) {
   std::vector<ScriptCommand> commands;
+  std::vector<std::string> header;  // the comment lines above the first command
   std::istringstream in(text);
   std::string line;
   int number = 0;
@@ -130,7 +148,14 @@ accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, 
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::vector<std::string> tokens = tokens_of(line);
-    if (tokens.empty()) continue;
+    if (tokens.empty()) {
+      const size_t hash = line.find_first_not_of(" \t");
+      if (commands.empty() && hash != std::string::npos && line[hash] == '#') {
+        const size_t text_at = line.find_first_not_of(" \t", hash + 1);
+        header.push_back(text_at == std::string::npos ? "" : line.substr(text_at));
+      }
+      continue;
+    }
     const ScriptVerb* verb = find_verb(tokens[0]);
     if (!verb) return accel::make_error(script_error(script_name, number, "unknown command '" + tokens[0] + "'"));
     ScriptCommand c;
@@ -141,6 +166,7 @@ accel::Result<std::vector<ScriptCommand>> parse_script(const std::string& text, 
     if (!error.empty()) return accel::make_error(script_error(script_name, number, error));
     commands.push_back(std::move(c));
   }
+  bind_replays(commands, header);
   return commands;
 }
 

@@ -382,17 +382,23 @@ std::string build_fault_node(const KitTree& tree) {
   for (uint32_t n = uint32_t(tree.nodes.size() - 1); n != kNoBuildNode && path.size() < 64; n = tree.nodes[n].parent)
     path.push_back(tree.nodes[n].prim_count);
   std::reverse(path.begin(), path.end());
+  // The path from the root: its first three and last four counts.
   std::string growth;
-  const size_t shown = std::min<size_t>(path.size(), 8);
-  for (size_t i = path.size() - shown; i < path.size(); ++i)
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (path.size() > 7 && i == 3) {
+      growth += " -> ...";
+      i = path.size() - 4;
+    }
     growth += (growth.empty() ? "" : " -> ") + std::to_string(path[i]);
+  }
   double refs = 0;
   for (const KitNode& k : tree.nodes) refs += double(k.prim_count);
-  char total[96];
-  std::snprintf(total, sizeof total, "%zu nodes made over %.3g triangle references in all", tree.nodes.size(), refs);
+  const double root = tree.nodes.front().prim_count;
+  char total[160];
+  std::snprintf(total, sizeof total, "%zu nodes made so far, over %.3g triangles in all (%.3gx the root's %.0f)",
+                tree.nodes.size(), refs, root > 0 ? refs / root : 0.0, root);
   return "at node " + std::to_string(last.student_id) + " (depth " + std::to_string(last.depth) + ", " +
-         std::to_string(last.prim_count) + " triangles; down its path: " + (path.size() > shown ? "... -> " : "") +
-         growth + "); " + total;
+         std::to_string(last.prim_count) + " triangles; the counts down its path: " + growth + "); " + total;
 }
 
 /// Counts the built-in's triangles and nodes per ray over `rays`, set up like the student's
@@ -471,7 +477,8 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
                                    kit->build_log_calls()});
     throw;
   } catch (const std::exception& e) {
-    build_fault = "build " + describe_exception(e);
+    build_fault =
+        dynamic_cast<const KitError*>(&e) ? "build: " + std::string(e.what()) : "build " + describe_exception(e);
   } catch (...) {
     build_fault = "build threw a non-standard exception";
   }

@@ -14,6 +14,16 @@ using accelviz::KitAccess;
 
 /// More cells than this is a student's resolution bug, not a grid (2^26 = 64M cells).
 constexpr size_t kMaxKitCells = size_t(1) << 26;
+/// What the grader keeps of one build log, whatever the student's build does (its worker has a
+/// memory limit; the judge that mirrors the log must have one too): nodes, and the triangle
+/// references of leaves and cells. A sane structure over the check's scenes (at most ~70,000
+/// triangles) stays far below; a runaway split that copies triangles into both children
+/// reaches them within seconds.
+constexpr size_t kMaxKitNodes = size_t(1) << 21;
+constexpr size_t kMaxKitReferences = size_t(1) << 25;
+/// The triangles each node was made over are kept for the invariants up to this many in all
+/// (the checks then use what was kept).
+constexpr size_t kMaxKitMadeOver = size_t(1) << 24;
 
 CullReason to_core(accelviz::Cull why) {
   return why == accelviz::Cull::MissedBounds ? CullReason::MissedBounds : CullReason::BeyondClosestHit;
@@ -31,6 +41,10 @@ LeafReason to_core(accelviz::LeafWhy why) {
       return LeafReason::NoProgress;
   }
   return LeafReason::FewPrims;
+}
+
+std::string stopped_message(size_t calls) {
+  return "the build stopped after " + std::to_string(calls) + " build-log calls, where it failed in the check";
 }
 
 /// Listens to the student's build log: keeps the tree, forwards to the recorder if any.
@@ -54,7 +68,13 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     k.depth = std::max(0, depth);
     k.box = KitAccess::to_aabb(box);
     k.prim_count = uint32_t(n);
-    if (tree_.keep_made_over) k.made_over.assign(prims, prims + n);
+    if (tree_.keep_made_over && made_over_kept_ + n <= kMaxKitMadeOver) {
+      k.made_over.assign(prims, prims + n);
+      made_over_kept_ += n;
+    }
+    if (tree_.keep_made_over && tree_.nodes.size() >= kMaxKitNodes)
+      throw KitError("the build logged more than " + std::to_string(kMaxKitNodes) +
+                     " nodes: a runaway split? (the kit keeps at most that many)");
     if (parent != accelviz::kNoParent) {
       k.parent = tree_.dense(parent);
       if (k.parent == kNoBuildNode)
@@ -100,6 +120,7 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     if (!k) return;
     k->leaf = true;
     k->leaf_why = why;
+    count_references(n);
     k->prims.assign(prims, prims + n);
     if (recorder_) recorder_->leaf(tree_.dense(id), to_core(why), prims, n);
   }
@@ -130,6 +151,7 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
                     "): no such cell" + (tree_.grid ? "" : " (grid_resolution() was not called)"));
       return;
     }
+    count_references(1);
     tree_.cells[cell].push_back(prim);
     if (!recorder_) return;
     if (pending_prim_ != prim) flush_insert();
@@ -155,11 +177,18 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
     }
     return &tree_.nodes[dense];
   }
-  /// Counts one build-log call; past the replay's limit, stops the build there.
+  /// Leaves' and cells' triangle references: bounded in the grader (kMaxKitReferences).
+  void count_references(size_t n) {
+    references_ += n;
+    if (tree_.keep_made_over && references_ > kMaxKitReferences)
+      throw KitError("the build logged more than " + std::to_string(kMaxKitReferences) +
+                     " triangle references in leaves or cells: a runaway split copying triangles into both "
+                     "children? (the kit keeps at most that many)");
+  }
+  /// Counts one build-log call. A call past the replay's limit stops the build again: the
+  /// student's code caught the stop (StopAfterLimit's) and logged on.
   void count_call() {
-    if (call_limit_ && tree_.log_calls >= call_limit_)
-      throw KitBuildStopped("the build stopped after " + std::to_string(call_limit_) +
-                            " build-log calls, where it failed in the check");
+    if (call_limit_ && tree_.log_calls >= call_limit_) throw KitBuildStopped(stopped_message(call_limit_));
     ++tree_.log_calls;
   }
   /// The grid's construction is recorded per triangle (the lecture's loop): the cells one
@@ -176,9 +205,59 @@ class KitBuildListener final : public accelviz::detail::BuildListener {
   const Scene& scene_;
   BuildRecorder* recorder_;
   size_t call_limit_;
+  size_t made_over_kept_ = 0, references_ = 0;
   uint32_t pending_prim_ = kNoBuildNode;
   int lo_[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi_[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
   std::vector<uint32_t> pending_cells_;
+};
+
+/// The replay of a failed build (KitStructure::set_build_call_limit): hands each call to the
+/// kit's listener, then stops the build right after the limit's call. The check counted the
+/// calls heard before the fault, so the student's code between the last of them and the fault
+/// (a crash, a runaway allocation) never runs again, in the viewer's own process.
+class StopAfterLimit final : public accelviz::detail::BuildListener {
+ public:
+  StopAfterLimit(KitBuildListener& to, const KitTree& tree, size_t limit) : to_(to), tree_(tree), limit_(limit) {}
+
+  bool records() const override { return to_.records(); }
+  void node(uint32_t id, uint32_t parent, int depth, const Box& box, const uint32_t* prims, size_t n) override {
+    to_.node(id, parent, depth, box, prims, n);
+    stop_at_limit();
+  }
+  void sphere(uint32_t id, const accelviz::Sphere& s) override {
+    to_.sphere(id, s);
+    stop_at_limit();
+  }
+  void split(uint32_t id, int axis, float position, float cost, float leaf_cost, uint32_t left,
+             uint32_t right) override {
+    to_.split(id, axis, position, cost, leaf_cost, left, right);
+    stop_at_limit();
+  }
+  void candidates(uint32_t id, int axis, const accelviz::Candidate* c, size_t n) override {
+    to_.candidates(id, axis, c, n);
+    stop_at_limit();
+  }
+  void leaf(uint32_t id, const uint32_t* prims, size_t n, accelviz::LeafWhy why) override {
+    to_.leaf(id, prims, n, why);
+    stop_at_limit();
+  }
+  void grid_resolution(const Box& box, int nx, int ny, int nz) override {
+    to_.grid_resolution(box, nx, ny, nz);
+    stop_at_limit();
+  }
+  void cell_filled(int x, int y, int z, uint32_t prim) override {
+    to_.cell_filled(x, y, z, prim);
+    stop_at_limit();
+  }
+
+ private:
+  void stop_at_limit() const {
+    if (tree_.log_calls >= limit_) throw KitBuildStopped(stopped_message(limit_));
+  }
+
+  KitBuildListener& to_;
+  const KitTree& tree_;
+  size_t limit_;
 };
 
 /// Listens to the student's traversal log and hands every step to `Sink` (a TraversalSink:
@@ -338,19 +417,22 @@ Status KitStructure::build_impl(const Scene& scene, const ParamSet&, BuildContro
   scene_ = nullptr;
   tree_ = KitTree{};
   tree_.keep_made_over = strict_;
+  build_stopped_ = false;
   if (build_cancelled(control)) return cancelled_error();
   auto student_scene = std::make_unique<accelviz::Scene>();
   KitAccess::fill_scene(*student_scene, scene);
   auto student = create_();
   KitBuildListener listener(tree_, scene, recorder, build_call_limit_);
+  StopAfterLimit stopper(listener, tree_, build_call_limit_);
   if (recorder) recorder->scene_box(scene.bounds());
-  accelviz::BuildLog log(&listener);
+  accelviz::BuildLog log(build_call_limit_ ? static_cast<accelviz::detail::BuildListener*>(&stopper) : &listener);
   try {
     student->build(*student_scene, log);
     listener.finish();
   } catch (const KitBuildStopped& stop) {
     // The replay of a failed build: what was logged up to the fault stays for playback.
     listener.finish();
+    build_stopped_ = true;
     return make_error(name_ + ": " + stop.what());
   } catch (const std::exception& e) {
     if (strict_) throw;  // the grader reads the tree made so far (the node being built)

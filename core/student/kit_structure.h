@@ -148,9 +148,13 @@ class KitStructure final : public Structure {
   size_t scene_triangles() const { return scene_ ? scene_->triangle_count() : 0; }
   /// Build-log calls of the last build, whole or failed.
   size_t build_log_calls() const { return tree_.log_calls; }
-  /// The viewer's replay of a failed build: stop the student's build after `calls` build-log
-  /// calls (0: never), as if it had failed there, keeping what was logged for playback.
+  /// The viewer's replay of a failed build: stop the student's build right after its
+  /// `calls`-th build-log call (0: never), as if it had failed there, keeping what was logged
+  /// for playback; the build then returns an Error saying so.
   void set_build_call_limit(size_t calls) { build_call_limit_ = calls; }
+  /// The last build stopped at that limit (its Error is the stop, not a fault of its own): the
+  /// tree holds what was logged up to there, and no student object answers queries.
+  bool build_stopped() const { return build_stopped_; }
 
  protected:
   Status build_impl(const Scene& scene, const ParamSet& params, BuildControl* control,
@@ -169,6 +173,7 @@ class KitStructure final : public Structure {
   KitTree tree_;
   bool strict_ = false;
   size_t build_call_limit_ = 0;
+  bool build_stopped_ = false;
   mutable std::mutex error_mutex_;
   mutable std::string last_error_;
 };

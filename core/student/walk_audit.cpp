@@ -15,83 +15,6 @@
 namespace accel {
 namespace {
 
-// The causes, in the order docs/student.md's table lists them (a test compares the two).
-constexpr CauseInfo kCauses[] = {
-    {"kd_plane_behind_origin",
-     "the split plane lies behind the ray's origin (t_split < 0): case (c) sent the ray to the far child, but it "
-     "never crosses the plane and stays in the near one",
-     "kd-tree traversal: the slide's 'if t_split < t_min: far only' needs 'near only when t_split <= 0' first "
-     "(pbrt: near only when tSplit > tMax or tSplit <= 0)"},
-    {"kd_parallel_ray",
-     "a ray parallel to the split plane (a direction component of +-0) has t_split = +-inf or NaN and was sent to a "
-     "child it never enters",
-     "kd-tree traversal: t_split = (split - o) / d is -inf for d = -0; a ray that runs parallel to the plane stays "
-     "in the child holding its origin (near only)"},
-    {"kd_wrong_t_split", "t_split is not the distance along the ray to the split plane",
-     "kd-tree traversal: t_split = (split - o[axis]) / d[axis]"},
-    {"kd_near_far_swapped", "near and far children swapped: near is the side the ray is on before t_split",
-     "kd-tree traversal: near = the child containing the ray's origin (for a ray starting before the plane)"},
-    {"kd_wrong_case",
-     "the walk did not take the children of the case its own t_split gives: (b) near only when t_split > t_max, "
-     "(c) far only when t_split < t_min, (a) both",
-     "kd-tree traversal: the three cases"},
-    {"kd_case_drops_child",
-     "case (b) or (c) taken although the ray crosses the split plane within [t_min, t_max]: a child it crosses was "
-     "left out",
-     "kd-tree traversal: the three cases compare t_split with t_min and t_max"},
-    {"kd_false_early_exit",
-     "the early exit 'if t_hit < t_split: return' was taken with the hit beyond the far child's start",
-     "kd-tree traversal: the far child may hold a nearer hit unless t_hit < t_split"},
-    {"kd_hit_beyond_t_split",
-     "a near-child hit beyond t_split was returned (check t_hit <= t_split before stopping)",
-     "kd-tree traversal: 'if t_hit < t_split: return t_hit'"},
-    {"slab_nan",
-     "the slab test made NaN for a direction component of +-0 with the origin on a box plane (0 * inf), and the box "
-     "was skipped as missed",
-     "ray/box slab test: compare (lo - o) * (1/d) only where d != 0, or order the min/max so NaN drops out "
-     "(Williams et al. 2005)"},
-    {"false_cull_missed", "a node the ray crosses was skipped as missed, and it held a nearer hit",
-     "traversal: skip a node only when the ray misses its bounding volume within [t_min, t_hit]"},
-    {"false_cull_beyond",
-     "a node skipped as beyond the closest hit is entered before it, and it held a nearer hit",
-     "traversal: skip a node only when it is entered after the closest hit so far (t_enter > t_hit)"},
-    {"octree_order", "the octree's children were not visited in the order the ray enters them",
-     "octree traversal: visit the children front to back (the entry distances, or the octant order i ^ mask)"},
-    {"grid_dda_tie",
-     "the 3D-DDA left the ray's path (at a tie of tMax, e.g. tMaxX == tMaxY): a cell the ray crosses was never "
-     "entered",
-     "grid traversal (3D-DDA): step the axis whose tMax is smallest, one axis at a time"},
-    {"grid_cell_skipped", "a cell the ray crosses, holding a nearer hit, was never entered",
-     "grid traversal: walk every cell the ray passes through, in order"},
-    {"grid_hit_outside_cell",
-     "a hit outside the current cell was accepted (it must lie inside the cell to stop the walk)",
-     "grid traversal: stop only when the closest hit lies inside the current cell"},
-    {"straddle_lost", "a triangle that straddles a split is missing from a child it overlaps",
-     "construction: a triangle overlapping both sides of a split (or several octants) goes into each of them"},
-    {"grid_insert_lost", "a triangle missing from a cell it overlaps (the insertion lost it)",
-     "grid construction: insert each triangle into every cell its box overlaps"},
-    {"stopped_first_leaf",
-     "stopped at the first leaf with a hit (a farther bounding volume can hold a nearer triangle)",
-     "BVH traversal: the closest ray-BV intersection and the closest ray-primitive intersection can occur in "
-     "different BVs"},
-    {"nearer_hit_dropped", "a nearer triangle was tested and hit, but the answer kept a farther one",
-     "traversal: keep the closest hit (t_hit = min)"},
-    {"never_reached", "the leaf holding the nearer hit was never visited nor skipped: the walk lost it",
-     "traversal: every node the ray crosses is visited or culled for a reason"},
-    {"not_a_hit", "the returned triangle is not hit by the ray", "the ray/triangle test (docs/hits.md)"},
-    {"wrong_t", "the returned t is not where the ray hits the returned triangle", "the ray/triangle test"},
-    {"outside_interval", "the returned hit lies outside [tmin, tmax]", "docs/hits.md: tmin <= t <= tmax"},
-    {"unreferenced", "the triangle hit first is in no leaf or cell: the build left it out",
-     "construction: every triangle goes into at least one leaf (or every cell it overlaps)"},
-    {"nothing_walked", "intersect() logged no visit and answered a miss (still the skeleton's traversal?)",
-     "traversal: log visit() for every node (enter_cell() for every cell) the walk enters"},
-    {"nothing_built", "the build logged no node or cell: there is nothing to traverse (still the skeleton?)",
-     "construction: log every node and leaf (student/README.md)"},
-    {"fault", "the structure threw, or the kit stopped it, on this ray (see the faults)", "docs/student.md"},
-    {"unexplained", "no logged claim is false and the answer's cause was not found: open the replay",
-     "docs/student.md"},
-};
-
 std::string num(double v) {
   char b[48];
   std::snprintf(b, sizeof b, "%.6g", v);
@@ -163,14 +86,6 @@ std::vector<ExactHit> all_hits(const Scene& scene, const Ray& ray) {
 
 }  // namespace
 
-std::span<const CauseInfo> cause_table() { return kCauses; }
-
-const CauseInfo& cause_info(const std::string& id) {
-  for (const CauseInfo& c : kCauses)
-    if (id == c.id) return c;
-  return kCauses[std::size(kCauses) - 1];
-}
-
 const FalseClaim* WalkAudit::first_lossy() const {
   for (const FalseClaim& c : claims)
     if (c.loses_hit) return &c;
@@ -225,12 +140,11 @@ namespace {
 class Audit {
  public:
   Audit(const KitTree& tree, accelviz::Kind kind, const Scene& scene, const Ray& ray,
-        const std::unordered_map<uint32_t, std::vector<uint32_t>>* holders, std::vector<ExactHit> hits,
+        std::vector<ExactHit> hits,
         double final_t)
       : tree_(tree),
         kind_(kind),
         ray_(ray),
-        holders_(holders),
         hits_(std::move(hits)),
         final_t_(final_t),
         // Points computed in double from float data: an absolute slack of the scene's scale
@@ -249,24 +163,55 @@ class Audit {
               z = int(n / (uint32_t(tree_.res[0]) * uint32_t(tree_.res[1])));
     return "cell (" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")";
   }
-  bool in_subtree(uint32_t leaf, NodeId root) const {
-    if (tree_.grid) return leaf == root;
-    for (uint32_t n = leaf; n != kNoBuildNode && n < tree_.nodes.size(); n = tree_.nodes[n].parent)
-      if (n == root) return true;
+  /// The cells holding triangle `prim` whose box contains `p`: the cell of `p` and, on a
+  /// boundary, its neighbours.
+  std::vector<NodeId> cells_holding(uint32_t prim, const DVec3& p) const {
+    std::vector<NodeId> found;
+    int c[3];
+    for (int a = 0; a < 3; ++a) {
+      const double lo = tree_.grid_box.min[a], size = double(tree_.grid_box.max[a] - tree_.grid_box.min[a]);
+      const double at = size > 0 ? std::floor((p[a] - lo) / size * tree_.res[a]) : 0.0;
+      c[a] = int(std::clamp(std::isnan(at) ? 0.0 : at, -2.0, double(tree_.res[a]) + 1.0));
+    }
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const NodeId cell = tree_.cell_index(c[0] + dx, c[1] + dy, c[2] + dz);
+          if (cell == kNoNode || !point_in(tree_.cell_box(cell), p, pad)) continue;
+          const auto& prims = tree_.cells[cell];
+          if (std::find(prims.begin(), prims.end(), prim) != prims.end()) found.push_back(cell);
+        }
+    return found;
+  }
+  /// Whether a leaf under `root` (or `root` itself, a leaf or a cell) holds `h`'s triangle and
+  /// contains its hit point: found by descending through the boxes that contain the point,
+  /// so no index of the whole tree is needed (the viewer audits every ray it shoots).
+  bool holds_at(NodeId root, const ExactHit& h) const {
+    if (tree_.grid) {
+      const auto& prims = tree_.cells[root];
+      return std::find(prims.begin(), prims.end(), h.prim) != prims.end();
+    }
+    std::vector<NodeId> stack{root};
+    while (!stack.empty()) {
+      const KitNode& k = tree_.nodes[stack.back()];
+      stack.pop_back();
+      if (k.leaf || k.children.empty()) {
+        if (std::find(k.prims.begin(), k.prims.end(), uint32_t(h.prim)) != k.prims.end()) return true;
+        continue;
+      }
+      for (uint32_t c : k.children)
+        if (point_in(tree_.nodes[c].box, h.point, pad)) stack.push_back(c);
+    }
     return false;
   }
   /// A hit nearer than the running closest hit and the final answer whose triangle sits in
   /// `root`'s subtree with its hit point inside `root`'s box: what skipping `root` loses.
   const ExactHit* lost_in(NodeId root) const {
-    if (!holders_ || !has_box(root)) return nullptr;
+    if (!has_box(root)) return nullptr;
     const Aabb b = box(root);
     for (const ExactHit& h : hits_) {
       if (!clearly_below(h.t, std::min(closest, final_t_))) break;
-      if (!point_in(b, h.point, pad)) continue;
-      auto it = holders_->find(h.prim);
-      if (it == holders_->end()) continue;
-      for (uint32_t leaf : it->second)
-        if (in_subtree(leaf, root) && point_in(box(leaf), h.point, pad)) return &h;
+      if (point_in(b, h.point, pad) && holds_at(root, h)) return &h;
     }
     return nullptr;
   }
@@ -281,7 +226,6 @@ class Audit {
   const KitTree& tree_;
   accelviz::Kind kind_;
   const Ray& ray_;
-  const std::unordered_map<uint32_t, std::vector<uint32_t>>* holders_;
   std::vector<ExactHit> hits_;
   double final_t_;
   double pad;
@@ -405,9 +349,9 @@ void audit_far_pop(Audit& a, const KdExitVars& kx, size_t step) {
   const ExactHit* lost = a.lost_in(kx.far_child);
   std::string truth = !own_numbers ? "false by its own numbers: t_hit=" + num(kx.t_hit) + " is not below t_split=" +
                                          num(kx.t_split)
-                                   : "the far child " + a.name(kx.far_child) + " is entered at t=" + num(enter) +
-                                         ", before the closest hit t=" + num(a.closest);
-  if (lost) truth += "; " + a.lost_text(*lost);
+                                   : "the closest hit t=" + num(a.closest) + " lies beyond the far child's start";
+  if (crosses) truth += "; the far child " + a.name(kx.far_child) + " is entered at t=" + num(enter);
+  if (lost) truth += (crosses ? " and " : "; the far child ") + a.lost_text(*lost);
   a.claim(step, "kd_false_early_exit",
           "t_hit=" + num(kx.t_hit) + " < t_split=" + num(kx.t_split) + ": return (" + a.name(kx.far_child) + " skipped)",
           truth, lost != nullptr);
@@ -493,8 +437,7 @@ WalkAudit WalkAuditor::audit(const Ray& ray, std::span<const TraceEvent> events,
   double final_t = INFINITY;
   if (!events.empty() && events.back().kind == TraceEventKind::Done && events.back().hit)
     final_t = events.back().t0;
-  Audit a(tree_, kind_, scene_, ray, find_lossy ? &index().holders : nullptr,
-          find_lossy ? all_hits(scene_, ray) : std::vector<ExactHit>{}, final_t);
+  Audit a(tree_, kind_, scene_, ray, find_lossy ? all_hits(scene_, ray) : std::vector<ExactHit>{}, final_t);
   a.closest = double(ray.tmax);
   size_t v = 0;
   NodeId current = kNoNode, prev_cell = kNoNode;
@@ -559,11 +502,8 @@ WalkAudit WalkAuditor::audit(const Ray& ray, std::span<const TraceEvent> events,
       if (e.kind == TraceEventKind::EnterCell && e.node < entered.size()) entered[e.node] = 1;
     for (const ExactHit& h : a.hits_) {
       if (!clearly_below(h.t, final_t)) break;
-      auto it = index().holders.find(h.prim);
-      if (it == index().holders.end()) continue;
       bool reached = false, held = false;
-      for (uint32_t c : it->second)
-        if (point_in(tree_.cell_box(c), h.point, a.pad)) held = true, reached |= entered[c] != 0;
+      for (NodeId c : a.cells_holding(h.prim, h.point)) held = true, reached |= entered[c] != 0;
       if (!held || reached) continue;
       const size_t s = grid_anomalies.front();
       a.claim(s, "grid_dda_tie", "the walk stepped into " + a.name(events[s].node),
@@ -692,7 +632,7 @@ Diagnosis WalkAuditor::diagnose(const Ray& ray, std::span<const TraceEvent> even
   // Where the nearer hit is: in a leaf or cell that holds the triangle, or lost at a split.
   const Index& ix = index();
   const DVec3 p = DVec3(ray.org) + ref.t * DVec3(ray.dir);
-  Audit helper(tree_, kind_, scene_, ray, nullptr, {}, INFINITY);
+  Audit helper(tree_, kind_, scene_, ray, {}, INFINITY);
   auto held = ix.holders.find(uint32_t(ref.prim));
   std::vector<uint32_t> holding;  // leaves / cells holding the triangle at the hit point
   if (held != ix.holders.end())

@@ -3,7 +3,8 @@
 viewer runs interactively under Xvfb with scenes/lecture.playlist, xdotool presses Page Down
 through every state (the window title names the state and says "(loading)" until it is
 shown, "(error)" if a command failed), Page Up and the up arrow go back, F12 writes a
-numbered screenshot and R ... R records a GIF while space plays the traversal.
+numbered screenshot into $XDG_PICTURES_DIR/accelviz and R ... R records a GIF while space
+plays the traversal.
 Exit 77 (ctest: skipped) without xvfb-run or xdotool."""
 import argparse
 import os
@@ -38,8 +39,11 @@ def main():
         return code
     failures = []
     work = tempfile.mkdtemp(prefix="accel_keys_")
+    # F12 writes into the pictures folder: $XDG_PICTURES_DIR/accelviz, never the working folder.
+    pictures = os.path.join(work, "pictures")
     viewer = subprocess.Popen([args.viewer, "--playlist", os.path.abspath(args.playlist), "--msaa", "0",
-                               "--size", "1024x640"], cwd=work, stderr=subprocess.PIPE, text=True)
+                               "--size", "1024x640"], cwd=work, stderr=subprocess.PIPE, text=True,
+                              env=dict(os.environ, XDG_PICTURES_DIR=pictures))
     started = time.time()
     seen = []  # (seconds, title) each time the title changed: printed when a check fails
     try:
@@ -105,8 +109,10 @@ def main():
             return os.path.exists(path)
 
         key("F12")
-        if not appears(os.path.join(work, "accelviz_0001.png")):
-            failures.append("F12 wrote no accelviz_0001.png")
+        if not appears(os.path.join(pictures, "accelviz", "accelviz_0001.png")):
+            failures.append(f"F12 wrote no accelviz_0001.png into $XDG_PICTURES_DIR/accelviz ({pictures}/accelviz)")
+        if os.path.exists(os.path.join(work, "accelviz_0001.png")):
+            failures.append("F12 wrote accelviz_0001.png into the working folder too")
         # Record the traversal of the first state while it plays.
         key("Home")
         for k in range(n - 3, 0, -1):  # up to the first state (its traversal plays)

@@ -328,5 +328,36 @@ TEST(Script, StateCommands) {
   }
 }
 
+TEST(Script, FailedBuildReplay) {
+  // A failed build's state as accelviz-cli check writes it: the structure line gets the N of
+  // the construct-until after it (its build stops there too), the construct-until check's
+  // comment lines; a structure line after it builds whole again.
+  auto parsed = parse_script("# accelviz-cli check: s, hard/c: build threw: std::bad_alloc\n"
+                             "  #   at node 3 (depth 1)\n"
+                             "scene procedural:soup\nstructure bvh\n# not a header line\n"
+                             "construct-until 123456789012\nstructure bvh\n",
+                             "f.state");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  const auto& c = parsed.value();
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[1].calls, 123456789012u);
+  EXPECT_EQ(c[2].kind, CommandKind::ConstructUntil);
+  EXPECT_EQ(c[2].calls, 123456789012u);
+  EXPECT_EQ(c[2].params, (std::vector<std::string>{"accelviz-cli check: s, hard/c: build threw: std::bad_alloc",
+                                                   "at node 3 (depth 1)"}));
+  EXPECT_EQ(c[3].calls, 0u);
+  // A script of its own: no structure line to bind, and its comments are not check's.
+  parsed = parse_script("# my replay\nconstruct-until 5\n", "g.txt");
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  EXPECT_EQ(parsed.value()[0].calls, 5u);
+  EXPECT_TRUE(parsed.value()[0].params.empty());
+  for (const char* text : {"construct-until 0\n", "construct-until -3\n", "construct-until 1e3\n",
+                           "construct-until\n", "construct-until 99999999999999999999999\n"}) {
+    auto bad = parse_script(text, "h.txt");
+    ASSERT_FALSE(bad.ok()) << text;
+    EXPECT_TRUE(bad.error().message.find("construct-until") != std::string::npos) << bad.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace viz

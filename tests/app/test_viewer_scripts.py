@@ -13,7 +13,8 @@ pixel known to hit, step from the first to the last step, take a screenshot of e
     its steps look different;
   * `load-bench` + `show-chart on` draw the speed-against-error chart over the view;
   * print-vars names the lecture's variables; the trap demonstrations' naive answers differ
-    from the traversal's, which brute force (accelviz-cli) confirms;
+    from the traversal's, which brute force (accelviz-cli) confirms; a trap's explanation
+    goes with a structure or scene it does not apply to (print-trap);
   * one mesh as OBJ, PLY, STL and glTF gives the same hit in the viewer and accelviz-cli;
   * the lecture playlist (scenes/lecture.playlist) runs through every state; `record`
     writes a GIF and an MP4 with one frame per step moved;
@@ -264,6 +265,22 @@ def main():
                     check(row["prim"] == m.group(1), f"trap {trap}: brute force hits {row['prim']}, the viewer {hit}")
         c, o, _ = run([args.png_check, "--differ", f"{work}/vars_on.png", f"{work}/vars_off.png", "30"])
         check(c == 0, f"panel vars/strip off changed nothing: {o}")
+
+    # ---- A trap's explanation applies to its scene and its structure with its parameters
+    # only: another structure, the same one with other parameters or another scene hides it
+    # (print-trap), and the demo's structure brings it back. A built-in structure's walk is
+    # never audited (print-claims).
+    kd = "structure kdtree split=middle axis=longest max_depth=1 clip=on"
+    lines = [f"size {W} {H}", "trap kd", "print-trap", "print-claims", "structure kdtree", "print-trap", kd,
+             "print-trap", "structure bvh", "print-trap", "trap grid", "print-trap", f"scene {SCENE}", "print-trap"]
+    code, out, err = run_script(args, work, "trap_switch", lines)
+    if check(code == 0, f"trap switch: viewer exit {code}\n{err}"):
+        got = out.strip().splitlines()
+        expected = ["trap kd: kd-tree: a hit beyond t_split in the near child",
+                    "claims: none (a built-in structure: not audited)", "trap: none",
+                    "trap kd: kd-tree: a hit beyond t_split in the near child", "trap: none",
+                    "trap grid: uniform grid: a hit found in a cell but lying beyond it", "trap: none"]
+        check(got == expected, f"trap switch: expected {expected}, got {got}")
 
     # ---- Mesh formats: one pyramid (a quad base, four sides) written as OBJ, PLY, STL and
     # glTF loads in the viewer and in accelviz-cli with the same numbering: the same hit.

@@ -39,6 +39,39 @@ ImVec4 event_color(const BuildEvent& e) {
   }
 }
 
+/// Records the build of `request` over `scene`: accel::build_structure_recorded(), or, for a
+/// failed build's replay (a build-log call limit), the same recording of a structure set up
+/// with the limit (create_requested), whose stop keeps the steps up to there (`*stopped`:
+/// why it stopped) where the core's would return the stop as an error.
+accel::Result<accel::RecordedBuild> record_build(const accel::Scene& scene, const StructureRequest& request,
+                                                 accel::BuildControl* control, std::string* stopped) {
+  auto choice = accel::parse_structure(request.name, request.params);
+  if (!choice) return choice.error();
+  const accel::StructureInfo& info = *choice.value().info;
+  const accel::ParamSet& params = choice.value().params;
+  const int first_depth_limit = accel::recording_first_depth_limit(scene.triangle_count());
+  if (!request.build_call_limit)
+    return accel::build_structure_recorded(info, scene, params, request.kernel,
+                                           accel::BuildRecorder::kDefaultBudgetBytes, control, first_depth_limit);
+  accel::RecordedBuild out;
+  auto steps = accel::record_within_budget(
+      [&](accel::BuildRecorder& recorder) -> accel::Status {
+        std::unique_ptr<accel::Structure> s = create_requested(info, scene, params, request);
+        stopped->clear();
+        if (auto built = s->build_recorded(scene, params, recorder, control); !built) {
+          if (!stopped_at_call_limit(*s)) return built.error();
+          *stopped = built.error().message;
+        }
+        out.structure = std::move(s);
+        return {};
+      },
+      first_depth_limit, accel::BuildRecorder::kDefaultBudgetBytes);
+  if (!steps) return steps.error();
+  out.trace = std::move(steps.value().trace);
+  out.attempts = std::move(steps.value().attempts);
+  return out;
+}
+
 const ImU32 kAxisColors[4] = {IM_COL32(255, 90, 90, 255), IM_COL32(90, 230, 110, 255), IM_COL32(100, 150, 255, 255),
                               IM_COL32(255, 200, 60, 255)};
 const char* const kAxisNames[4] = {"x", "y", "z", "PCA"};
@@ -50,20 +83,30 @@ const char* const kAxisNames[4] = {"x", "y", "z", "PCA"};
 
 void BuildPlayer::construct(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
                             bool synchronous) {
+  record(std::move(scene), request, {}, synchronous);
+}
+
+void BuildPlayer::construct_until(std::shared_ptr<const accel::Scene> scene, StructureRequest request, size_t calls,
+                                  std::vector<std::string> note, bool synchronous) {
+  request.build_call_limit = calls;
+  record(std::move(scene), request, std::move(note), synchronous);
+}
+
+void BuildPlayer::record(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
+                         std::vector<std::string> note, bool synchronous) {
   job_.wait();
   control_ = std::make_shared<accel::BuildControl>();
   pending_scene_ = scene;
   pending_request_ = request;
+  pending_note_ = std::move(note);
   error_.clear();
   auto control = control_;
   job_.start(
-      [scene, request, control](const std::atomic<bool>& cancel) -> accel::Result<accel::RecordedBuild> {
-        if (cancel) return accel::cancelled_error();
-        auto choice = accel::parse_structure(request.name, request.params);
-        if (!choice) return choice.error();
-        return accel::build_structure_recorded(*choice.value().info, *scene, choice.value().params, request.kernel,
-                                               accel::BuildRecorder::kDefaultBudgetBytes, control.get(),
-                                               accel::recording_first_depth_limit(scene->triangle_count()));
+      [scene, request, control](const std::atomic<bool>& cancel) -> Recording {
+        if (cancel) return {accel::cancelled_error(), ""};
+        std::string stopped;
+        accel::Result<accel::RecordedBuild> build = record_build(*scene, request, control.get(), &stopped);
+        return {std::move(build), std::move(stopped)};
       },
       synchronous);
   if (synchronous) poll();
@@ -71,7 +114,8 @@ void BuildPlayer::construct(std::shared_ptr<const accel::Scene> scene, const Str
 
 void BuildPlayer::poll() {
   if (!job_.ready()) return;
-  auto result = job_.take();
+  Recording recording = job_.take();
+  accel::Result<accel::RecordedBuild>& result = recording.build;
   const bool cancelled = control_ && control_->cancelled();
   control_.reset();
   if (!result) {
@@ -80,6 +124,9 @@ void BuildPlayer::poll() {
   }
   scene_ = std::move(pending_scene_);
   request_ = pending_request_;
+  stopped_ = std::move(recording.stopped);
+  note_ = std::move(pending_note_);
+  pending_note_.clear();
   trace_ = std::make_shared<const accel::BuildTrace>(std::move(result.value().trace));
   attempts_ = result.value().attempts.size();
   // The SAH constants price the tree so far; a structure without them counts 1 each.
@@ -90,6 +137,11 @@ void BuildPlayer::poll() {
   replay_ = std::make_unique<accel::BuildReplay>(*trace_);
   code_kind_ = build_code_kind(request_.name, request_.params);
   player_.load(trace_->events.size());
+  // A failed build's replay opens where it failed: on its last call's step, the node it was
+  // building current (the recording's closing "done" after it); a whole build at its end.
+  fault_step_ = trace_->events.size();
+  if (!stopped_.empty() && fault_step_ > 1 && trace_->events.back().kind == BuildEventKind::Done) --fault_step_;
+  if (request_.build_call_limit) player_.seek(fault_step_);
   active_ = true;
   dirty_ = true;
 }
@@ -112,6 +164,8 @@ void BuildPlayer::reset() {
   replay_.reset();
   scene_.reset();
   attempts_ = 0;
+  stopped_.clear();
+  note_.clear();
   player_.clear();
   view_ = BuildView{};
   gl_.changed();
@@ -165,12 +219,17 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
     ImGui::End();
     return;
   }
-  ImGui::TextDisabled("%s (%s): %s", request_.name.c_str(), build_code_label(code_kind_), trace_->coverage().c_str());
+  // A replay's recording is "complete" only as far as the build went: up to the fault.
+  std::string coverage = trace_->coverage();
+  if (!stopped_.empty() && coverage == "complete") coverage = "every step up to the fault";
+  ImGui::TextDisabled("%s (%s): %s", request_.name.c_str(), build_code_label(code_kind_), coverage.c_str());
   if (attempts_ > 1) {
     ImGui::SameLine();
     ImGui::TextDisabled("(%zu attempts)", attempts_);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("the step budget ran out: re-recorded with half the depth");
   }
+
+  replay_lines();
 
   transport_controls(player_, {0, "nothing recorded"});
 
@@ -206,6 +265,26 @@ void BuildPlayer::control_panel(const PanelPlace& where, const std::shared_ptr<c
   ImGui::Checkbox("SAH cost plot", &sah_plot_);
   if (sah_plot_) cost_plot_widget();
   ImGui::End();
+}
+
+void BuildPlayer::replay_lines() {
+  const size_t calls = request_.build_call_limit;
+  if (!calls) return;
+  if (stopped_.empty()) {
+    ImGui::TextDisabled("construct-until %zu: the build made fewer build-log calls; played whole", calls);
+    return;
+  }
+  // What the viewer knows is where it stopped the build; what failed there, the check's
+  // comments say (its state file's), when the replay came from one.
+  std::string line = player_.step() >= fault_step_ ? "the build failed here in the check"
+                                                   : "the build failed in the check after its last step";
+  line += note_.empty() ? ": " + stopped_ : " (after " + std::to_string(calls) + " build-log calls): " + note_[0];
+  ui::error_text(line, ImGui::GetContentRegionAvail().x);
+  for (size_t i = 1; i < note_.size(); ++i) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kDimText);
+    ImGui::TextWrapped("%s", note_[i].c_str());
+    ImGui::PopStyleColor();
+  }
 }
 
 void BuildPlayer::cost_plot_widget() {
@@ -297,9 +376,11 @@ KeyGroup BuildPlayer::key_bindings(ToolHost& host) {
   std::vector<KeyBinding> rows = {
       {GLFW_KEY_B, "B", "construction mode: record the current structure's build (again: back to the traversal)",
        [this, &host](const KeyPress&) {
+         // A failed build's replay has no structure, but its construction plays again.
+         const StructureSession& session = host.session();
          if (active())
            set_active(false);
-         else if (host.session().current() && !recording())
+         else if ((session.current() || session.current_request().build_call_limit) && !recording())
            host.construct();
          return true;
        }},
@@ -327,6 +408,22 @@ std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
          host.construct();  // synchronous in script mode; in the window the playlist waits for it
          if (!host.synchronous()) return {};
          return need("construct");
+       }},
+      {CommandKind::ConstructUntil,
+       [this, &host, need](const ScriptCommand& c, ScriptHost&) -> accel::Status {
+         // No need_structure(): a failed build's replay has none (its structure line's build
+         // stopped too); what it needs is a student's structure, whose build log is counted.
+         StructureSession& session = host.session();
+         const StructureRequest request = session.current_request();
+         auto info = accel::find_structure(request.name);
+         if (!info) return info.error();
+         if (!info.value()->student)
+           return accel::make_error("construct-until: " + request.name +
+                                    " is not a student's structure (only the kit counts build-log calls; use "
+                                    "construct)");
+         construct_until(session.scene_ptr(), request, c.calls, c.params, host.synchronous());
+         if (!host.synchronous()) return {};
+         return need("construct-until");
        }},
       {CommandKind::BuildStep,
        [this, &host, need](const ScriptCommand& c, ScriptHost& h) -> accel::Status {

@@ -4,10 +4,13 @@
 // and cancel), plays its steps (BuildStepPlayer), draws the partly built structure of the
 // current step (tools/build_playback.h) and shows the "Construction", "Construction steps"
 // and "Construction code" panels in the places of the traversal panels while the mode is on.
+// A student's failed build is replayed up to the fault (construct-until): its build stopped
+// at the check's count of build-log calls, the failure said in red in the Construction panel.
 // Gets the scene and structure request passed in; App only wires it.
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "built_structure.h"
 #include "commands.h"
@@ -29,6 +32,13 @@ class BuildPlayer {
   /// Records the build of `request` over `scene` and turns the mode on; `synchronous`
   /// (script mode) records before returning. A recording in progress is cancelled first.
   void construct(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request, bool synchronous);
+  /// A student's failed build replayed up to the fault (construct-until): records the build
+  /// of `request` stopped right after its `calls`-th build-log call and opens it on that
+  /// call's step; `note` is what the check said of the failure (its state file's comments),
+  /// shown in the Construction panel with the stop. A build of fewer calls is played whole
+  /// (opened at its end).
+  void construct_until(std::shared_ptr<const accel::Scene> scene, StructureRequest request, size_t calls,
+                       std::vector<std::string> note, bool synchronous);
   /// Takes a finished recording (per frame).
   void poll();
   /// Cancels a recording in progress.
@@ -62,7 +72,8 @@ class BuildPlayer {
   void update();
 
   /// Its keys (B records or leaves the mode; play, step, first / last, speed) and script
-  /// verbs (construct, build-step, print-build-step, sah-plot); `host` gives the structure.
+  /// verbs (construct, construct-until, build-step, print-build-step, sah-plot); `host`
+  /// gives the structure.
   KeyGroup key_bindings(ToolHost& host);
   std::vector<VerbRun> script_verbs(ToolHost& host);
 
@@ -80,9 +91,19 @@ class BuildPlayer {
   void release_gl() { gl_.release(); }
 
  private:
+  void record(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,
+              std::vector<std::string> note, bool synchronous);
   void cost_plot_widget();
+  void replay_lines();
 
-  Job<accel::Result<accel::RecordedBuild>> job_;
+  /// A recording's outcome, and why its build stopped when it was a failed build's replay
+  /// stopped at its build-log call limit ("" otherwise).
+  struct Recording {
+    accel::Result<accel::RecordedBuild> build;
+    std::string stopped;
+  };
+
+  Job<Recording> job_;
   std::shared_ptr<accel::BuildControl> control_;
   std::shared_ptr<const accel::Scene> scene_;          // the recorded build's scene
   std::shared_ptr<const accel::Scene> pending_scene_;  // of the recording in progress
@@ -93,6 +114,11 @@ class BuildPlayer {
   double sah_ct_ = 1.0, sah_ci_ = 1.0;  ///< the structure's SAH constants, for the cost so far
   int sah_prims_per_test_ = 1;           ///< and its triangles per leaf test (4: wide layouts)
   std::string error_;
+  // A failed build's replay: why the recorded build stopped ("" when it ran to its end), and
+  // what the check said of the failure (shown with it; pending_: of the recording in progress).
+  std::string stopped_;
+  std::vector<std::string> note_, pending_note_;
+  size_t fault_step_ = 0;  ///< the step a replay opens at: its last call's
   BuildCodeKind code_kind_ = BuildCodeKind::Unknown;
   BuildStepPlayer player_;
   bool active_ = false;

@@ -2,9 +2,11 @@
 
 #include <cmath>
 
+#include "student/kit_structure.h"
+
 namespace viz {
 
-void DebugRay::record(const accel::Structure& s, bool keep_step) {
+void DebugRay::record(const accel::Structure& s, bool keep_step, const accel::Scene* scene) {
   accel::TraceRecorder recorder;
   hit = s.intersect_traced(ray, recorder);
   truncated = recorder.truncated();
@@ -14,6 +16,13 @@ void DebugRay::record(const accel::Structure& s, bool keep_step) {
   else
     stats = recorder.stats();
   vars = recorder.recorded_vars();
+  // The audit reads the recorded walk once here, with the trace, never per frame: its
+  // lossy check is one brute-force pass over the scene (find_lossy), worth it for one ray.
+  audit.reset();
+  if (const auto* kit = dynamic_cast<const accel::KitStructure*>(&s); kit && scene) {
+    const accel::WalkAuditor auditor(kit->tree(), kit->kind(), *scene);
+    audit = auditor.audit(ray, recorder.events(), vars, /*find_lossy=*/true);
+  }
   player.load(recorder.events(), keep_step);
 }
 

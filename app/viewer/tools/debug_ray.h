@@ -1,12 +1,15 @@
 #pragma once
 // GL-free half of the ray debugger (tools/ray_debugger.h is the tool): the debug ray, its
-// traversal recorded by the structure's real intersect_traced, and where to draw its end.
+// traversal recorded by the structure's real intersect_traced, the kit's audit of that
+// walk for a student's structure, and where to draw its end.
 // tests/app/test_ray_debugger.cpp drives it without a window.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry.h"
 #include "structure.h"
+#include "student/walk_audit.h"
 #include "trace.h"
 #include "trace_player.h"
 
@@ -25,10 +28,15 @@ struct DebugRay {
   /// The traversal made more steps than the recorder's budget keeps: the player has the
   /// first ones and the answer; `stats` count the whole traversal all the same.
   bool truncated = false;
+  /// A student's structure (accel::KitStructure): every claim of its traversal log checked
+  /// against the geometry, once per recording (tools/false_claims.h shows the false ones).
+  /// Nothing for a built-in structure: its walk is the core's own and is never audited.
+  std::optional<accel::WalkAudit> audit;
 
   /// Records the ray's traversal of `s` (its real intersect_traced). keep_step: the same ray
-  /// replayed after a rebuild keeps its step, clamped.
-  void record(const accel::Structure& s, bool keep_step);
+  /// replayed after a rebuild keeps its step, clamped. `scene`: the scene `s` was built over;
+  /// with it a student's walk is audited (without it, not).
+  void record(const accel::Structure& s, bool keep_step, const accel::Scene* scene = nullptr);
 };
 
 /// The ray's end point for drawing: the hit, or where it leaves `bounds` (grown a little),

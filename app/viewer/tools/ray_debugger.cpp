@@ -9,6 +9,7 @@
 #include "panels.h"
 #include "rays_io.h"
 #include "tools/build_player.h"
+#include "tools/false_claims.h"
 #include "tools/structure_session.h"
 #include "tools/transport_controls.h"
 #include "tools/traversal_numbers.h"
@@ -21,6 +22,7 @@ namespace {
 using ui::kCullText;
 using ui::kCurrentText;
 using ui::kDimText;
+using ui::kFalseClaimText;
 using ui::hit_text;
 using ui::miss_text;
 using ui::kQueueText;
@@ -74,10 +76,11 @@ void RayDebugger::set_ray(const accel::Ray& ray, const std::string& origin, cons
     typed_ray_[3 + i] = ray.dir[i];
   }
   if (built) {
-    ray_.record(*built->structure, /*keep_step=*/false);
+    ray_.record(*built->structure, /*keep_step=*/false, built->scene.get());
   } else {
     ray_.hit = accel::Hit{};
     ray_.vars.clear();
+    ray_.audit.reset();
     ray_.player.clear();
   }
   dirty_ = true;
@@ -87,7 +90,7 @@ void RayDebugger::replay(const BuiltStructure* built) {
   if (!ray_.active) return;
   if (built) {
     // Same ray, new structure: the step index stays, clamped to the new trace.
-    ray_.record(*built->structure, /*keep_step=*/true);
+    ray_.record(*built->structure, /*keep_step=*/true, built->scene.get());
   }
   dirty_ = true;
 }
@@ -104,7 +107,7 @@ std::string RayDebugger::step_line() const {
   if (!e) return "no trace";
   char text[64];
   std::snprintf(text, sizeof text, "step %zu/%zu: ", ray_.player.step() + 1, ray_.player.size());
-  return text + accel::describe_event(*e);
+  return text + step_text(*e, claims_at(ray_.audit, ray_.player.step()));
 }
 
 void RayDebugger::reset() {
@@ -161,10 +164,17 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
   });
 
   if (has) {
-    // The current step, large and in its colour.
+    // The current step, large and in its colour; a false claim of a student's log in the
+    // warning colour with the truth, instead of the log's sentence when the step is the claim.
     const accel::TraceEvent& e = *p.current();
-    ImGui::PushStyleColor(ImGuiCol_Text, event_color(e));
-    ImGui::TextWrapped("%s", accel::describe_event(e).c_str());
+    const std::vector<const accel::FalseClaim*> claims = claims_at(ray_.audit, p.step());
+    if (claims.empty() || !event_is_claim(e)) {
+      ImGui::PushStyleColor(ImGuiCol_Text, event_color(e));
+      ImGui::TextWrapped("%s", accel::describe_event(e).c_str());
+      ImGui::PopStyleColor();
+    }
+    ImGui::PushStyleColor(ImGuiCol_Text, kFalseClaimText);
+    for (const accel::FalseClaim* c : claims) ImGui::TextWrapped("%s", false_claim_text(*c).c_str());
     ImGui::PopStyleColor();
     const accel::TraceHighlight& h = highlights_.step;
     // Counters of this ray: up to this step, and for the whole traversal.
@@ -197,6 +207,12 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
       ImGui::Text("answer: triangle %d at t=%.5g", ray_.hit.prim, static_cast<double>(ray_.hit.t));
     else
       ImGui::TextUnformatted("answer: miss");
+    // A student's walk: how much of its log the kit found false (the steps say which).
+    if (ray_.audit) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ray_.audit->claims.empty() ? kDimText : kFalseClaimText);
+      ImGui::TextWrapped("%s", claims_summary(*ray_.audit).c_str());
+      ImGui::PopStyleColor();
+    }
     // Stack / priority queue contents, reconstructed from the push/pop events so far.
     if (!h.pending.empty()) {
       const bool pq = built && built->kind == TraversalKind::HierarchyPqueue;
@@ -233,6 +249,7 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
     ImGui::TextColored(kQueueText, "pending on the stack / queue (thick: popped next)");
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.15f, 1.0f), "skipped: entered beyond the closest hit");
     ImGui::TextColored(ImVec4(0.7f, 0.55f, 1.0f, 1.0f), "skipped: the ray misses its bounds");
+    ImGui::TextColored(kFalseClaimText, "FALSE: a student's logged claim the geometry contradicts");
     ImGui::TextColored(hit_text(), "triangle tested: hit");
     ImGui::SameLine();
     ImGui::TextColored(miss_text(), "  miss");
@@ -270,10 +287,13 @@ void RayDebugger::steps_panel(const PanelPlace& where) {
   const auto clicked = step_list(events.size(), current, current, steps_, [&](size_t i) {
     const accel::TraceEvent& e = events[i];
     const bool marked = marked_step_ && *marked_step_ == i;
-    // The marked step (a naive traversal's stop) in the trap window's colour.
-    std::string text = accel::describe_event(e);
+    const std::vector<const accel::FalseClaim*> claims = claims_at(ray_.audit, i);
+    // The marked step (a naive traversal's stop) in the trap window's colour; a student's
+    // false claim in the warning colour.
+    std::string text = step_text(e, claims);
     if (marked) text += "   <- " + marked_note_;
-    return StepRow{e.depth, text, marked ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f) : event_color(e)};
+    const ImVec4 color = marked ? ImVec4(1.0f, 0.35f, 0.85f, 1.0f) : !claims.empty() ? kFalseClaimText : event_color(e);
+    return StepRow{e.depth, text, color};
   });
   if (clicked) {
     ray_.player.pause();
@@ -397,6 +417,12 @@ std::vector<VerbRun> RayDebugger::script_verbs(ToolHost& host) {
       {CommandKind::PrintHit, print(&RayDebugger::need_ray, &RayDebugger::hit_line)},
       {CommandKind::PrintStep, print(&RayDebugger::need_trace, &RayDebugger::step_line)},
       {CommandKind::PrintRay, print(&RayDebugger::need_ray, &RayDebugger::ray_line)},
+      {CommandKind::PrintClaims,
+       [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
+         if (auto st = need_trace(); !st) return accel::make_error("print-claims: " + st.error().message);
+         for (const std::string& line : claims_lines(ray_.audit)) print_script_line(line);
+         return {};
+       }},
       {CommandKind::PrintVars,
        [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
          if (auto st = need_trace(); !st) return accel::make_error("print-vars: " + st.error().message);

@@ -1,7 +1,8 @@
 #pragma once
 // The ray debugger: the debug ray and its recorded trace, the trace player, the highlights
 // of the current step (and their GL buffers), the saved viewpoint, and the "Debug ray",
-// "Traversal steps" and "Pseudo code" panels. Gets the structure passed in, never reads it.
+// "Traversal steps" and "Pseudo code" panels, where a student's false claims are marked
+// (tools/false_claims.h). Gets the structure passed in, never reads it.
 #include <optional>
 #include <string>
 
@@ -23,7 +24,8 @@ namespace viz {
 /// The debug ray and everything shown about its traversal.
 class RayDebugger {
  public:
-  /// Makes `ray` the debug ray and records its trace on `built` (nullptr: no structure).
+  /// Makes `ray` the debug ray and records its trace on `built` (nullptr: no structure);
+  /// a student's structure's walk is audited with it (DebugRay::audit).
   void set_ray(const accel::Ray& ray, const std::string& origin, const BuiltStructure* built);
   /// The ray through framebuffer pixel (px, py) of a view at `view` (x, y, w, h) seen by
   /// `camera`; `from_saved_view` aims from the saved viewpoint at the surface point there.
@@ -58,7 +60,8 @@ class RayDebugger {
   accel::Status need_ray() const;
   /// "hit PRIM T" or "miss" (print-hit).
   std::string hit_line() const;
-  /// "step I/N: EVENT" (print-step).
+  /// "step I/N: EVENT" (print-step); a student's false claim there as the steps list shows
+  /// it (tools/false_claims.h: step_text).
   std::string step_line() const;
   /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
   std::string ray_line() const;

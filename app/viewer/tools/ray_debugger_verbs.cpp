@@ -41,6 +41,10 @@ const ScriptVerb kVerbs[] = {
      "`vars: name=value ...` of the current step (the traversal's recorded variables, closest_hit, the stack or "
      "queue as NODE:KEY,...)",
      parse_no_words},
+    {"print-claims", CommandKind::PrintClaims, "print-claims",
+     "a student's structure: `claim STEP: CAUSE: CLAIM -- TRUTH` per logged claim the kit found false on this walk "
+     "(STEP as print-step counts), or `claims: none`",
+     parse_no_words},
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <imgui_stdlib.h>
 
 #include "browser.h"
+#include "paths.h"
 #include "screenshot.h"
 
 namespace viz {
@@ -72,16 +73,26 @@ void Recorder::capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer) {
   if (!wants_capture(with_ui) || framebuffer.x <= 0 || framebuffer.y <= 0) return;
   if (with_ui && screenshot_due_) {
     screenshot_due_ = false;
-    char name[32];
-    for (;; ++next_screenshot_) {
-      std::snprintf(name, sizeof name, "accelviz_%04d.png", next_screenshot_);
-      if (!std::filesystem::exists(name)) break;
-    }
-    const std::string path = std::filesystem::absolute(name).string();
-    if (auto st = save_framebuffer_png(name, framebuffer.x, framebuffer.y); !st) set_notice(st.error().message);
-    else {
-      set_notice("screenshot: wrote " + path);
-      browser::offer_download(path);  // the page: the browser saves it as a download
+    // The pictures folder, made on the first F12 (paths.h says which one).
+    const std::filesystem::path dir = std::filesystem::absolute(pictures_dir());
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+      set_notice("screenshot: cannot create the folder " + dir.string() + ": " + ec.message());
+    } else {
+      std::filesystem::path file;
+      for (;; ++next_screenshot_) {
+        char name[32];
+        std::snprintf(name, sizeof name, "accelviz_%04d.png", next_screenshot_);
+        file = dir / name;
+        if (!std::filesystem::exists(file)) break;
+      }
+      const std::string path = file.string();
+      if (auto st = save_framebuffer_png(path, framebuffer.x, framebuffer.y); !st) set_notice(st.error().message);
+      else {
+        set_notice("screenshot: wrote " + path);
+        browser::offer_download(path);  // the page: the browser saves it as a download
+      }
     }
   }
   if (!recording() || !due_ || options_.ui != with_ui) return;
@@ -124,7 +135,8 @@ bool Recorder::section() {
   if (ImGui::Button(recording() ? "Stop recording (R)" : "Record (R)")) pressed = true;
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("one frame per step of the animation: play it (space, or P for the construction)");
-  ImGui::TextDisabled("F12: screenshot to accelviz_NNNN.png");
+  ImGui::TextDisabled("F12: screenshot to the pictures folder");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s/accelviz_NNNN.png", std::filesystem::absolute(pictures_dir()).c_str());
   if (const std::string n = notice(); !n.empty()) ImGui::TextWrapped("%s", n.c_str());
   return pressed;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Recording for slides: the frames the animation shows -- one per traversal or construction
 // step -- written to an animated GIF or an MP4 (video_writer.h), the whole window or the 3D
-// view alone; and F12's numbered PNG screenshots. App tells it when a step changed and
+// view alone; and F12's numbered PNG screenshots in the pictures folder. App tells it when a step changed and
 // calls capture() after drawing the 3D view (before the panels) and after the panels, so a
 // recording without the UI holds the scene only.
 #include <memory>
@@ -34,8 +34,8 @@ class Recorder {
   /// The animation moved to another step: the next frame drawn is recorded.
   void step_changed() { due_ = true; }
 
-  /// F12: the next finished frame goes to the next free accelviz_NNNN.png in the working
-  /// directory (the notice says where).
+  /// F12: the next finished frame goes to the next free accelviz_NNNN.png in the pictures
+  /// folder (paths.h: pictures_dir(), made when missing; the notice says where).
   void request_screenshot() { screenshot_due_ = true; }
   /// Whether capture() has work for this frame (skips the read-back otherwise).
   bool wants_capture(bool with_ui) const;

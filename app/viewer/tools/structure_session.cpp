@@ -144,6 +144,13 @@ void StructureSession::poll_build() {
   if (!result) return;
   if (!*result) {
     build_error_ = result->error().message;
+    if (requested_.build_call_limit) {
+      // A failed build's replay: nothing is left to query or draw, not even the structure
+      // shown before it (a debug ray would walk that one); the construction shows the replay.
+      built_.reset();
+      events_.structure_installed = true;
+      build_error_ = "the failed build's replay: no structure to query (" + build_error_ + ")";
+    }
     browser::log_line(build_error_);
   } else if (result->value()->scene == scene_) {
     install(std::move(result->value()));
@@ -160,15 +167,18 @@ SessionEvents StructureSession::take_events() {
 StructureRequest StructureSession::editor_request() const {
   StructureRequest r = editor_.request();
   r.geometry.empty_cells = empty_cells_;
+  if (editor_.info().student) r.build_call_limit = build_call_limit_;
   return r;
 }
 
-void StructureSession::switch_structure(const std::string& name, const std::vector<std::string>& params) {
+void StructureSession::switch_structure(const std::string& name, const std::vector<std::string>& params,
+                                        size_t build_call_limit) {
   StructureRequest r;
   r.name = name;
   r.params = params;
   r.kernel = editor_.kernel();
   editor_.set(r);
+  build_call_limit_ = build_call_limit;
   rebuild();
 }
 
@@ -383,9 +393,13 @@ std::vector<VerbRun> StructureSession::script_verbs(ToolHost& host) {
          return host.loaded();
        }},
       {CommandKind::Structure,
-       [this, changed](const ScriptCommand& c, ScriptHost&) {
-         switch_structure(c.name, c.params);
-         return changed({});
+       [this, &host, changed](const ScriptCommand& c, ScriptHost&) {
+         switch_structure(c.name, c.params, c.calls);
+         if (c.calls == 0) return changed({});
+         // A failed build's replay (construct-until follows): its build stopped, so there is
+         // no structure to wait for; the construct-until says how the replay went.
+         host.sync_session();
+         return accel::Status{};
        }},
       {CommandKind::Kernel,
        [this, changed](const ScriptCommand& c, ScriptHost&) {

@@ -23,7 +23,8 @@ namespace viz {
 /// What happened in the session since take_events(): the App tells the other tools.
 struct SessionEvents {
   bool scene_loaded = false;         ///< a new scene: old rays, comparisons and images are void
-  bool structure_installed = false;  ///< a new structure is drawn (current() changed)
+  bool structure_installed = false;  ///< a new structure is drawn (current() changed; null after a
+                                     ///< failed build's replay)
   bool scene_edited = false;         ///< the blackboard's scene changed (the camera and ray stay)
 };
 
@@ -72,8 +73,12 @@ class StructureSession {
   /// The events since the last call.
   SessionEvents take_events();
 
-  /// Shows structure `name` with `params` (the editor's kernel kept) and builds it.
-  void switch_structure(const std::string& name, const std::vector<std::string>& params);
+  /// Shows structure `name` with `params` (the editor's kernel kept) and builds it. With a
+  /// `build_call_limit` (a student's failed build replayed, construct-until) its builds stop
+  /// after that many build-log calls until another structure is chosen: the build ends in an
+  /// error that says it is the replay, and there is no structure to query.
+  void switch_structure(const std::string& name, const std::vector<std::string>& params,
+                        size_t build_call_limit = 0);
   /// Chooses the triangle kernel and rebuilds.
   void set_kernel(accel::Kernel kernel);
   /// Whether builds list a grid's empty cells (the node display asks for it).
@@ -162,6 +167,7 @@ class StructureSession {
   BuiltPtr built_;
   BuildRunner builds_;
   StructureRequest requested_;  // the latest request (shown as "building")
+  size_t build_call_limit_ = 0;  // a failed build's replay: the student structure's builds stop there
   std::string build_error_;
   bool synchronous_ = false;
   SessionEvents events_;

@@ -5,7 +5,9 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "registry.h"
 #include "tools/ray_debugger.h"
+#include "tools/structure_session.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -26,10 +28,28 @@ void answer_row(const char* who, bool hit, int32_t prim, double t, const ImVec4&
 
 }  // namespace
 
-void TrapTool::update(const DebugRay& ray, const accel::Scene& scene) {
+void TrapTool::set_demo(const accel::TrapDemo& demo) {
+  demo_ = demo;
+  // As build_structure_now writes params_text: the demo's parameters and every default.
+  auto choice = accel::parse_structure(demo.structure, demo.params);
+  demo_params_ = choice ? choice.value().params.to_string_all() : "";
+}
+
+bool TrapTool::demo_applies(const BuiltStructure* built) const {
+  // Another structure, or the same with other parameters (another split, another
+  // resolution), has other numbers than the explanation's, or no such trap at all.
+  return demo_ && built && built->request.name == demo_->structure && built->params_text == demo_params_;
+}
+
+std::string TrapTool::trap_line(const BuiltStructure* built) const {
+  return demo_applies(built) ? "trap " + demo_->name + ": " + demo_->title : "trap: none";
+}
+
+void TrapTool::update(const DebugRay& ray, const accel::Scene& scene, const BuiltStructure* built) {
+  demo_applies_ = demo_applies(built);
   const auto& events = ray.player.events();
   const bool same = computed_ && ray.ray.org == ray_.org && ray.ray.dir == ray_.dir && events.data() == events_ &&
-                    events.size() == event_count_ && &scene == scene_;
+                    events.size() == event_count_ && &scene == scene_ && demo_applies_ == brute_for_demo_;
   if (same) return;
   computed_ = true;
   ray_ = ray.ray;
@@ -41,11 +61,12 @@ void TrapTool::update(const DebugRay& ray, const accel::Scene& scene) {
   misleads_ = !events.empty() &&
               (naive_.hit != ray.hit.valid() || (naive_.hit && naive_.prim != ray.hit.prim && naive_.t != ray.hit.t));
   // Brute force is one pass over every triangle: only for a ray the window shows.
-  if (ray.active && (demo_ || misleads_)) brute_ = accel::reference_closest(scene, ray.ray);
+  brute_for_demo_ = demo_applies_;
+  if (ray.active && (demo_applies_ || misleads_)) brute_ = accel::reference_closest(scene, ray.ray);
 }
 
 std::optional<size_t> TrapTool::marked_step() const {
-  if (!computed_ || !naive_.hit || !(demo_ || misleads_)) return std::nullopt;
+  if (!computed_ || !naive_.hit || !(demo_applies_ || misleads_)) return std::nullopt;
   return naive_.stop_step;
 }
 
@@ -64,13 +85,13 @@ std::string TrapTool::section() const {
 }
 
 bool TrapTool::shown(const DebugRay& ray) const {
-  return open_ && ray.active && !ray.player.empty() && (demo_ || misleads_);
+  return open_ && ray.active && !ray.player.empty() && (demo_applies_ || misleads_);
 }
 
 void TrapTool::block(const DebugRay& ray, accel::TracePlayer& player) {
   if (!shown(ray)) return;
   if (!ImGui::CollapsingHeader("Lecture trap", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  if (demo_) {
+  if (demo_applies_) {
     ImGui::PushStyleColor(ImGuiCol_Text, ui::kCurrentText);
     ImGui::TextWrapped("%s", demo_->title.c_str());
     ImGui::PopStyleColor();
@@ -112,6 +133,10 @@ std::vector<VerbRun> TrapTool::script_verbs(ToolHost& host) {
           {CommandKind::PrintNaive, [&host](const ScriptCommand&, ScriptHost&) -> accel::Status {
              if (auto st = host.ray().need_trace(); !st) return accel::make_error("print-naive: " + st.error().message);
              print_script_line(accel::naive_line(accel::naive_first_leaf_hit(host.ray().ray().player.events())));
+             return {};
+           }},
+          {CommandKind::PrintTrap, [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
+             print_script_line(trap_line(host.session().current()));
              return {};
            }}};
 }

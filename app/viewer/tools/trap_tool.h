@@ -3,12 +3,14 @@
 // shows, for the debug ray, what a naive traversal that stops at the first leaf or cell
 // with a hit would answer -- computed from the recorded steps, for display only -- next to
 // the traversal's answer and brute force. The "Lecture trap" block (top of the Variables
-// panel) appears while a demonstration is loaded, and for any ray on which the naive
-// answer would be wrong.
+// panel) explains the demonstration while its scene and its structure (with the demo's
+// parameters: the explanation's numbers are that tree's) are shown, and appears for any ray
+// on which the naive answer would be wrong.
 #include <optional>
 #include <string>
 
 #include "accuracy.h"
+#include "built_structure.h"
 #include "commands.h"
 #include "scene.h"
 #include "tool_host.h"
@@ -21,14 +23,18 @@ namespace viz {
 class TrapTool {
  public:
   /// Marks `demo` as the one shown (after its scene, structure and ray were loaded).
-  void set_demo(const accel::TrapDemo& demo) { demo_ = demo; }
+  void set_demo(const accel::TrapDemo& demo);
   /// A scene other than the demonstration's was loaded.
   void on_scene_loaded(const std::string& spec) {
     if (demo_ && demo_->scene != spec) demo_.reset();
   }
   /// Recomputes the naive answer (and brute force, when it is shown) when the debug ray or
-  /// its trace changed.
-  void update(const DebugRay& ray, const accel::Scene& scene);
+  /// its trace changed; `built` (may be null) is the structure the ray was traced on: the
+  /// demonstration's explanation is shown only while it is the demonstration's.
+  void update(const DebugRay& ray, const accel::Scene& scene, const BuiltStructure* built);
+  /// Whether the demonstration's explanation applies to `built`: the demonstration's
+  /// structure with the same parameters, over its scene.
+  bool demo_applies(const BuiltStructure* built) const;
 
   /// The naive answer for the current trace.
   const accel::NaiveAnswer& naive() const { return naive_; }
@@ -36,10 +42,13 @@ class TrapTool {
   bool misleads() const { return misleads_; }
   /// "naive hit PRIM T" or "naive miss" (print-naive).
   std::string naive_line() const { return accel::naive_line(naive_); }
+  /// "trap NAME: TITLE" while a demonstration's explanation applies to `built`, else
+  /// "trap: none" (print-trap).
+  std::string trap_line(const BuiltStructure* built) const;
   /// The step the steps list marks ("naive stop"), or nothing.
   std::optional<size_t> marked_step() const;
 
-  /// Its script verbs (trap, print-naive); `host` loads the trap's scene and ray.
+  /// Its script verbs (trap, print-naive, print-trap); `host` loads the trap's scene and ray.
   std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
@@ -55,6 +64,8 @@ class TrapTool {
 
  private:
   std::optional<accel::TrapDemo> demo_;
+  std::string demo_params_;    // the demo's every parameter, as BuiltStructure::params_text
+  bool demo_applies_ = false;  // demo_applies() of the structure update() last saw
   bool open_ = true;
   accel::NaiveAnswer naive_;
   bool misleads_ = false;
@@ -64,6 +75,7 @@ class TrapTool {
   size_t event_count_ = 0;
   const accel::Scene* scene_ = nullptr;
   bool computed_ = false;
+  bool brute_for_demo_ = false;  // demo_applies_ when brute_ was decided on
   std::optional<accel::ReferenceHit> brute_;
 };
 

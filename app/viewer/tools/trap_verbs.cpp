@@ -17,6 +17,10 @@ const ScriptVerb kVerbs[] = {
     {"print-naive", CommandKind::PrintNaive, "print-naive",
      "`naive hit PRIM T` or `naive miss`: what a traversal stopping at the first leaf with a hit would answer",
      parse_no_words},
+    {"print-trap", CommandKind::PrintTrap, "print-trap",
+     "`trap NAME: TITLE` while the trap's explanation applies (its scene and structure with its parameters), "
+     "else `trap: none`",
+     parse_no_words},
 };
 
 }  // namespace

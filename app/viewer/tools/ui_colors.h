@@ -25,5 +25,8 @@ inline const ImVec4 kDimText(0.62f, 0.65f, 0.72f, 1.0f);
 inline const ImVec4 kVisitedText(0.85f, 0.88f, 0.95f, 1.0f);
 inline const ImVec4 kCullMissedText(0.7f, 0.55f, 1.0f, 1.0f);
 inline const ImVec4 kSelectedText(1.0f, 0.3f, 0.9f, 1.0f);
+/// A student's logged claim that the geometry contradicts (tools/false_claims.h): a red apart
+/// from the skipped nodes' orange, so a false skip never reads as an ordinary one.
+inline const ImVec4 kFalseClaimText(1.0f, 0.3f, 0.3f, 1.0f);
 
 }  // namespace viz::ui

@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <span>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/false_claims.h"
 #include "tools/traversal_numbers.h"
 #include "tools/ui_colors.h"
 
@@ -19,6 +23,7 @@ namespace {
 using ui::kCullText;
 using ui::kCurrentText;
 using ui::kDimText;
+using ui::kFalseClaimText;
 using ui::hit_text;
 using ui::kQueueText;
 
@@ -42,6 +47,13 @@ void value_row(const char* name, const std::string& value, ImFont* mono, const I
   if (mono) ImGui::PushFont(mono);
   ImGui::TextColored(color, "%s", value.c_str());
   if (mono) ImGui::PopFont();
+}
+
+/// A student's false claims (tools/false_claims.h), each in the warning colour.
+void false_claims(std::span<const accel::FalseClaim* const> claims) {
+  ImGui::PushStyleColor(ImGuiCol_Text, kFalseClaimText);
+  for (const accel::FalseClaim* c : claims) ImGui::TextWrapped("%s", false_claim_text(*c).c_str());
+  ImGui::PopStyleColor();
 }
 
 constexpr ImGuiTableFlags kTable = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_BordersInnerH |
@@ -81,7 +93,7 @@ void grid_vars(const accel::GridDdaVars& v, float closest, ImFont* mono) {
   }
 }
 
-void kd_split_vars(const accel::KdSplitVars& v, ImFont* mono) {
+void kd_split_vars(const accel::KdSplitVars& v, ImFont* mono, std::span<const accel::FalseClaim* const> claims) {
   if (ImGui::BeginTable("kd", 2, kTable)) {
     value_row("t_min", num(v.t_min), mono);
     value_row("t_split", num(v.t_split), mono, kCurrentText);
@@ -100,15 +112,17 @@ void kd_split_vars(const accel::KdSplitVars& v, ImFont* mono) {
       {accel::KdCase::NearOnly, "(b) t_split > t_max: near child only"},
       {accel::KdCase::FarOnly, "(c) t_split < t_min: far child only"},
   };
+  // The case the log took is marked as taken; a false one is said so below it.
   for (const Case& c : cases) {
     const bool on = c.kase == v.kase;
-    ImGui::PushStyleColor(ImGuiCol_Text, on ? kCurrentText : kDimText);
+    ImGui::PushStyleColor(ImGuiCol_Text, on ? (claims.empty() ? kCurrentText : kFalseClaimText) : kDimText);
     ImGui::TextWrapped("%s %s", on ? ">" : " ", c.text);
     ImGui::PopStyleColor();
   }
+  false_claims(claims);
 }
 
-void kd_exit_vars(const accel::KdExitVars& v, ImFont* mono) {
+void kd_exit_vars(const accel::KdExitVars& v, ImFont* mono, std::span<const accel::FalseClaim* const> claims) {
   ImGui::PushStyleColor(ImGuiCol_Text, kQueueText);
   ImGui::TextWrapped("pop the far child %u: early exit if t_hit < t_split", v.far_child);
   ImGui::PopStyleColor();
@@ -116,6 +130,11 @@ void kd_exit_vars(const accel::KdExitVars& v, ImFont* mono) {
     value_row("t_hit", num(v.t_hit), mono);
     value_row("t_split", num(v.t_split), mono);
     ImGui::EndTable();
+  }
+  // A false early exit is never narrated as the lecture's (true) one: the truth instead.
+  if (!claims.empty()) {
+    false_claims(claims);
+    return;
   }
   ImGui::PushStyleColor(ImGuiCol_Text, v.exits ? hit_text() : kCullText);
   if (v.exits)
@@ -137,7 +156,7 @@ const char* fate_text(accel::OctreeOrderVars::Fate f) {
   return "";
 }
 
-void octree_vars(const accel::OctreeOrderVars& v, ImFont* mono) {
+void octree_vars(const accel::OctreeOrderVars& v, ImFont* mono, std::span<const accel::FalseClaim* const> claims) {
   ImGui::PushStyleColor(ImGuiCol_Text, kDimText);
   ImGui::TextWrapped("child order: octant i ^ mask, mask = %u (axes the ray travels down)", v.mask);
   ImGui::PopStyleColor();
@@ -162,6 +181,7 @@ void octree_vars(const accel::OctreeOrderVars& v, ImFont* mono) {
     ImGui::EndTable();
   }
   if (mono) ImGui::PopFont();
+  false_claims(claims);
 }
 
 void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* mono) {
@@ -205,12 +225,25 @@ void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel:
     return;
   }
   ImGui::TextDisabled("%s, step %zu of %zu", traversal_label(kind), h.step + 1, events.size());
+  // A student's false claims: those of the variables shown (recorded at an earlier step of
+  // this node, e.g. the early exit's pop before its cull) beside them; the current step's
+  // others (a cull) here first.
+  const std::optional<size_t> vars_event = shown_vars_event(events, ray.vars, h.step);
+  const std::vector<const accel::FalseClaim*> vars_claims =
+      vars_event ? claims_at(ray.audit, *vars_event) : std::vector<const accel::FalseClaim*>{};
+  if (!vars_event || *vars_event != h.step) false_claims(claims_at(ray.audit, h.step));
   const accel::StepVars* v = accel::vars_at(events, ray.vars, h.step);
   if (v) {
-    if (const auto* g = std::get_if<accel::GridDdaVars>(v)) grid_vars(*g, h.closest_t, mono);
-    else if (const auto* k = std::get_if<accel::KdSplitVars>(v)) kd_split_vars(*k, mono);
-    else if (const auto* x = std::get_if<accel::KdExitVars>(v)) kd_exit_vars(*x, mono);
-    else if (const auto* o = std::get_if<accel::OctreeOrderVars>(v)) octree_vars(*o, mono);
+    if (const auto* g = std::get_if<accel::GridDdaVars>(v)) {
+      grid_vars(*g, h.closest_t, mono);
+      false_claims(vars_claims);
+    } else if (const auto* k = std::get_if<accel::KdSplitVars>(v)) {
+      kd_split_vars(*k, mono, vars_claims);
+    } else if (const auto* x = std::get_if<accel::KdExitVars>(v)) {
+      kd_exit_vars(*x, mono, vars_claims);
+    } else if (const auto* o = std::get_if<accel::OctreeOrderVars>(v)) {
+      octree_vars(*o, mono, vars_claims);
+    }
   } else if (kind == TraversalKind::Grid || kind == TraversalKind::Grid2d || kind == TraversalKind::KdTree ||
              kind == TraversalKind::Octree) {
     ImGui::TextDisabled(h.node == accel::kNoNode ? "before the first node" : "a leaf: testing its triangles");

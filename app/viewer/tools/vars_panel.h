@@ -3,7 +3,9 @@
 // active pseudo code's variables, named as in the lecture) and the t-axis strip under the
 // 3D view (the ray's parameter range with every visited interval, the split distances,
 // the entry keys and the closest hit so far). Both show what the traversal recorded
-// (tools/traversal_numbers.h selects it); neither recomputes the structure's work.
+// (tools/traversal_numbers.h selects it); neither recomputes the structure's work. A
+// student's logged claim that the kit's audit found false is said so, with the truth
+// (tools/false_claims.h), never narrated as the lecture's.
 #include <functional>
 
 #include "commands.h"
