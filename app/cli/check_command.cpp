@@ -34,6 +34,7 @@
 #include "registry.h"
 #include "student/grader.h"
 #include "student/walk_audit.h"
+#include "text_format.h"
 
 extern char** environ;
 
@@ -93,17 +94,6 @@ std::string viewer_beside(const std::string& worker) {
   return viewer.native();
 }
 
-/// 25775 -> "25,775".
-std::string thousands(size_t n) {
-  const std::string digits = std::to_string(n);
-  std::string out;
-  for (size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
 /// "miss" / "triangle 12 at t=0.5" (`verb` before a hit: "hits ").
 std::string hit_text(const json& h, const std::string& verb) {
   if (h.value("prim", -1) < 0 || h["t"].is_null()) return verb.empty() ? "miss" : "misses";
@@ -135,54 +125,50 @@ std::string replay_scene(const std::string& category, const std::string& case_na
   return path;
 }
 
-/// Writes the replay of a failed build: the case's scene and a state that plays the
-/// construction up to the build-log call where it failed.
-std::string write_build_replay(const accel::BuildFault& f, const std::string& structure, const std::string& dir,
-                               size_t k, std::string* error) {
+/// Writes DIR/FILE, a viewer state: `header` (comment lines), the case's scene (generated
+/// scenes written beside it as OBJ), then `commands`. "" and `error` when it cannot.
+std::string write_state(const std::string& dir, const std::string& file, const std::string& category,
+                        const std::string& case_name, const accel::Scene& scene, const std::string& header,
+                        const std::string& commands, std::string* error) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) {
     *error = dir + ": cannot create the folder: " + ec.message();
     return "";
   }
-  const std::string scene = replay_scene(f.category, f.case_name, *f.scene, dir, error);
-  if (scene.empty()) return "";
-  const std::string state = (fs::path(dir) / ("build_fault" + std::to_string(k) + ".state")).native();
-  std::string what = f.what;
-  for (char& c : what)
-    if (c == '\n' || c == '\r') c = ' ';
-  const std::string text = "# accelviz-cli check: " + structure + ", " + f.category + "/" + f.case_name + ": " + what +
-                           "\n# " + f.node + "\nscene " + scene + "\nstructure " + structure + "\nconstruct-until " +
-                           std::to_string(f.log_calls) + "\n";
-  if (auto s = accel::write_file_atomic(state, text); !s) {
+  const std::string scene_arg = replay_scene(category, case_name, scene, dir, error);
+  if (scene_arg.empty()) return "";
+  const std::string state = (fs::path(dir) / file).native();
+  if (auto s = accel::write_file_atomic(state, header + "scene " + scene_arg + "\n" + commands); !s) {
     *error = s.error().message;
     return "";
   }
   return state;
 }
 
-/// Writes the replay of one wrong ray: a viewer state file (a script of the commands that
-/// rebuild the state: scene, structure, ray) and, for generated scenes, their OBJ.
+/// The replay of a failed build: a state that plays the construction up to the build-log
+/// call where it failed.
+std::string write_build_replay(const accel::BuildFault& f, const std::string& structure, const std::string& dir,
+                               size_t k, std::string* error) {
+  std::string what = f.what;
+  for (char& c : what)
+    if (c == '\n' || c == '\r') c = ' ';
+  return write_state(dir, "build_fault" + std::to_string(k) + ".state", f.category, f.case_name, *f.scene,
+                     "# accelviz-cli check: " + structure + ", " + f.category + "/" + f.case_name + ": " + what +
+                         "\n# " + f.node + "\n",
+                     "structure " + structure + "\nconstruct-until " + std::to_string(f.log_calls) + "\n", error);
+}
+
+/// The replay of one wrong ray: the scene, the structure, the ray (its tmin and tmax as C99
+/// hex floats) and the step of its cause.
 std::string write_replay(const accel::WrongRay& w, const std::string& structure, const std::string& dir, size_t k,
                          std::string* error) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    *error = dir + ": cannot create the folder: " + ec.message();
-    return "";
-  }
-  const std::string scene = replay_scene(w.category, w.case_name, *w.scene, dir, error);
-  if (scene.empty()) return "";
-  const std::string state = (fs::path(dir) / ("wrong" + std::to_string(k) + ".state")).native();
-  const std::string text = "# accelviz-cli check: " + structure + ", " + w.category + "/" + w.case_name + " ray " +
-                           std::to_string(w.index) + ": " + kVerdictKeys[int(w.verdict)] + ": " + w.cause + "\n" +
-                           "scene " + scene + "\nstructure " + structure + "\nray " + accel::format_ray_line(w.ray) +
-                           "\n" + (w.step != size_t(-1) && w.step > 0 ? "step " + std::to_string(w.step) + "\n" : "");
-  if (auto s = accel::write_file_atomic(state, text); !s) {
-    *error = s.error().message;
-    return "";
-  }
-  return state;
+  return write_state(dir, "wrong" + std::to_string(k) + ".state", w.category, w.case_name, *w.scene,
+                     "# accelviz-cli check: " + structure + ", " + w.category + "/" + w.case_name + " ray " +
+                         std::to_string(w.index) + ": " + kVerdictKeys[int(w.verdict)] + ": " + w.cause + "\n",
+                     "structure " + structure + "\nray " + accel::format_ray_line(w.ray) + "\n" +
+                         (w.step != size_t(-1) && w.step > 0 ? "step " + std::to_string(w.step) + "\n" : ""),
+                     error);
 }
 
 }  // namespace
@@ -319,12 +305,12 @@ void print_report(const json& r) {
   size_t k = 0, c_index = 0;
   for (const auto& c : causes) {
     const json cases = c.value("cases", json::array());
-    std::printf("cause %zu: %s rays in %zu case%s: %s\n", ++c_index, thousands(c.value("rays", size_t(0))).c_str(),
+    std::printf("cause %zu: %s rays in %zu case%s: %s\n", ++c_index, accel::with_separators(c.value("rays", size_t(0))).c_str(),
                 cases.size(), cases.size() == 1 ? "" : "s", c.value("title", "").c_str());
     std::printf("  lecture: %s\n", c.value("lecture", "").c_str());
     std::string most;
     for (size_t i = 0; i < cases.size() && i < 4; ++i)
-      most += (i ? ", " : "") + cases[i].value("case", "") + " " + thousands(cases[i].value("rays", size_t(0)));
+      most += (i ? ", " : "") + cases[i].value("case", "") + " " + accel::with_separators(cases[i].value("rays", size_t(0)));
     if (cases.size() > 4) most += ", and " + std::to_string(cases.size() - 4) + " more";
     std::printf("  in: %s\n", most.c_str());
     for (const auto& w : c.value("examples", json::array())) {
@@ -344,7 +330,7 @@ void print_report(const json& r) {
       ++with_wrong;
       if (shown++ < 12)
         per_case += (per_case.empty() ? "" : ", ") + c.value("case", "") + " " +
-                    thousands(c.value("wrong", size_t(0))) + "/" + thousands(c.value("rays", size_t(0)));
+                    accel::with_separators(c.value("wrong", size_t(0))) + "/" + accel::with_separators(c.value("rays", size_t(0)));
     }
     if (with_wrong > shown) per_case += ", and " + std::to_string(with_wrong - shown) + " more";
     std::printf("wrong answers per case: %s\n", per_case.c_str());

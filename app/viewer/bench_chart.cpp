@@ -3,6 +3,7 @@
 #include "geometry.h"
 #include "input_files.h"
 #include "registry.h"
+#include "text_format.h"
 
 #include <algorithm>
 #include <charconv>
@@ -101,15 +102,7 @@ std::string parse_row(const Json& object, BenchRow& row) {
   return "";
 }
 
-std::string with_separators(uint64_t n) {
-  const std::string digits = std::to_string(n);
-  std::string out;
-  for (size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
+using accel::with_separators;
 
 /// "%g" without an exponent for tick values: 0.5, 20, 2.5, 1000.
 std::string plain_number(double v) {

@@ -5,6 +5,7 @@
 
 #include <imgui.h>
 
+#include "text_format.h"
 #include "tools/ui_colors.h"
 
 namespace viz::ui {
@@ -15,15 +16,7 @@ const ImVec4 kErrorColor(1.0f, 0.42f, 0.38f, 1.0f);
 
 }  // namespace
 
-std::string with_separators(size_t n) {
-  std::string digits = std::to_string(n);
-  std::string out;
-  for (size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
+std::string with_separators(size_t n) { return accel::with_separators(n); }
 
 std::string fmt(const char* format, double v) {
   char text[64];

@@ -58,9 +58,15 @@ std::vector<std::pair<std::string, std::string>> peer_setup_like(const KitTree& 
     return out;
   }
   size_t splits = 0, middle = 0, median = 0, longest = 0, few_max = 0;
+  size_t pairs = 0, halved = 0;  // object partitions: two children whose counts differ by at most one
   int depth = 0;
   for (const KitNode& k : tree.nodes) {
     depth = std::max(depth, k.depth);
+    if (k.children.size() == 2) {
+      ++pairs;
+      const uint32_t a = tree.nodes[k.children[0]].prim_count, b = tree.nodes[k.children[1]].prim_count;
+      halved += (a > b ? a - b : b - a) <= 1 && a + b == k.prim_count;
+    }
     if ((k.leaf || k.children.empty()) && k.leaf_why == accelviz::LeafWhy::FewTriangles)
       few_max = std::max(few_max, k.prims.size());
     if (k.split_axis < 0) continue;
@@ -90,8 +96,12 @@ std::vector<std::pair<std::string, std::string>> peer_setup_like(const KitTree& 
     if (few_max) out.push_back({"max_prims", std::to_string(std::clamp<size_t>(few_max, 1, 4096))});
     out.push_back({"max_depth", std::to_string(std::clamp(depth, 0, 40))});
   } else {
-    out.push_back({"builder", mostly_median ? "median" : "binned_sah"});
-    if (mostly_median) out.push_back({"axis", mostly_longest ? "longest" : "round_robin"});
+    // A BVH's median split halves its triangles: seen in the children's counts even where the
+    // triangle lists are not kept (the viewer) or no split() was logged.
+    const bool halves = pairs && 10 * halved >= 9 * pairs;
+    const bool median_bvh = mostly_median || halves;
+    out.push_back({"builder", median_bvh ? "median" : "binned_sah"});
+    if (median_bvh && splits) out.push_back({"axis", mostly_longest ? "longest" : "round_robin"});
     if (few_max) out.push_back({"leaf_size", std::to_string(std::clamp<size_t>(few_max, 1, 64))});
     if (kind == K::bvh) out.push_back({"width", "2"});
   }

@@ -7,9 +7,9 @@ namespace {
 
 const ScriptVerb kVerbs[] = {
     {"compare", CommandKind::Compare, "compare",
-     "fill the \"same ray, every structure\" table; for a student's structure also print `compare-builtin` lines: "
-     "the first step where it differs from the built-in of its kind, and which answer is right "
-     "([the kit](student.md#in-the-viewer))",
+     "fill the \"same ray, every structure\" table; for a student's structure also print `compare-builtin` lines "
+     "against the built-in of its kind set up like it: the first difference in what the walks mean (its first false "
+     "claim, a nearest hit one walk never tests), and which answer is right ([the kit](student.md#in-the-viewer))",
      [](const VerbArgs& a, ScriptCommand&) -> std::string { return a.size() == 0 ? "" : a.usage_error(); }},
 };
 
