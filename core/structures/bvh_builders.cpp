@@ -23,14 +23,15 @@ namespace accel {
 
 // The table: the one place a builder is named. Its order is the parameter's.
 constexpr BvhBuilderInfo kBuilders[] = {
-    {BvhBuilderKind::Median, "median", "median", "top-down median split", build_median_tree},
-    {BvhBuilderKind::Sah, "sah", "SAH sweep", "SAH plane sweep on all axes", build_sweep_tree},
-    {BvhBuilderKind::BinnedSah, "binned_sah", "binned SAH", "binned SAH", build_binned_sah_tree},
-    {BvhBuilderKind::PcaSah, "pca_sah", "PCA + SAH", "SAH sweep along the PCA axis", build_pca_tree},
-    {BvhBuilderKind::BottomUp, "bottom_up", "bottom-up", "bottom-up agglomerative clustering", build_ploc_tree},
-    {BvhBuilderKind::Insertion, "insertion", "insertion", "Goldsmith-Salmon insertion", build_insertion_tree},
+    {BvhBuilderKind::Median, "median", "median", "top-down median split", false, build_median_tree},
+    {BvhBuilderKind::Sah, "sah", "SAH sweep", "SAH plane sweep on all axes", false, build_sweep_tree},
+    {BvhBuilderKind::BinnedSah, "binned_sah", "binned SAH", "binned SAH", false, build_binned_sah_tree},
+    {BvhBuilderKind::PcaSah, "pca_sah", "PCA + SAH", "SAH sweep along the PCA axis", false, build_pca_tree},
+    {BvhBuilderKind::BottomUp, "bottom_up", "bottom-up", "bottom-up agglomerative clustering", false,
+     build_ploc_tree},
+    {BvhBuilderKind::Insertion, "insertion", "insertion", "Goldsmith-Salmon insertion", false, build_insertion_tree},
     {BvhBuilderKind::Sbvh, "sbvh", "spatial splits",
-     "binned SAH with spatial splits (SBVH: a triangle may be in several leaves)", build_spatial_split_tree},
+     "binned SAH with spatial splits (SBVH: a triangle may be in several leaves)", true, build_spatial_split_tree},
 };
 
 std::span<const BvhBuilderInfo> bvh_builder_table() { return kBuilders; }

@@ -17,6 +17,9 @@ struct BvhBuilderInfo {
   const char* name;   ///< the `builder` parameter's value: "median", "sah", ...
   const char* label;  ///< short label the viewer shows: "SAH sweep"
   const char* help;   ///< its phrase in the parameter's help: "SAH plane sweep on all axes"
+  /// Spatial splits: a triangle may be referenced by several leaves (tests that compare trees
+  /// or count references treat these apart; their own tests cover them).
+  bool splits_triangles;
   /// build_bvh_tree()'s contract for this builder.
   BuildTree (*build)(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                      BuildRecorder* recorder);
