@@ -17,6 +17,7 @@
 #include "geometry.h"
 #include "parallel.h"
 #include "structures/bvh_build_types.h"
+#include "structures/bvh_chunk_links.h"
 
 namespace accel::binned {
 

@@ -10,11 +10,9 @@
 #include "build_control.h"
 #include "build_trace.h"
 #include "scene.h"
-#include "structures/top_down_tasks.h"
 #include "vec_math.h"
 
 namespace accel {
-
 
 /// The builders, one row each in bvh_builders.cpp's table (name, label, help, build function).
 enum class BvhBuilderKind : uint8_t {
@@ -105,25 +103,5 @@ Status check_bvh_memory(const std::string& structure, const Scene& scene, const 
 /// instantiated for BuildRecorder, serially, and builds the same tree.
 BuildTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress = nullptr,
                          BuildRecorder* recorder = nullptr);
-
-namespace top_down {
-/// Stitching BuildNode chunks (top_down_tasks.h): a node names both children; a leaf's
-/// `first` moves only for chunks with triangles of their own (the others' offsets are 0).
-template <>
-struct ChunkLinks<BuildNode> {
-  static void link(BuildNode& inner, uint32_t left, uint32_t right) {
-    inner.left = left;
-    inner.right = right;
-  }
-  static void relocate(BuildNode& n, uint32_t node_offset, uint32_t prim_offset) {
-    if (n.count) {
-      n.first += prim_offset;
-    } else {
-      n.left += node_offset;
-      n.right += node_offset;
-    }
-  }
-};
-}  // namespace top_down
 
 }  // namespace accel

@@ -20,6 +20,7 @@
 #include "geometry.h"
 #include "parallel.h"
 #include "structures/bvh_build_types.h"
+#include "structures/bvh_chunk_links.h"
 #include "structures/top_down_tasks.h"
 
 namespace accel::top_down {

@@ -27,8 +27,26 @@
 #include "parallel.h"
 #include "structures/kd_events.h"
 #include "structures/kd_sah_sweep.h"
+#include "structures/top_down_tasks.h"
 
 namespace accel {
+
+namespace top_down {
+/// Stitching the kd-tree's chunks (top_down_tasks.h): an inner node stores only its above
+/// child (the below child is the next node), a leaf the offset of its triangles.
+template <>
+struct ChunkLinks<KdNode> {
+  static void link(KdNode& inner, uint32_t, uint32_t right) {
+    inner = KdNode::make_inner(inner.axis(), inner.split(), right);
+  }
+  static void relocate(KdNode& n, uint32_t node_offset, uint32_t prim_offset) {
+    if (n.leaf())
+      n.payload += prim_offset;
+    else
+      n.bits += node_offset << 2;
+  }
+};
+}  // namespace top_down
 
 //-----------------------------------------------------------------------------
 // [SECTION] Depth limit and names

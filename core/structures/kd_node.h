@@ -8,7 +8,6 @@
 
 #include "bit_cast.h"
 #include "geometry.h"
-#include "structures/top_down_tasks.h"
 #include "trace.h"
 #include "vec_math.h"
 
@@ -118,22 +117,5 @@ inline Aabb kd_child_box(const Aabb& box, int axis, float split, bool above) {
 
 /// "middle", "median" or "sah": the parameter value of `split`.
 const char* kd_split_name(KdSplit split);
-
-namespace top_down {
-/// Stitching the kd-tree's chunks (top_down_tasks.h): an inner node stores only its above
-/// child (the below child is the next node), a leaf the offset of its triangles.
-template <>
-struct ChunkLinks<KdNode> {
-  static void link(KdNode& inner, uint32_t, uint32_t right) {
-    inner = KdNode::make_inner(inner.axis(), inner.split(), right);
-  }
-  static void relocate(KdNode& n, uint32_t node_offset, uint32_t prim_offset) {
-    if (n.leaf())
-      n.payload += prim_offset;
-    else
-      n.bits += node_offset << 2;
-  }
-};
-}  // namespace top_down
 
 }  // namespace accel
