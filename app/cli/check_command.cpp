@@ -171,34 +171,9 @@ std::string write_replay(const accel::WrongRay& w, const std::string& structure,
                      error);
 }
 
-}  // namespace
-
-json report_json(const accel::CheckReport& r, const std::string& out_dir, const std::string& viewer,
-                 const judge::WorkerBudget& budget) {
-  json j;
-  j["structure"] = r.structure;
-  j["kind"] = r.kind;
-  j["builtin"] = r.peer;
-  j["source"] = r.source_file;
-  j["rays"] = r.rays();
-  j["wrong"] = r.wrong();
-  j["categories"] = json::array();
-  for (const auto& c : r.categories) {
-    json wrong;
-    for (int v = 1; v < 5; ++v) wrong[kVerdictKeys[v]] = c.wrong[v];
-    j["categories"].push_back({{"name", c.name},
-                               {"cases", c.cases},
-                               {"rays", c.rays},
-                               {"wrong", wrong},
-                               {"skipped_cases", c.skipped_cases},
-                               {"skipped_rays", c.skipped_rays}});
-  }
-  j["cases"] = json::array();
-  for (const auto& c : r.cases)
-    j["cases"].push_back(
-        {{"case", c.category + "/" + c.name}, {"rays", c.rays}, {"wrong", c.wrong}, {"skipped", c.skipped}});
-  // Every wrong ray's cause, the most rays first, with examples from the cases that have most.
-  const std::string dir = (fs::path(out_dir) / r.structure).native();
+/// The causes of the wrong rays, the most rays first, each with its examples (their replays
+/// written under `dir`); every example is also one of `wrong_rays`.
+void add_causes_json(json& j, const accel::CheckReport& r, const std::string& dir, const std::string& viewer) {
   j["causes"] = json::array();
   j["wrong_rays"] = json::array();
   size_t k = 0;
@@ -233,7 +208,11 @@ json report_json(const accel::CheckReport& r, const std::string& out_dir, const 
     }
     j["causes"].push_back(jc);
   }
-  j["build_faults"] = json::array();
+}
+
+/// The failed builds, each with its replay (written under `dir`).
+json build_faults_json(const accel::CheckReport& r, const std::string& dir, const std::string& viewer) {
+  json out = json::array();
   for (size_t b = 0; b < r.build_faults.size(); ++b) {
     const accel::BuildFault& f = r.build_faults[b];
     json jf = {{"case", f.category + "/" + f.case_name}, {"what", f.what}, {"node", f.node}, {"build_calls", f.log_calls}};
@@ -245,8 +224,40 @@ json report_json(const accel::CheckReport& r, const std::string& out_dir, const 
     } else if (!error.empty()) {
       jf["replay_error"] = error;
     }
-    j["build_faults"].push_back(jf);
+    out.push_back(jf);
   }
+  return out;
+}
+
+}  // namespace
+
+json report_json(const accel::CheckReport& r, const std::string& out_dir, const std::string& viewer,
+                 const judge::WorkerBudget& budget) {
+  json j;
+  j["structure"] = r.structure;
+  j["kind"] = r.kind;
+  j["builtin"] = r.peer;
+  j["source"] = r.source_file;
+  j["rays"] = r.rays();
+  j["wrong"] = r.wrong();
+  j["categories"] = json::array();
+  for (const auto& c : r.categories) {
+    json wrong;
+    for (int v = 1; v < 5; ++v) wrong[kVerdictKeys[v]] = c.wrong[v];
+    j["categories"].push_back({{"name", c.name},
+                               {"cases", c.cases},
+                               {"rays", c.rays},
+                               {"wrong", wrong},
+                               {"skipped_cases", c.skipped_cases},
+                               {"skipped_rays", c.skipped_rays}});
+  }
+  j["cases"] = json::array();
+  for (const auto& c : r.cases)
+    j["cases"].push_back(
+        {{"case", c.category + "/" + c.name}, {"rays", c.rays}, {"wrong", c.wrong}, {"skipped", c.skipped}});
+  const std::string dir = (fs::path(out_dir) / r.structure).native();
+  add_causes_json(j, r, dir, viewer);
+  j["build_faults"] = build_faults_json(r, dir, viewer);
   j["notices"] = r.notices;
   j["waste"] = {{"measured", r.waste.measured}, {"compared_with", r.waste.peer}, {"over_limit", r.waste.over_limit}};
   j["waste"]["findings"] = json::array();
@@ -280,24 +291,11 @@ json report_json(const accel::CheckReport& r, const std::string& out_dir, const 
   return j;
 }
 
-void print_report(const json& r) {
-  const std::string name = r.value("structure", "?");
-  std::printf("== %s (student %s, compared with the built-in %s)%s\n", name.c_str(), r.value("kind", "?").c_str(),
-              r.value("builtin", "?").c_str(),
-              r.value("source", "").empty() ? "" : (" from " + r.value("source", "")).c_str());
-  if (!r.value("failure", "").empty()) std::printf("FAILED: %s\n", r["failure"].get<std::string>().c_str());
-  if (!r["categories"].empty()) {
-    std::printf("%-12s %6s %9s %11s %10s %15s %8s %8s\n", "category", "cases", "rays", "false miss", "false hit",
-                "wrong triangle", "wrong t", "skipped");
-    for (const auto& c : r["categories"]) {
-      const auto& w = c["wrong"];
-      std::printf("%-12s %6zu %9zu %11zu %10zu %15zu %8zu %8zu\n", c["name"].get<std::string>().c_str(),
-                  c["cases"].get<size_t>(), c["rays"].get<size_t>(), w["false_miss"].get<size_t>(),
-                  w["false_hit"].get<size_t>(), w["wrong_triangle"].get<size_t>(), w["wrong_t"].get<size_t>(),
-                  c.value("skipped_rays", size_t(0)));
-    }
-  }
-  for (const auto& n : r.value("notices", json::array())) std::printf("notice: %s\n", n.get<std::string>().c_str());
+namespace {
+
+/// Each cause: its rays, the cases, its example rays with their why and replay; then the
+/// wrong answers per case.
+void print_causes(const json& r) {
   const json causes = r.value("causes", json::array());
   if (!causes.empty())
     std::printf("wrong answers by cause (%zu cause%s; each cause's first rays, from the cases with the most):\n",
@@ -335,6 +333,9 @@ void print_report(const json& r) {
     if (with_wrong > shown) per_case += ", and " + std::to_string(with_wrong - shown) + " more";
     std::printf("wrong answers per case: %s\n", per_case.c_str());
   }
+}
+
+void print_build_faults_and_waste(const json& r) {
   for (const auto& f : r.value("build_faults", json::array())) {
     std::printf("build fault: %s: %s\n  the node being built: %s\n", f.value("case", "").c_str(),
                 f.value("what", "").c_str(), f.value("node", "").c_str());
@@ -353,14 +354,10 @@ void print_report(const json& r) {
                     f.value("sentence", "").c_str());
     }
   }
-  for (const auto& i : r["invariants"]) {
-    if (!i["applies"].get<bool>()) continue;
-    const size_t failed = i["failed"].get<size_t>();
-    std::printf(
-        "invariant: %-56s %s\n", i["name"].get<std::string>().c_str(),
-        failed ? ("FAILED " + std::to_string(failed) + "x: " + i["first_failure"].get<std::string>()).c_str() : "ok");
-  }
-  for (const auto& f : r["faults"]) std::printf("fault: %s\n", f.get<std::string>().c_str());
+}
+
+/// The speed against the built-in, and what the student's code printed, quoted.
+void print_speed_and_output(const json& r) {
   const auto& s = r["speed"];
   if (s.value("timed", false)) {
     auto ratio = [](double a, double b) { return b > 0 ? fmt(a / b, "%.2f") + "x" : std::string("-"); };
@@ -386,6 +383,39 @@ void print_report(const json& r) {
       ++lines;
     }
   }
+}
+
+}  // namespace
+
+void print_report(const json& r) {
+  const std::string name = r.value("structure", "?");
+  std::printf("== %s (student %s, compared with the built-in %s)%s\n", name.c_str(), r.value("kind", "?").c_str(),
+              r.value("builtin", "?").c_str(),
+              r.value("source", "").empty() ? "" : (" from " + r.value("source", "")).c_str());
+  if (!r.value("failure", "").empty()) std::printf("FAILED: %s\n", r["failure"].get<std::string>().c_str());
+  if (!r["categories"].empty()) {
+    std::printf("%-12s %6s %9s %11s %10s %15s %8s %8s\n", "category", "cases", "rays", "false miss", "false hit",
+                "wrong triangle", "wrong t", "skipped");
+    for (const auto& c : r["categories"]) {
+      const auto& w = c["wrong"];
+      std::printf("%-12s %6zu %9zu %11zu %10zu %15zu %8zu %8zu\n", c["name"].get<std::string>().c_str(),
+                  c["cases"].get<size_t>(), c["rays"].get<size_t>(), w["false_miss"].get<size_t>(),
+                  w["false_hit"].get<size_t>(), w["wrong_triangle"].get<size_t>(), w["wrong_t"].get<size_t>(),
+                  c.value("skipped_rays", size_t(0)));
+    }
+  }
+  for (const auto& n : r.value("notices", json::array())) std::printf("notice: %s\n", n.get<std::string>().c_str());
+  print_causes(r);
+  print_build_faults_and_waste(r);
+  for (const auto& i : r["invariants"]) {
+    if (!i["applies"].get<bool>()) continue;
+    const size_t failed = i["failed"].get<size_t>();
+    std::printf(
+        "invariant: %-56s %s\n", i["name"].get<std::string>().c_str(),
+        failed ? ("FAILED " + std::to_string(failed) + "x: " + i["first_failure"].get<std::string>()).c_str() : "ok");
+  }
+  for (const auto& f : r["faults"]) std::printf("fault: %s\n", f.get<std::string>().c_str());
+  print_speed_and_output(r);
   std::printf("sandbox: %s\n", r.value("sandbox", "").c_str());
   std::printf("%s: %s\n", name.c_str(),
               r.value("passed", false) ? "PASSED (every answer right, every invariant kept)"

@@ -424,6 +424,64 @@ void tally_peer(const StructureInfo& info, accelviz::Kind kind, const KitStructu
   tally.prims += double(scene.valid_prims().size());
 }
 
+/// Counts a case as faulty when it added a fault, whichever way it ends.
+struct CaseFaults {
+  size_t& cases;
+  const std::vector<std::string>& faults;
+  size_t before;
+  ~CaseFaults() { cases += faults.size() > before; }
+};
+
+/// The invariants of one answer: the same with and without a listener, and the returned hit
+/// logged by a hitting triangle test.
+void check_answers(std::vector<CheckInvariant>& inv, const std::string& where, const Hit& fast, const Hit& traced,
+                   const TraceRecorder& rec) {
+  CheckInvariant& listening = inv[kListening];
+  ++listening.checked;
+  if (fast.prim != traced.prim || !(fast.t == traced.t || (std::isnan(fast.t) && std::isnan(traced.t))))
+    fail(listening, where,
+         "without a listener prim " + std::to_string(fast.prim) + ", with one prim " + std::to_string(traced.prim));
+  CheckInvariant& reported = inv[kReported];
+  ++reported.checked;
+  if (!rec.truncated() && !hit_was_reported(rec, traced))
+    fail(reported, where,
+         "triangle " + std::to_string(traced.prim) + " returned without a triangle_tested(hit) at its t");
+}
+
+/// One right walk's waste: visits, visits where the ray is not, kd cases, triangle tests.
+void tally_walk(WasteTally& t, const WalkAudit& audit, const TraceRecorder& rec) {
+  ++t.rays;
+  t.visits += audit.visits, t.uncrossed += audit.visits_not_crossed;
+  t.kd_inner += audit.kd_inner, t.kd_far_only += audit.kd_far_only;
+  t.kd_needs_far_only += audit.kd_needs_far_only;
+  for (const TraceEvent& e : rec.events()) t.tris += e.kind == TraceEventKind::TestPrim;
+}
+
+/// Builds the student's structure over the case's scene: false (with a fault and a build
+/// replay) when the build failed; a lost worker goes through, its build replay recorded.
+bool build_case(const CaseSpec& spec, const StructureInfo& info, const std::shared_ptr<const Scene>& scene,
+                KitStructure& kit, CheckReport& report) {
+  std::string build_fault;
+  try {
+    auto built = kit.build(*scene, ParamSet(info.params, info.name));
+    if (!built) build_fault = "build: " + built.error().message;
+  } catch (const StudentProcessLost& lost) {
+    report.build_faults.push_back({spec.category, spec.name, scene, lost.what(), build_fault_node(kit.tree()),
+                                   kit.build_log_calls()});
+    throw;
+  } catch (const std::exception& e) {
+    build_fault =
+        dynamic_cast<const KitError*>(&e) ? "build: " + std::string(e.what()) : "build " + describe_exception(e);
+  } catch (...) {
+    build_fault = "build threw a non-standard exception";
+  }
+  if (build_fault.empty()) return true;
+  const std::string node = build_fault_node(kit.tree());
+  report.faults.push_back(spec.category + "/" + spec.name + ": " + build_fault + ", " + node);
+  report.build_faults.push_back({spec.category, spec.name, scene, build_fault, node, kit.build_log_calls()});
+  return false;
+}
+
 /// One case: builds the student's structure over its scene and judges every ray, adding to
 /// `report`; every wrong ray's cause goes to `book`, the procedural cases' waste to `tally`.
 /// `at` follows where it is ("hard/slivers ray 12"); a StudentProcessLost goes through to
@@ -431,13 +489,7 @@ void tally_peer(const StructureInfo& info, accelviz::Kind kind, const KitStructu
 void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind kind,
                 const CheckProgress& progress, CheckReport& report, CauseBook& book, WasteTally& tally,
                 size_t& cases_with_faults, std::string& at) {
-  // Counts this case as faulty when it added a fault, whichever way it ends.
-  struct CaseFaults {
-    size_t& cases;
-    const std::vector<std::string>& faults;
-    size_t before;
-    ~CaseFaults() { cases += faults.size() > before; }
-  } case_faults{cases_with_faults, report.faults, report.faults.size()};
+  CaseFaults case_faults{cases_with_faults, report.faults, report.faults.size()};
   const std::string where = spec.category + "/" + spec.name;
   progress(where, 0);
   auto made = spec.make();
@@ -468,24 +520,7 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
   }
   kit->set_strict(true);
   at = where + " (build)";
-  std::string build_fault;
-  try {
-    auto built = kit->build(*scene, ParamSet(info.params, info.name));
-    if (!built) build_fault = "build: " + built.error().message;
-  } catch (const StudentProcessLost& lost) {
-    report.build_faults.push_back({spec.category, spec.name, scene, lost.what(), build_fault_node(kit->tree()),
-                                   kit->build_log_calls()});
-    throw;
-  } catch (const std::exception& e) {
-    build_fault =
-        dynamic_cast<const KitError*>(&e) ? "build: " + std::string(e.what()) : "build " + describe_exception(e);
-  } catch (...) {
-    build_fault = "build threw a non-standard exception";
-  }
-  if (!build_fault.empty()) {
-    const std::string node = build_fault_node(kit->tree());
-    report.faults.push_back(where + ": " + build_fault + ", " + node);
-    report.build_faults.push_back({spec.category, spec.name, scene, build_fault, node, kit->build_log_calls()});
+  if (!build_case(spec, info, scene, *kit, report)) {
     skip_rest(0);
     return;
   }
@@ -532,28 +567,13 @@ void check_case(const CaseSpec& spec, const StructureInfo& info, accelviz::Kind 
       }
       continue;
     }
-    CheckInvariant& listening = report.invariants[kListening];
-    ++listening.checked;
-    if (fast.prim != traced.prim || !(fast.t == traced.t || (std::isnan(fast.t) && std::isnan(traced.t))))
-      fail(listening, where + " ray " + std::to_string(i),
-           "without a listener prim " + std::to_string(fast.prim) + ", with one prim " + std::to_string(traced.prim));
-    CheckInvariant& reported = report.invariants[kReported];
-    ++reported.checked;
-    if (!rec.truncated() && !hit_was_reported(rec, traced))
-      fail(reported, where + " ray " + std::to_string(i),
-           "triangle " + std::to_string(traced.prim) + " returned without a triangle_tested(hit) at its t");
+    check_answers(report.invariants, where + " ray " + std::to_string(i), fast, traced, rec);
     const HitVerdict v = judge_hit(*scene, rays[i], fast, ref[i]);
     const bool wrong = v != HitVerdict::Correct;
     if (!wrong && !measure_waste) continue;
     // The kit's own reading of the walk: every claim against the geometry.
     const WalkAudit audit = auditor.audit(rays[i], rec.events(), rec.recorded_vars(), wrong);
-    if (measure_waste) {
-      ++here.rays;
-      here.visits += audit.visits, here.uncrossed += audit.visits_not_crossed;
-      here.kd_inner += audit.kd_inner, here.kd_far_only += audit.kd_far_only;
-      here.kd_needs_far_only += audit.kd_needs_far_only;
-      for (const TraceEvent& e : rec.events()) here.tris += e.kind == TraceEventKind::TestPrim;
-    }
+    if (measure_waste) tally_walk(here, audit, rec);
     if (!wrong) continue;
     ++cat.wrong[int(v)];
     ++report.cases[case_index].wrong;
