@@ -216,8 +216,14 @@ Status ParamSet::set_value(const std::string& key, const ParamValue& value) {
 
 void ParamSet::reset(const std::string& key) {
   const int i = checked_index(key);
-  values_[size_t(i)] = specs_[size_t(i)].default_typed;
+  values_[size_t(i)] = specs_[size_t(i)].default_for(planar_);
   explicit_[size_t(i)] = false;
+}
+
+void ParamSet::set_planar(bool planar) {
+  planar_ = planar;
+  for (size_t i = 0; i < specs_.size(); ++i)
+    if (!explicit_[i]) values_[i] = specs_[i].default_for(planar);
 }
 
 const ParamValue& ParamSet::value(const std::string& key) const { return values_[size_t(checked_index(key))]; }

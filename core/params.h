@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -31,6 +32,14 @@ struct ParamSpec {
   std::vector<std::string> choices;  ///< the valid values (Choice)
   std::string doc;                   ///< one sentence, shown in help texts and tooltips
   ParamValue default_typed;          ///< the default, typed
+  /// The default over a 2D scene (Scene::planar(), the blackboard) where it differs from
+  /// default_typed: the lecture's 2D figure instead of the 3D cost model's choice (the
+  /// octree's max_prims=1, ct=0). Unset: default_typed in 2D too.
+  std::optional<ParamValue> planar_default;
+  /// The default over a 2D scene (`planar`) or a 3D one.
+  const ParamValue& default_for(bool planar) const {
+    return planar && planar_default ? *planar_default : default_typed;
+  }
   /// "an integer in [1, 64]", "one of: bbox, exact", ...: used in error messages.
   std::string range_text() const;
   /// `value` (of this spec's type) as the CLI would take it: "2", "0.25", "16,16,16", "sah".
@@ -53,6 +62,11 @@ class ParamSet {
   Status set_value(const std::string& key, const ParamValue& value);
   /// Puts `key` back to its default (no longer explicitly set).
   void reset(const std::string& key);
+  /// The defaults of a 2D scene (ParamSpec::planar_default) for every key not set explicitly
+  /// (true), or the 3D ones (false, as constructed). Structure::build sets it from the scene.
+  void set_planar(bool planar);
+  /// Whether the keys not set explicitly hold a 2D scene's defaults.
+  bool planar() const { return planar_; }
 
   /// The typed value of `key` (which must be a spec'd name).
   const ParamValue& value(const std::string& key) const;
@@ -78,7 +92,8 @@ class ParamSet {
   std::vector<std::string> explicit_key_values() const;
   /// Same values and the same keys explicitly set.
   bool operator==(const ParamSet& other) const {
-    return structure_ == other.structure_ && values_ == other.values_ && explicit_ == other.explicit_;
+    return structure_ == other.structure_ && values_ == other.values_ && explicit_ == other.explicit_ &&
+           planar_ == other.planar_;
   }
 
  private:
@@ -88,6 +103,7 @@ class ParamSet {
   std::string structure_;
   std::vector<ParamValue> values_;  // per spec
   std::vector<bool> explicit_;      // per spec: given by the user
+  bool planar_ = false;             // the keys not given hold a 2D scene's defaults
 };
 
 /// Parses and validates `text` against `spec`; the error names the parameter and its range.
@@ -107,16 +123,24 @@ std::string param_value(const std::vector<std::string>& params, const std::strin
 /// The one declaration of a structure's parameters over its options struct `Options`.
 /// Each entry binds a name to a field, given as a member pointer or as a callable that
 /// returns a reference to the field (`[](Options& o) -> auto& { return o.build.leaf_size; }`);
-/// the default is that field in `Options{}`. specs() feeds the registry (CLI, viewer),
-/// apply() turns a validated ParamSet of these specs into the options struct.
+/// the default is that field in `Options{}`, and over a 2D scene that field in the
+/// `planar_defaults` the table was made with, where it differs (ParamSpec::planar_default).
+/// specs() feeds the registry (CLI, viewer), apply() turns a validated ParamSet of these
+/// specs into the options struct.
 template <class Options>
 class ParamTable {
  public:
+  /// The same defaults in 2D and 3D.
+  ParamTable() = default;
+  /// A 2D scene's defaults from `planar_defaults` (an Options whose fields differ from
+  /// `Options{}` where the blackboard wants other defaults).
+  explicit ParamTable(const Options& planar_defaults) : planar_(planar_defaults) {}
+
   /// An integer field (any integral type) in [min, max].
   template <class Field>
   ParamTable& integer(std::string name, Field field, int min, int max, std::string doc) {
     const int def = int(std::invoke(field, defaults()));
-    add(ParamSpec::Type::Int, std::move(name), ParamValue(def), min, max, {}, std::move(doc),
+    add(ParamSpec::Type::Int, std::move(name), ParamValue(def), planar_value<int>(field), min, max, {}, std::move(doc),
         [field](Options& o, const ParamSet& s, const std::string& key) {
           auto& f = std::invoke(field, o);
           f = static_cast<std::remove_reference_t<decltype(f)>>(s.get_int(key));
@@ -127,7 +151,8 @@ class ParamTable {
   template <class Field>
   ParamTable& number(std::string name, Field field, double min, double max, std::string doc) {
     const double def = double(std::invoke(field, defaults()));
-    add(ParamSpec::Type::Float, std::move(name), ParamValue(def), min, max, {}, std::move(doc),
+    add(ParamSpec::Type::Float, std::move(name), ParamValue(def), planar_value<double>(field), min, max, {},
+        std::move(doc),
         [field](Options& o, const ParamSet& s, const std::string& key) {
           auto& f = std::invoke(field, o);
           f = static_cast<std::remove_reference_t<decltype(f)>>(s.get_float(key));
@@ -138,14 +163,18 @@ class ParamTable {
   template <class Field, class E>
   ParamTable& choice(std::string name, Field field, std::vector<std::pair<std::string, E>> table, std::string doc) {
     const E def = std::invoke(field, defaults());
-    int def_index = -1;
+    int def_index = -1, planar_index = -1;
     std::vector<std::string> names;
     for (size_t i = 0; i < table.size(); ++i) {
       names.push_back(table[i].first);
       if (table[i].second == def) def_index = int(i);
+      if (planar_ && table[i].second == planar_field(field)) planar_index = int(i);
     }
     ACCEL_CHECK(def_index >= 0);  // the options struct's default must be one of the choices
-    add(ParamSpec::Type::Choice, std::move(name), ParamValue(def_index), 0, 0, std::move(names), std::move(doc),
+    ACCEL_CHECK(!planar_ || planar_index >= 0);
+    add(ParamSpec::Type::Choice, std::move(name), ParamValue(def_index),
+        planar_index >= 0 ? std::optional<ParamValue>(planar_index) : std::nullopt, 0, 0, std::move(names),
+        std::move(doc),
         [field, table = std::move(table)](Options& o, const ParamSet& s, const std::string& key) {
           std::invoke(field, o) = table[size_t(s.get_choice_index(key))].second;
         });
@@ -156,7 +185,8 @@ class ParamTable {
   template <class Field>
   ParamTable& int3(std::string name, Field field, int min, int max, std::string doc) {
     const std::array<int, 3> def = std::invoke(field, defaults());
-    add(ParamSpec::Type::Int3, std::move(name), ParamValue(def), min, max, {}, std::move(doc),
+    add(ParamSpec::Type::Int3, std::move(name), ParamValue(def), planar_value<std::array<int, 3>>(field), min, max, {},
+        std::move(doc),
         [field](Options& o, const ParamSet& s, const std::string& key) { std::invoke(field, o) = s.get_int3(key); });
     return *this;
   }
@@ -179,8 +209,20 @@ class ParamTable {
     static Options d{};
     return d;
   }
-  void add(ParamSpec::Type type, std::string name, ParamValue def, double min, double max,
-           std::vector<std::string> choices, std::string doc, Setter setter) {
+  /// The field's value in the 2D defaults as a T, when there are 2D defaults.
+  template <class T, class Field>
+  std::optional<ParamValue> planar_value(Field field) const {
+    if (!planar_) return std::nullopt;
+    return ParamValue(T(planar_field(field)));
+  }
+  /// The field's value in the 2D defaults, by value (a field's accessor takes an Options&).
+  template <class Field>
+  auto planar_field(Field field) const {
+    Options o = *planar_;
+    return std::invoke(field, o);
+  }
+  void add(ParamSpec::Type type, std::string name, ParamValue def, std::optional<ParamValue> planar_def, double min,
+           double max, std::vector<std::string> choices, std::string doc, Setter setter) {
     ParamSpec spec;
     spec.name = std::move(name);
     spec.type = type;
@@ -191,9 +233,14 @@ class ParamTable {
     spec.default_typed = def;
     spec.default_value = spec.text(def);
     ACCEL_CHECK(validate_param(spec, def).ok());  // a default outside its own range is a bug
+    if (planar_def && *planar_def != def) {
+      ACCEL_CHECK(validate_param(spec, *planar_def).ok());
+      spec.planar_default = std::move(planar_def);
+    }
     specs_.push_back(std::move(spec));
     setters_.push_back(std::move(setter));
   }
+  std::optional<Options> planar_;  // a 2D scene's defaults, if they differ
   std::vector<ParamSpec> specs_;
   std::vector<Setter> setters_;
 };

@@ -34,7 +34,9 @@ Status Structure::timed_build(const Scene& scene, const ParamSet& params, BuildC
                               BuildRecorder* recorder) {
   const auto start = std::chrono::steady_clock::now();
   report_progress(control, 0.0);
-  auto result = build_impl(scene, params, control, recorder);
+  ParamSet in_use = params;
+  in_use.set_planar(scene.planar());  // a 2D scene's defaults where they differ
+  auto result = build_impl(scene, in_use, control, recorder);
   if (result) report_progress(control, 1.0);
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   refit_ms_ = std::nan("");

@@ -67,7 +67,9 @@ class Structure {
   /// Builds over `scene` (kept by reference: it must outlive the structure) with validated
   /// parameters, and times it. Errors: an internal limit, or cancelled_error() when
   /// `control` was cancelled (then the structure is left empty: queries miss, no nodes).
-  /// `control` (optional) receives the progress, ending at 1.0 on success.
+  /// `control` (optional) receives the progress, ending at 1.0 on success. Over a 2D scene
+  /// (Scene::planar()) the parameters not set explicitly take their 2D defaults
+  /// (ParamSpec::planar_default, ParamSet::set_planar).
   Status build(const Scene& scene, const ParamSet& params, BuildControl* control = nullptr);
   /// The same build (the same code, single-threaded) while `recorder` keeps every
   /// construction step (build_trace.h): the structure is exactly the one build() makes.

@@ -1,16 +1,16 @@
 #version 330 core
-// Structure nodes, instanced: one unit shape (cube edges, three circles, or a square) per
-// node, placed by per-instance attributes. The depth / leaf filter runs here, so changing it
-// uploads nothing: a filtered-out instance collapses to a point outside the clip volume,
-// which the rasteriser discards.
+// Structure nodes, instanced: one unit shape (cube edges, three circles, a square, or in 2D
+// one circle in z = 0) per node, placed by per-instance attributes. The depth / leaf filter
+// runs here, so changing it uploads nothing: a filtered-out instance collapses to a point
+// outside the clip volume, which the rasteriser discards.
 layout(location = 0) in vec3 a_unit;   // unit shape vertex
-layout(location = 2) in vec3 a_lo;     // box min, sphere centre, or plane rectangle min
+layout(location = 2) in vec3 a_lo;     // box min, sphere / circle centre, or plane rectangle min
 layout(location = 3) in vec3 a_hi;     // box max, (radius, radius, radius), or plane max
 layout(location = 4) in vec4 a_info;   // depth, leaf (0/1), triangle count, split axis
 
 uniform mat4 u_view;
 uniform mat4 u_projection;
-uniform int u_shape;        // 0 box, 1 sphere, 2 split plane
+uniform int u_shape;        // 0 box, 1 sphere, 2 split plane, 3 circle (a sphere in 2D)
 uniform int u_color_mode;   // 0 by depth, 1 by triangle count, 2 flat
 uniform float u_depth_min;
 uniform float u_depth_max;
@@ -45,7 +45,7 @@ void main() {
     return;
   }
   vec3 p;
-  if (u_shape == 1) {
+  if (u_shape == 1 || u_shape == 3) {
     p = a_lo + a_hi.x * a_unit;
   } else if (u_shape == 2) {
     int axis = int(a_info.w + 0.5);

@@ -76,6 +76,46 @@ TEST(Params, DefaultsAndOverrides) {
   EXPECT_FALSE(o.flag);
 }
 
+// A 2D scene's defaults (issue #50): the fields of the table's 2D options struct that differ
+// from Options{} become ParamSpec::planar_default; set_planar() swaps them in for the keys
+// not given, reset() goes back to the mode's default, and an explicit value always wins.
+TEST(Params, PlanarDefaultsReplaceOnlyTheKeysNotGiven) {
+  using O = TestOptions;
+  O flat;
+  flat.build.leaf_size = 1;
+  flat.build.split = Rule::Middle;
+  const auto t = ParamTable<O>(flat)
+                     .integer("leaf_size", [](O& o) -> auto& { return o.build.leaf_size; }, 1, 64, "leaf")
+                     .number("lambda", [](O& o) -> auto& { return o.build.lambda; }, 0.01, 100, "cells")
+                     .choice("split", [](O& o) -> auto& { return o.build.split; },
+                             std::vector<std::pair<std::string, Rule>>{
+                                 {"middle", Rule::Middle}, {"median", Rule::Median}, {"sah", Rule::Sah}},
+                             "rule");
+  const std::vector<ParamSpec>& s = t.specs();
+  EXPECT_EQ(s[0].default_value, "4");  // the 3D default stays the default
+  ASSERT_TRUE(s[0].planar_default);
+  EXPECT_EQ(std::get<int>(*s[0].planar_default), 1);
+  EXPECT_FALSE(s[1].planar_default);   // the same in 2D: none
+  EXPECT_EQ(std::get<int>(s[2].default_for(true)), 0);  // "middle"
+  EXPECT_EQ(std::get<int>(s[2].default_for(false)), 2);  // "sah"
+
+  auto p = ParamSet::parse(s, {"split=median"}).value();
+  p.set_planar(true);
+  EXPECT_EQ(p.get_int("leaf_size"), 1);
+  EXPECT_EQ(p.get_choice("split"), "median");  // given: kept
+  EXPECT_EQ(p.to_string(), "split=median");    // the 2D defaults are no explicit values
+  p.reset("split");
+  EXPECT_EQ(p.get_choice("split"), "middle");
+  EXPECT_EQ(t.apply(p).build.leaf_size, 1);
+  p.set_planar(false);
+  EXPECT_EQ(p.get_int("leaf_size"), 4);
+  EXPECT_EQ(p.get_choice("split"), "sah");
+  EXPECT_EQ(ParamTable<O>().integer("leaf_size", [](O& o) -> auto& { return o.build.leaf_size; }, 1, 64, "leaf")
+                .specs()[0]
+                .planar_default,
+            std::nullopt);  // a table without 2D defaults
+}
+
 // The viewer's widgets set typed values: a double is kept to the last bit, not rounded
 // through text (the old "%.4g" round trip turned 0.123456789 into 0.1235).
 TEST(Params, TypedValuesAreKeptExactly) {

@@ -160,5 +160,48 @@ TEST(PlanarHierarchyTrace, NearerRectangleOrCircleFirst) {
   }
 }
 
+// [SECTION] The octree's 2D defaults (issue #50)
+//
+// With the 3D defaults (max_prims=8, ct=2) no split of the blackboard's ten triangles pays
+// (3 ct + refs / 2 >= 10): the root stays one no-gain leaf. Over a 2D scene the octree's
+// defaults are the lecture's quadtree's (max_prims=1, ct=0), so the lecture's board is
+// subdivided without parameters; explicit ones still win, and the 3D defaults are unchanged.
+TEST(QuadtreeDefaults, TheBlackboardIsSubdividedWithoutParameters) {
+  auto scene = load_scene2d(std::string(ACCEL_SOURCE_DIR) + "/scenes/blackboard.scene2d");
+  ASSERT_TRUE(scene) << scene.error().message;
+  ASSERT_TRUE(scene.value().planar());
+  ASSERT_EQ(scene.value().triangle_count(), 10u);
+  auto s = build(scene.value(), "octree", {});
+  ASSERT_TRUE(s);
+  const BuildStats st = s->build_stats();
+  EXPECT_GT(st.leaves, 1u);
+  EXPECT_GT(st.max_depth, 1);
+  EXPECT_GT(static_cast<const Octree&>(*s).data().reasons.few_prims, 1u);  // cells of at most one triangle
+  // The same tree as with the lecture's stop written out.
+  auto lecture = build(scene.value(), "octree", {"max_prims=1", "ct=0"});
+  ASSERT_TRUE(lecture);
+  EXPECT_EQ(lecture->build_stats().nodes, st.nodes);
+  EXPECT_EQ(lecture->build_stats().leaves, st.leaves);
+  // The 3D defaults given explicitly: one no-gain leaf, as before.
+  auto costed = build(scene.value(), "octree", {"max_prims=8", "ct=2"});
+  ASSERT_TRUE(costed);
+  EXPECT_EQ(costed->build_stats().leaves, 1u);
+  EXPECT_EQ(static_cast<const Octree&>(*costed).data().reasons.no_gain, 1u);
+  // The 3D defaults themselves are unchanged.
+  for (const ParamSpec& spec : Octree::param_specs()) {
+    if (spec.name == "max_prims") {
+      EXPECT_EQ(spec.default_value, "8");
+      ASSERT_TRUE(spec.planar_default);
+      EXPECT_EQ(std::get<int>(*spec.planar_default), 1);
+    } else if (spec.name == "ct") {
+      EXPECT_EQ(spec.default_value, "2");
+      ASSERT_TRUE(spec.planar_default);
+      EXPECT_EQ(std::get<double>(*spec.planar_default), 0.0);
+    } else {
+      EXPECT_FALSE(spec.planar_default) << spec.name;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace accel

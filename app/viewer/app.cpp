@@ -415,18 +415,18 @@ void App::update(float dt) {
       if (panels_.steps) build_.steps_panel(place(layout_.steps));
       if (panels_.code) build_.code_panel(place(code), mono);
     } else {
-      if (panels_.ray && ray_.ray_panel(place(layout_.ray), shown)) {
+      if (panels_.ray && ray_.ray_panel(place(layout_.ray), shown, mode_2d())) {
         compare_.set_open(true);
         start_compare();
       }
-      if (panels_.steps) ray_.steps_panel(place(layout_.steps));
+      if (panels_.steps) ray_.steps_panel(place(layout_.steps), mode_2d());
       if (panels_.code) ray_.code_panel(place(layout_.code), shown, mono);
       WindowRect vars_rect = layout_.vars;
       if (lecture_mode_ && tree_.on())
         vars_rect.size.y = std::max(layout_.tree.pos.y - vars_rect.pos.y - layout_.main.pos.y, 6.0f * ImGui::GetFontSize());
       if (vars_.shown())
         vars_.panel(place(vars_rect), ray_.ray(), ray_.step_highlight(),
-                    shown ? shown->kind : TraversalKind::Unknown, mono,
+                    shown ? shown->kind : TraversalKind::Unknown, mode_2d(), mono,
                     [&] { trap_.block(ray_.ray(), ray_.player()); });
     }
     if (compare_.open()) {

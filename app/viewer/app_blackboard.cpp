@@ -84,9 +84,12 @@ accel::Status App::save_scene2d(const std::string& path) {
 void App::board_section() {
   bool board = mode_2d();
   if (ImGui::Checkbox("blackboard: 2D mode (D)", &board)) (void)set_mode_2d(board);  // errors show below
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("triangles in a plane seen from above: click three corners to add a triangle, drag a\n"
-                      "corner to move it, right-click one to delete it, drag elsewhere to shoot the debug ray");
+  if (ImGui::IsItemHovered()) {
+    // What the mouse does there, from its rows (input.h): one source for the help too.
+    std::string tip = "triangles in a plane seen from above; the mouse there:";
+    for (const std::string& line : mouse_help_lines(true)) tip += "\n  " + line;
+    ImGui::SetTooltip("%s", tip.c_str());
+  }
   if (!board) return;
   ImGui::SetNextItemWidth(12.0f * ImGui::GetFontSize());
   ImGui::InputText("##board_path", &board_path_);

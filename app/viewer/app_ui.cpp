@@ -147,10 +147,8 @@ void App::main_panel() {
   }
   if (ImGui::CollapsingHeader("Speed vs error chart")) bench_chart_section(chart_);
   if (ImGui::CollapsingHeader("Keys and mouse")) {
-    ImGui::TextDisabled("left drag: orbit   right drag: pan   wheel: zoom");
-    ImGui::TextDisabled("click: shoot a ray through that pixel");
-    ImGui::TextDisabled("shift-click: from the saved view at that point");
-    ImGui::TextDisabled("tree diagram: click a node, wheel: zoom, drag: pan");
+    // The mouse as it acts in this mode (the blackboard's or the 3D view's rows).
+    for (const std::string& line : mouse_help_lines(mode_2d())) ImGui::TextDisabled("%s", line.c_str());
     // The keys from the tools' rows, as they are dispatched.
     for (const std::string& line : keys_help_lines(key_groups_)) ImGui::TextDisabled("%s", line.c_str());
   }

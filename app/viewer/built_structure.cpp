@@ -25,14 +25,17 @@ accel::Result<BuiltPtr> build_structure_now(std::shared_ptr<const accel::Scene> 
   auto built = std::make_shared<BuiltStructure>();
   built->scene = std::move(scene);
   built->request = request;
-  built->params_text = params.to_string_all();
+  accel::ParamSet in_use = params;
+  in_use.set_planar(built->scene->planar());  // as Structure::build uses them
+  built->params_text = in_use.to_string_all();
   std::unique_ptr<accel::Structure> structure = create_requested(*info, *built->scene, params, request);
   if (auto st = structure->build(*built->scene, params, control); !st) return st.error();
   // Listing a big structure's nodes takes a while too: no point once superseded.
   if (accel::build_cancelled(control)) return accel::cancelled_error();
   built->structure = std::move(structure);
   built->stats = built->structure->build_stats();
-  built->geometry = structure_geometry(*built->structure, request.geometry);
+  built->request.geometry.planar = built->scene->planar();  // a 2D scene's spheres are circles
+  built->geometry = structure_geometry(*built->structure, built->request.geometry);
   if (params.has("traversal")) built->traversal = params.get_choice("traversal");
   built->info = info;
   built->kind = traversal_kind(info->traversal, built->traversal);

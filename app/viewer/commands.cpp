@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "input.h"
 #include "rays_io.h"
 
 namespace viz {
@@ -184,6 +185,14 @@ std::string verbs_markdown(const std::vector<ScriptVerb>& verbs) {
     }
     table += "| " + forms + " | " + table_cell(v.help) + " |\n";
   }
+  return table;
+}
+
+std::string mouse_markdown() {
+  std::string table = "| mouse | 3D view | blackboard (2D mode) |\n|---|---|---|\n";
+  auto cell = [](const char* what) { return *what ? table_cell(what) : std::string("\u2014"); };
+  for (const MouseRow& row : mouse_rows())
+    table += "| " + table_cell(row.mouse) + " | " + cell(row.in_3d) + " | " + cell(row.in_2d) + " |\n";
   return table;
 }
 

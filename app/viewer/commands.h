@@ -11,7 +11,8 @@
 //   KeyPress, KeyBinding, dispatch_key()      keys
 //   ScriptVerb, VerbArgs, shared parsers      the GL-free half of a script verb
 //   ScriptHost, VerbRun                       the run half
-//   keys_markdown(), verbs_markdown(), ...    the help and the docs' tables
+//   keys_markdown(), verbs_markdown(), ...    the help and the docs' tables (mouse_markdown():
+//                                             input.h's mouse rows)
 #include <functional>
 #include <string>
 #include <vector>
@@ -153,5 +154,8 @@ std::string keys_summary_markdown(const std::vector<KeyGroup>& groups);
 /// docs/viewer.md's script table: "| command | what it does |", one row per verb, its forms
 /// as code.
 std::string verbs_markdown(const std::vector<ScriptVerb>& verbs);
+/// docs/viewer.md's mouse table: "| mouse | 3D view | blackboard (2D mode) |", one row per
+/// MouseRow (input.h), "—" where the action does nothing in that mode.
+std::string mouse_markdown();
 
 }  // namespace viz

@@ -1,9 +1,34 @@
 #pragma once
-// GL-free judgement of the left mouse button: click (shoot a ray) or drag (orbit). Owns
-// only the press position and time; App feeds it the button, cursor and clock per frame.
+// GL-free judgement of the left mouse button: click (shoot a ray) or drag (orbit); on the
+// blackboard (2D mode) tools/blackboard_editor.h gives them their 2D meaning. Owns only the
+// press position and time; App feeds it the button, cursor and clock per frame. Also what
+// the mouse does, in words, per mode: the one source of the help's mouse lines, the docs'
+// mouse table (`accelviz --list mouse`) and the panels' "shoot a ray" hints.
+#include <span>
+#include <string>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 namespace viz {
+
+/// What one mouse action does in the 3D view and on the blackboard (2D mode); "" where it
+/// does nothing in that mode.
+struct MouseRow {
+  const char* mouse = "";  ///< "left drag"
+  const char* in_3d = "";  ///< "orbit the camera"
+  const char* in_2d = "";  ///< "on a corner: move it; elsewhere: shoot the debug ray along the drag"
+};
+
+/// Every mouse action, as App::update_camera_input, App::update_board_input and
+/// BlackboardEditor bind them.
+std::span<const MouseRow> mouse_rows();
+/// The help's lines for one mode, "MOUSE: what it does" (the blackboard's when `board`);
+/// the actions that do nothing there are left out.
+std::vector<std::string> mouse_help_lines(bool board);
+/// How the debug ray is shot in this mode, for the panels still waiting for one: a click
+/// into the 3D view, a drag on the blackboard.
+const char* shoot_hint(bool board);
 
 /// What one frame of left-button input means.
 struct ClickResult {

@@ -52,7 +52,7 @@ struct Options {
   int msaa = 4;                 ///< multisample anti-aliasing samples (0 = off)
   size_t memory_limit = 0;      ///< the builds' memory budget in bytes (0 = the default)
   std::string restore;          ///< a state file to reopen (--restore); empty = none
-  std::string list;             ///< --list: keys, keys-summary or commands; empty = none
+  std::string list;             ///< --list: keys, keys-summary, commands or mouse; empty = none
 };
 
 constexpr int kMinSize = 64;
@@ -130,8 +130,9 @@ std::optional<int> parse_command_line(int argc, char** argv, Options& options) {
                  "screenshot, print-hit, ...; --list commands prints them all), then exit");
   cli.add_option("--list", options.list,
                  "print a Markdown table made from the tools' rows and exit: keys (every key), keys-summary (each "
-                 "tool's keys) or commands (the script commands); docs/viewer.md and README.md hold them")
-      ->check(CLI::IsMember({"keys", "keys-summary", "commands"}));
+                 "tool's keys), commands (the script commands) or mouse (the mouse in 3D and in 2D); "
+                 "docs/viewer.md and README.md hold them")
+      ->check(CLI::IsMember({"keys", "keys-summary", "commands", "mouse"}));
   cli.add_option("--bench-json", options.bench_json,
                  "open the speed-against-error chart of this accelviz-cli bench --out-json file");
   cli.add_option("--playlist", options.playlist,
@@ -340,6 +341,7 @@ int main(int argc, char** argv) {
     const viz::App app;
     const std::string table = options.list == "commands"       ? viz::verbs_markdown(viz::script_verbs())
                               : options.list == "keys-summary" ? viz::keys_summary_markdown(app.key_groups())
+                              : options.list == "mouse"        ? viz::mouse_markdown()
                                                                : viz::keys_markdown(app.key_groups());
     std::fputs(table.c_str(), stdout);
     return 0;

@@ -98,6 +98,7 @@ InstancedNodes::InstancedNodes(NodeStyle::Shape shape)
     : shape_(shape), mode_(shape == NodeStyle::Shape::Plane ? GL_TRIANGLES : GL_LINES) {
   const std::vector<glm::vec3> unit = shape == NodeStyle::Shape::Box      ? unit_cube_edges()
                                       : shape == NodeStyle::Shape::Sphere ? unit_sphere_circles(24)
+                                      : shape == NodeStyle::Shape::Circle ? unit_circle(48)
                                                                           : unit_square_triangles();
   unit_.upload(unit.data(), unit.size() * sizeof(glm::vec3));
   unit_vertices_ = unit.size();

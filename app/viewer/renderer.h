@@ -61,7 +61,8 @@ struct LineStyle {
 
 /// Which instanced nodes are shown and how they are coloured (uniforms, no upload).
 struct NodeStyle {
-  enum class Shape { Box = 0, Sphere = 1, Plane = 2 };
+  /// Circle: a sphere-tree node in 2D (one circle in the plane z = 0).
+  enum class Shape { Box = 0, Sphere = 1, Plane = 2, Circle = 3 };
   enum class Coloring { Depth = 0, Prims = 1, Flat = 2 };
   Shape shape = Shape::Box;
   Coloring coloring = Coloring::Depth;
@@ -134,7 +135,8 @@ class ColorBatch {
 /// One unit shape drawn once per NodeInstance.
 class InstancedNodes {
  public:
-  /// `shape` picks the unit mesh: cube edges, three circles, or a square (triangles).
+  /// `shape` picks the unit mesh: cube edges, three circles, a square (triangles), or one
+  /// circle in z = 0.
   explicit InstancedNodes(NodeStyle::Shape shape);
   /// Replaces the instances (only when the structure or the node list changes).
   void upload(std::span<const NodeInstance> instances);

@@ -25,14 +25,48 @@ void for_each_edge(const accel::Aabb& box, Fn&& fn) {
       if ((i & bit) == 0) fn(c[i], c[i | bit]);
 }
 
-NodeInstance instance_of(const accel::NodeView& v) {
+/// The line list of unit circle `plane` (0: XY, 1: YZ, 2: ZX) in `n` segments, appended.
+void append_unit_circle(std::vector<glm::vec3>& v, int plane, int n) {
+  for (int i = 0; i < n; ++i) {
+    const float a0 = 2.0f * std::numbers::pi_v<float> * float(i) / float(n);
+    const float a1 = 2.0f * std::numbers::pi_v<float> * float(i + 1) / float(n);
+    for (float a : {a0, a1}) {
+      glm::vec3 p(0.0f);
+      p[plane] = std::cos(a);
+      p[(plane + 1) % 3] = std::sin(a);
+      v.push_back(p);
+    }
+  }
+}
+
+/// Calls fn(a, b) for each edge of a sphere's outline (sphere_outline()); the unit shapes of
+/// the two sizes drawn are made once.
+template <class Fn>
+void for_each_outline_edge(const glm::vec3& center, float radius, bool planar, int segments, Fn&& fn) {
+  if (!(radius >= 0.0f)) return;
+  glm::vec3 c = center;
+  float r = radius;
+  if (planar && !sphere_in_plane(center, radius, &c, &r)) return;
+  static const std::vector<glm::vec3> kCircle32 = unit_circle(32), kCircle48 = unit_circle(48);
+  static const std::vector<glm::vec3> kSphere32 = unit_sphere_circles(32), kSphere48 = unit_sphere_circles(48);
+  std::vector<glm::vec3> other;
+  const std::vector<glm::vec3>* unit = &other;
+  if (segments == 32) unit = planar ? &kCircle32 : &kSphere32;
+  else if (segments == 48) unit = planar ? &kCircle48 : &kSphere48;
+  else other = planar ? unit_circle(segments) : unit_sphere_circles(segments);
+  for (size_t i = 0; i + 1 < unit->size(); i += 2) fn(c + r * (*unit)[i], c + r * (*unit)[i + 1]);
+}
+
+NodeInstance instance_of(const accel::NodeView& v, bool planar) {
   NodeInstance n;
   n.depth = float(v.depth);
   n.leaf = v.leaf ? 1.0f : 0.0f;
   n.prims = float(v.prim_count);
   if (!v.sphere.empty()) {
     n.lo = v.sphere.center;
-    n.hi = glm::vec3(v.sphere.radius);
+    float r = v.sphere.radius;
+    if (planar && !sphere_in_plane(v.sphere.center, v.sphere.radius, &n.lo, &r)) r = 0.0f;  // a point: misses the plane
+    n.hi = glm::vec3(r);
   } else {
     n.lo = v.box.min;
     n.hi = v.box.max;
@@ -58,6 +92,7 @@ bool split_plane_instance(const accel::NodeView& v, NodeInstance* out) {
 
 StructureGeometry structure_geometry(const accel::Structure& s, const GeometryOptions& options) {
   StructureGeometry g;
+  g.planar = options.planar;
   auto add = [&g](const accel::NodeView& v) {
     if (v.id == accel::kNoNode) return;
     ++g.nodes;
@@ -65,9 +100,9 @@ StructureGeometry structure_geometry(const accel::Structure& s, const GeometryOp
     if (v.depth != 0) g.uniform_depth = false;
     if (v.leaf) g.max_prims = std::max(g.max_prims, v.prim_count);
     if (!v.sphere.empty()) {
-      g.spheres.push_back(instance_of(v));
+      g.spheres.push_back(instance_of(v, g.planar));
     } else if (!v.box.empty()) {
-      g.boxes.push_back(instance_of(v));
+      g.boxes.push_back(instance_of(v, g.planar));
     }
     NodeInstance plane;
     if (split_plane_instance(v, &plane)) g.planes.push_back(plane);
@@ -154,19 +189,53 @@ void append_box_edges(std::vector<ColorVertex>& lines, const accel::Aabb& box, c
   });
 }
 
-void append_sphere_segments(std::vector<Segment>& out, const glm::vec3& center, float radius,
-                            const glm::vec4& color, float width, int segments) {
-  if (!(radius >= 0.0f)) return;
-  const auto circle = unit_sphere_circles(segments);
-  for (size_t i = 0; i + 1 < circle.size(); i += 2)
-    out.push_back({center + radius * circle[i], center + radius * circle[i + 1], color, width});
+bool sphere_in_plane(const glm::vec3& center, float radius, glm::vec3* circle_center, float* circle_radius) {
+  const float h = std::abs(center.z);
+  if (!(radius >= h)) return false;
+  *circle_center = glm::vec3(center.x, center.y, 0.0f);
+  // (r - h)(r + h): no cancellation of r^2 - h^2 when h is close to r.
+  *circle_radius = h == 0.0f ? radius : std::sqrt((radius - h) * (radius + h));
+  return true;
 }
 
-void append_node_segments(std::vector<Segment>& out, const accel::NodeView& v, const glm::vec4& color, float width) {
+std::vector<glm::vec3> sphere_outline(const glm::vec3& center, float radius, bool planar, int segments) {
+  std::vector<glm::vec3> out;
+  for_each_outline_edge(center, radius, planar, segments, [&](const glm::vec3& a, const glm::vec3& b) {
+    out.push_back(a);
+    out.push_back(b);
+  });
+  return out;
+}
+
+void append_sphere_segments(std::vector<Segment>& out, const glm::vec3& center, float radius, const glm::vec4& color,
+                            float width, bool planar, int segments) {
+  for_each_outline_edge(center, radius, planar, segments,
+                        [&](const glm::vec3& a, const glm::vec3& b) { out.push_back({a, b, color, width}); });
+}
+
+void append_sphere_lines(std::vector<ColorVertex>& lines, const glm::vec3& center, float radius,
+                         const glm::vec4& color, bool planar) {
+  for_each_outline_edge(center, radius, planar, 32, [&](const glm::vec3& a, const glm::vec3& b) {
+    lines.push_back({a, color});
+    lines.push_back({b, color});
+  });
+}
+
+void append_node_segments(std::vector<Segment>& out, const accel::NodeView& v, const glm::vec4& color, float width,
+                          bool planar) {
   if (!v.sphere.empty()) {
-    append_sphere_segments(out, v.sphere.center, v.sphere.radius, color, width);
+    append_sphere_segments(out, v.sphere.center, v.sphere.radius, color, width, planar);
   } else {
     append_box_segments(out, v.box, color, width);
+  }
+}
+
+void append_node_lines(std::vector<ColorVertex>& lines, const accel::NodeView& v, const glm::vec4& color,
+                       bool planar) {
+  if (!v.sphere.empty()) {
+    append_sphere_lines(lines, v.sphere.center, v.sphere.radius, color, planar);
+  } else {
+    append_box_edges(lines, v.box, color);
   }
 }
 
@@ -184,20 +253,13 @@ std::vector<glm::vec3> unit_cube_edges() {
 
 std::vector<glm::vec3> unit_sphere_circles(int segments) {
   std::vector<glm::vec3> v;
-  const int n = std::max(segments, 8);
-  for (int plane = 0; plane < 3; ++plane) {
-    for (int i = 0; i < n; ++i) {
-      const float a0 = 2.0f * std::numbers::pi_v<float> * float(i) / float(n);
-      const float a1 = 2.0f * std::numbers::pi_v<float> * float(i + 1) / float(n);
-      for (float a : {a0, a1}) {
-        const float c = std::cos(a), s = std::sin(a);
-        glm::vec3 p(0.0f);
-        p[plane] = c;
-        p[(plane + 1) % 3] = s;
-        v.push_back(p);
-      }
-    }
-  }
+  for (int plane = 0; plane < 3; ++plane) append_unit_circle(v, plane, std::max(segments, 8));
+  return v;
+}
+
+std::vector<glm::vec3> unit_circle(int segments) {
+  std::vector<glm::vec3> v;
+  append_unit_circle(v, 0, std::max(segments, 8));
   return v;
 }
 

@@ -6,7 +6,8 @@
 //
 //   structure_geometry()   all nodes -> instances: one instanced draw per shape
 //   append_box_segments()  12 thick edges of a box (highlights)
-//   append_sphere_segments three great circles (sphere-tree highlights)
+//   sphere_outline() ...   a sphere-tree node's outline: three great circles in 3D, in 2D
+//                          (the blackboard) the one circle where it cuts the plane z = 0
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -36,7 +37,8 @@ struct Segment {
 static_assert(sizeof(Segment) == 44, "Segment is uploaded as 11 tightly packed floats");
 
 /// One node drawn by instancing a unit shape. Box: the unit cube's edges scaled to
-/// [lo, hi]. Sphere: three unit great circles scaled by hi.x around lo. Split plane: the
+/// [lo, hi]. Sphere: three unit great circles scaled by hi.x around lo; in 2D one unit
+/// circle in the plane z = 0, scaled by hi.x around lo (z = 0). Split plane: the
 /// unit square spanning [lo, hi] across the two axes other than `axis` (lo[axis] = hi[axis]).
 struct NodeInstance {
   glm::vec3 lo{0.0f};
@@ -54,12 +56,15 @@ struct GeometryOptions {
   /// BuildStats::nodes through node_view(), but only up to max_empty_cells ids.
   bool empty_cells = false;
   size_t max_empty_cells = size_t(1) << 21;
+  /// A 2D scene (Scene::planar(), the blackboard): a sphere-tree node is listed as its circle
+  /// in the plane z = 0 (sphere_in_plane()), drawn with the one-circle unit shape.
+  bool planar = false;
 };
 
 /// Every node of a structure as instances, plus what the colour scales need.
 struct StructureGeometry {
   std::vector<NodeInstance> boxes;    ///< nodes / cells with a box (all but sphere-tree nodes)
-  std::vector<NodeInstance> spheres;  ///< sphere-tree nodes: lo = centre, hi.x = radius
+  std::vector<NodeInstance> spheres;  ///< sphere-tree nodes: lo = centre, hi.x = radius (2D: the circle in z = 0)
   std::vector<NodeInstance> planes;   ///< kd-tree inner nodes: the split plane inside the node box
   int max_depth = 0;
   uint32_t max_prims = 0;             ///< largest prim_count of a leaf / cell
@@ -67,6 +72,7 @@ struct StructureGeometry {
   bool uniform_depth = true;          ///< every node at depth 0 (a grid): colour by count instead
   bool empty_cells_listed = false;    ///< GeometryOptions::empty_cells took effect
   bool empty_cells_too_many = false;  ///< asked for but more than max_empty_cells
+  bool planar = false;                ///< GeometryOptions::planar: spheres are circles in z = 0
 };
 
 /// Lists the nodes of `s` (GL-free; runs on the build thread).
@@ -109,16 +115,34 @@ bool split_plane_instance(const accel::NodeView& v, NodeInstance* out);
 void append_box_segments(std::vector<Segment>& out, const accel::Aabb& box, const glm::vec4& color, float width);
 /// Appends the 12 edges of `box` as thin line vertex pairs; nothing for an empty box.
 void append_box_edges(std::vector<ColorVertex>& lines, const accel::Aabb& box, const glm::vec4& color);
-/// Appends three great circles (XY, YZ, ZX) of a sphere as thick segments.
-void append_sphere_segments(std::vector<Segment>& out, const glm::vec3& center, float radius,
-                            const glm::vec4& color, float width, int segments = 48);
-/// Appends a node's outline: its sphere when it has one, else its box.
-void append_node_segments(std::vector<Segment>& out, const accel::NodeView& v, const glm::vec4& color, float width);
+/// Where a sphere cuts the plane z = 0, the plane of a 2D scene: the circle's centre (z = 0)
+/// and radius sqrt(r^2 - z^2) (r itself for a centre in the plane, as the sphere tree's are
+/// over a 2D scene); false when the sphere misses the plane.
+bool sphere_in_plane(const glm::vec3& center, float radius, glm::vec3* circle_center, float* circle_radius);
+/// A sphere-tree node's outline as a line list (vertex pairs), `segments` per circle: the
+/// sphere's three great circles (XY, YZ, ZX) in 3D; over a 2D scene (`planar`) the one circle
+/// where it cuts the plane z = 0 (sphere_in_plane(); nothing when it misses). Every outline
+/// the viewer draws of a sphere (nodes, highlights, tree selection, construction) is this one.
+std::vector<glm::vec3> sphere_outline(const glm::vec3& center, float radius, bool planar, int segments = 32);
+/// Appends sphere_outline() as thick segments.
+void append_sphere_segments(std::vector<Segment>& out, const glm::vec3& center, float radius, const glm::vec4& color,
+                            float width, bool planar, int segments = 48);
+/// Appends sphere_outline() as thin line vertex pairs.
+void append_sphere_lines(std::vector<ColorVertex>& lines, const glm::vec3& center, float radius,
+                         const glm::vec4& color, bool planar);
+/// Appends a node's outline, thick: its sphere's (2D: its circle) when it has one, else its box.
+void append_node_segments(std::vector<Segment>& out, const accel::NodeView& v, const glm::vec4& color, float width,
+                          bool planar);
+/// The same as thin line vertex pairs.
+void append_node_lines(std::vector<ColorVertex>& lines, const accel::NodeView& v, const glm::vec4& color,
+                       bool planar);
 
 /// Unit shapes instanced by the renderer: the cube's 12 edges (24 vertices in [0,1]^3),
-/// three unit circles (line list), and the unit square (two triangles, z = 0).
+/// three unit circles (line list), one unit circle in the plane z = 0 (line list: a 2D
+/// sphere-tree node), and the unit square (two triangles, z = 0).
 std::vector<glm::vec3> unit_cube_edges();
 std::vector<glm::vec3> unit_sphere_circles(int segments = 48);
+std::vector<glm::vec3> unit_circle(int segments = 48);
 std::vector<glm::vec3> unit_square_triangles();
 
 

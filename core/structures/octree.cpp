@@ -532,9 +532,10 @@ Result<OctreeData> build_octree(const Scene& scene, const OctreeBuildOptions& op
 const ParamTable<OctreeOptions>& Octree::param_table() {
   using O = OctreeOptions;
   static const auto table =
-      ParamTable<O>()
+      ParamTable<O>(O::planar_defaults())
           .integer("max_prims", [](O& o) -> auto& { return o.build.max_prims; }, 1, 4096,
-                   "a cell holding at most this many triangles is not subdivided")
+                   "a cell holding at most this many triangles is not subdivided (2D scenes: 1 by default, the "
+                   "lecture's quadtree)")
           .integer("max_depth", [](O& o) -> auto& { return o.build.max_depth; }, 0, kOctreeMaxDepth,
                    "deepest level of subdivision (the root is level 0)")
           .choice("insert", [](O& o) -> auto& { return o.build.insert; },
@@ -543,7 +544,9 @@ const ParamTable<OctreeOptions>& Octree::param_table() {
                   "a triangle goes to each child its bounding box (bbox) or the triangle itself (exact) overlaps")
           .number("ct", [](O& o) -> auto& { return o.build.ct; }, 0, 100,
                   "cost of a node visit in triangle tests: a cell is split only when 3 ct + its children's "
-                  "references / 4 < its triangles (0 = references < 4 x triangles)")
+                  "references / 4 < its triangles (0 = references < 4 x triangles). 2D scenes: 0 by default "
+                  "(references / 2 < triangles), since with 2 no split of a few triangles pays and the "
+                  "blackboard's ten stay one leaf")
           .choice("order", &O::order,
                   std::vector<std::pair<std::string, OctreeOrder>>{{"sorted", OctreeOrder::Sorted},
                                                                   {"fixed", OctreeOrder::Fixed}},

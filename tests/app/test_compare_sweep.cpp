@@ -55,11 +55,12 @@ TEST(Workbench, CompareRunsEveryStructureAndTraversalOnOneRay) {
 }
 
 TEST(Workbench, SweepValuesAndRun) {
-  accel::ParamSpec leaf{"leaf_size", accel::ParamSpec::Type::Int, "4", 1, 64, {}, "", accel::ParamValue(4)};
+  accel::ParamSpec leaf{"leaf_size", accel::ParamSpec::Type::Int, "4", 1, 64, {}, "", accel::ParamValue(4), {}};
   EXPECT_EQ(sweep_values(leaf, 1, 16, 5, true), (std::vector<double>{1, 2, 4, 8, 16}));
   EXPECT_EQ(sweep_values(leaf, 1, 3, 10, false), (std::vector<double>{1, 2, 3}));  // rounded, no duplicates
   EXPECT_EQ(sweep_values(leaf, 0, 1000, 2, false), (std::vector<double>{1, 64}));   // clamped to the range
-  accel::ParamSpec lambda{"lambda", accel::ParamSpec::Type::Float, "2", 0.01, 16, {}, "", accel::ParamValue(2.0)};
+  accel::ParamSpec lambda{"lambda", accel::ParamSpec::Type::Float, "2", 0.01, 16, {}, "", accel::ParamValue(2.0),
+                          {}};
   const auto v = sweep_values(lambda, 0.5, 4.0, 4, false);
   ASSERT_EQ(v.size(), 4u);
   EXPECT_DOUBLE_EQ(v[1], 0.5 + 3.5 / 3.0);

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The keys and script tables of the documents are the ones the viewer's rows make.
 
-Each tool declares its keys and script verbs as rows (app/viewer/commands.h); `accelviz
---list keys|keys-summary|commands` prints them as Markdown tables. This test compares each
+Each tool declares its keys and script verbs as rows (app/viewer/commands.h), the mouse its
+rows per mode (app/viewer/input.h); `accelviz --list keys|keys-summary|commands|mouse` prints
+them as Markdown tables. This test compares each
 table with the block of the document that holds it, between the lines
 
     <!-- generated: accelviz --list WHAT -->
@@ -24,7 +25,7 @@ import sys
 
 # document -> the tables it holds
 DOCUMENTS = {
-    'docs/viewer.md': ['keys', 'commands'],
+    'docs/viewer.md': ['mouse', 'keys', 'commands'],
     'README.md': ['keys-summary'],
 }
 END = '<!-- end of generated table -->'

@@ -103,13 +103,10 @@ const glm::vec4 kBboxCellColor(0.6f, 0.6f, 0.7f, 0.5f);
 const glm::vec4 kKeptCellColor(0.25f, 0.85f, 1.0f, 0.95f);
 const glm::vec4 kOtherColor(0.25f, 0.85f, 1.0f, 0.9f);  // the other nodes of a merge / collapse
 
-void append_sphere_lines(std::vector<ColorVertex>& lines, const accel::BoundingSphere& s, const glm::vec4& color) {
-  static const std::vector<glm::vec3> circle = unit_sphere_circles(32);
-  for (const glm::vec3& p : circle) lines.push_back({s.center + s.radius * p, color});
-}
-
-void append_node_outline(std::vector<Segment>& out, const accel::ReplayNode& n, const glm::vec4& color, float width) {
-  if (n.sphere.radius >= 0.0f) append_sphere_segments(out, n.sphere.center, n.sphere.radius, color, width);
+/// A node's outline, thick: its sphere's (in 2D, `planar`, its circle in the plane) or its box.
+void append_node_outline(std::vector<Segment>& out, const accel::ReplayNode& n, const glm::vec4& color, float width,
+                         bool planar) {
+  if (n.sphere.radius >= 0.0f) append_sphere_segments(out, n.sphere.center, n.sphere.radius, color, width, planar);
   else append_box_segments(out, n.box, color, width);
 }
 
@@ -188,7 +185,7 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
     const accel::ReplayNode& n = nodes[s];
     const glm::vec3 rgb = colormap(0.15f + 0.8f * static_cast<float>(n.depth) / static_cast<float>(max_depth));
     const glm::vec4 color(rgb, n.unrecorded ? 0.35f : 0.75f);
-    if (n.sphere.radius >= 0.0f) append_sphere_lines(v.lines, n.sphere, color);
+    if (n.sphere.radius >= 0.0f) append_sphere_lines(v.lines, n.sphere.center, n.sphere.radius, color, scene.planar());
     else append_box_edges(v.lines, n.box, color);
     ++v.nodes_drawn;
   }
@@ -241,7 +238,7 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
   const uint32_t slot = id == kNoBuildNode ? kNoBuildNode : replay.slot(id);
   if (slot == kNoBuildNode || slot >= nodes.size()) return v;
   const accel::ReplayNode& n = nodes[slot];
-  append_node_outline(v.segments, n, kCurrentColor, 3.5f);
+  append_node_outline(v.segments, n, kCurrentColor, 3.5f, scene.planar());
   // Its triangles (a leaf's own; an inner node's while it is being split).
   const size_t shown = std::min(n.prims.size(), BuildView::kMaxTriangles);
   for (size_t i = 0; i < shown; ++i) append_prim(v, scene, n.prims[i]);
@@ -262,7 +259,7 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
     case BuildEventKind::Subdivide:
     case BuildEventKind::Collapse:
       for (uint32_t c : n.children)
-        if (c < nodes.size() && !nodes[c].gone) append_node_outline(v.segments, nodes[c], kOtherColor, 2.0f);
+        if (c < nodes.size() && !nodes[c].gone) append_node_outline(v.segments, nodes[c], kOtherColor, 2.0f, scene.planar());
       break;
     case BuildEventKind::InsertStep: append_prim(v, scene, e->prim); break;
     default: break;

@@ -21,15 +21,6 @@ glm::vec4 test_miss_color() { return glm::vec4(miss_rgb(), 0.75f); }
 const glm::vec4 kClosestColor(1.0f, 0.78f, 0.05f, 0.95f);
 const glm::vec4 kHitPointColor(1.0f, 0.2f, 0.9f, 1.0f);
 
-void append_node_lines(std::vector<ColorVertex>& lines, const accel::NodeView& v, const glm::vec4& color) {
-  if (!v.sphere.empty()) {
-    static const std::vector<glm::vec3> circle = unit_sphere_circles(32);
-    for (const glm::vec3& p : circle) lines.push_back({v.sphere.center + v.sphere.radius * p, color});
-  } else {
-    append_box_edges(lines, v.box, color);
-  }
-}
-
 void append_triangle(std::vector<ColorVertex>& tris, const accel::Scene& scene, int32_t prim, const glm::vec4& color) {
   if (prim < 0 || static_cast<size_t>(prim) >= scene.triangle_count()) return;
   for (int k = 0; k < 3; ++k) tris.push_back({scene.vertex(static_cast<uint32_t>(prim), k), color});
@@ -69,6 +60,7 @@ Highlights build_highlights(const DebugRay& debug, const accel::Scene& scene, co
     return out;
   }
   const accel::Structure& s = *built->structure;
+  const bool planar = scene.planar();  // 2D: a sphere-tree node is one circle in the plane
   out.step = accel::trace_highlight(events, debug.player.step());
   const accel::TraceHighlight& h = out.step;
   out.code_line = pseudo_code_line(built->kind, events, debug.player.step(),
@@ -79,25 +71,26 @@ Highlights build_highlights(const DebugRay& debug, const accel::Scene& scene, co
     constexpr size_t kMaxTrail = 4000;
     const size_t first = h.visited.size() > kMaxTrail ? h.visited.size() - kMaxTrail : 0;
     for (size_t i = first; i + 1 < h.visited.size(); ++i)
-      append_node_lines(out.lines, s.node_view(h.visited[i]), kTrailColor);
+      append_node_lines(out.lines, s.node_view(h.visited[i]), kTrailColor, planar);
   }
   if (options.culled) {
     for (const accel::CulledNode& c : h.culled)
       append_node_lines(out.lines, s.node_view(c.node),
-                        c.reason == accel::CullReason::BeyondClosestHit ? kBeyondColor : kMissedColor);
+                        c.reason == accel::CullReason::BeyondClosestHit ? kBeyondColor : kMissedColor, planar);
   }
   if (options.pending) {
-    for (const accel::PendingNode& p : h.pending) append_node_lines(out.lines, s.node_view(p.node), kPendingColor);
+    for (const accel::PendingNode& p : h.pending)
+      append_node_lines(out.lines, s.node_view(p.node), kPendingColor, planar);
     // The node a priority queue takes next: the smallest key.
     if (built->kind == TraversalKind::HierarchyPqueue && !h.pending.empty())
       append_node_segments(out.segments, s.node_view(accel::sorted_by_key(h.pending).front().node),
-                           kPendingColor, 2.5f);
+                           kPendingColor, 2.5f, planar);
   }
 
   // The current node or cell, its split plane, and the ray's interval inside it.
   if (h.node != accel::kNoNode) {
     const accel::NodeView v = s.node_view(h.node);
-    append_node_segments(out.segments, v, kCurrentColor, 3.5f);
+    append_node_segments(out.segments, v, kCurrentColor, 3.5f, planar);
     NodeInstance plane;
     if (split_plane_instance(v, &plane)) {
       const glm::vec4 c(kCurrentColor.r, kCurrentColor.g, kCurrentColor.b, 0.28f);
@@ -118,11 +111,12 @@ Highlights build_highlights(const DebugRay& debug, const accel::Scene& scene, co
   if (e.node != accel::kNoNode && e.node != h.node) {
     if (e.kind == accel::TraceEventKind::Cull)
       append_node_segments(out.segments, s.node_view(e.node),
-                           e.reason == accel::CullReason::BeyondClosestHit ? kBeyondColor : kMissedColor, 3.5f);
+                           e.reason == accel::CullReason::BeyondClosestHit ? kBeyondColor : kMissedColor, 3.5f,
+                           planar);
     else if (e.kind == accel::TraceEventKind::Push)
-      append_node_segments(out.segments, s.node_view(e.node), kPendingColor, 3.5f);
+      append_node_segments(out.segments, s.node_view(e.node), kPendingColor, 3.5f, planar);
     else if (e.kind == accel::TraceEventKind::Pop)
-      append_node_segments(out.segments, s.node_view(e.node), kPoppedColor, 3.5f);
+      append_node_segments(out.segments, s.node_view(e.node), kPoppedColor, 3.5f, planar);
   }
 
   // Triangles tested in the current node (hit / miss), then the closest hit so far.

@@ -156,6 +156,9 @@ void NodeDisplay::upload() {
   planes_filter.leaves_only = false;  // split planes belong to inner nodes
   planes_filter.hide_empty = false;
   boxes_gl_->upload(boxes);
+  // A 2D scene's sphere-tree nodes are circles in the plane: the one-circle unit shape.
+  const NodeStyle::Shape round = geometry_.planar ? NodeStyle::Shape::Circle : NodeStyle::Shape::Sphere;
+  if (spheres_gl_->shape() != round) spheres_gl_.emplace(round);
   spheres_gl_->upload(spheres);
   planes_gl_->upload(f.leaves_only ? std::vector<NodeInstance>{} : filter_nodes(geometry_.planes, planes_filter));
   drawn_nodes_ = boxes.size() + spheres.size();

@@ -79,7 +79,7 @@ class NodeDisplay {
   // vertices each still draw at interactive rates on Mesa's software renderer.
   static constexpr size_t kMaxDrawnNodes = size_t(1) << 18;
   std::optional<InstancedNodes> boxes_gl_;
-  std::optional<InstancedNodes> spheres_gl_;
+  std::optional<InstancedNodes> spheres_gl_;  // three circles each, or in 2D one (Shape::Circle)
   std::optional<InstancedNodes> planes_gl_;
 };
 

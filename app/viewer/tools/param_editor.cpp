@@ -9,6 +9,15 @@
 #include "params.h"
 
 namespace viz {
+namespace {
+
+/// "default 8", or over a 2D scene with a default of its own "default 1 in 2D (3D: 8)".
+std::string default_text(const accel::ParamSpec& spec, bool planar) {
+  if (!planar || !spec.planar_default) return "default " + spec.default_value;
+  return "default " + spec.text(*spec.planar_default) + " in 2D (3D: " + spec.default_value + ")";
+}
+
+}  // namespace
 
 void ParamEditor::set(const StructureRequest& request) {
   const auto& registry = accel::structure_registry();
@@ -76,14 +85,16 @@ bool ParamEditor::kernel_combo() {
   return changed;
 }
 
-bool ParamEditor::parameter_widgets() {
+bool ParamEditor::parameter_widgets(bool planar) {
   const float em = ImGui::GetFontSize();
   const auto& specs = info().params;
   if (specs.empty()) {
     ImGui::TextDisabled("(no parameters)");
     return false;
   }
+  params_.set_planar(planar);  // what Structure::build will use for the keys not set
   bool changed = false;
+  std::string planar_defaults;  // "max_prims=1 ct=0": the 2D defaults in use
   for (size_t i = 0; i < specs.size(); ++i) {
     const accel::ParamSpec& spec = specs[i];
     if (!params_.has(spec.name)) continue;
@@ -133,7 +144,7 @@ bool ParamEditor::parameter_widgets() {
       ImGui::BeginTooltip();
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
       ImGui::TextUnformatted(spec.doc.c_str());
-      ImGui::TextDisabled("%s; default %s%s", spec.range_text().c_str(), spec.default_value.c_str(),
+      ImGui::TextDisabled("%s; %s%s", spec.range_text().c_str(), default_text(spec, planar).c_str(),
                           is_set ? "" : " (in use: not set explicitly)");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
@@ -145,9 +156,17 @@ bool ParamEditor::parameter_widgets() {
         params_.reset(spec.name);
         changed = true;
       }
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the default (%s)", spec.default_value.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("back to the %s", default_text(spec, planar).c_str());
     }
+    if (planar && spec.planar_default && !params_.is_set(spec.name))
+      planar_defaults += (planar_defaults.empty() ? "" : " ") + spec.name + "=" + params_.text(spec.name);
     ImGui::PopID();
+  }
+  if (!planar_defaults.empty()) {
+    ImGui::TextDisabled("2D defaults: %s", planar_defaults.c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("on the blackboard these parameters have their own defaults (hover one for why); "
+                        "set one to override it");
   }
   return changed;
 }

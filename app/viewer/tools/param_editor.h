@@ -29,8 +29,10 @@ class ParamEditor {
   std::string structure_combo();
   /// The kernel combo; true when the kernel changed.
   bool kernel_combo();
-  /// One widget per parameter, each with a reset button; true when a value changed.
-  bool parameter_widgets();
+  /// One widget per parameter, each with a reset button; true when a value changed. Over a
+  /// 2D scene (`planar`) the parameters not set show the 2D defaults the build will use
+  /// (accel::ParamSpec::planar_default), and a line names them.
+  bool parameter_widgets(bool planar);
 
  private:
   int structure_ = 0;     // index into accel::structure_registry()

@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "input.h"
 #include "panels.h"
 #include "rays_io.h"
 #include "tools/build_player.h"
@@ -143,12 +144,12 @@ std::string RayDebugger::ray_line() const { return accel::format_ray_line(ray_.r
 // ---------------------------------------------------------------------------------------
 // Panels
 
-bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built) {
+bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built, bool board) {
   const float em = ImGui::GetFontSize();
   if (!ui::begin_panel(where, "Debug ray")) return false;
   bool compare = false;
   if (!ray_.active) {
-    ImGui::TextWrapped("Click into the scene to shoot a ray through that pixel.");
+    ImGui::TextWrapped("No debug ray yet: %s.", shoot_hint(board));
   } else {
     ImGui::TextDisabled("%s, %s", ray_.origin.c_str(), built ? built->request.name.c_str() : "?");
     if (built) {
@@ -239,10 +240,12 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
     compare = true;
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the same ray through every structure and traversal order");
-  ImGui::SameLine();
-  ImGui::Checkbox("from saved view", &shoot_from_saved_);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("a click aims from the saved viewpoint (Scene > Save view) at the point under the cursor");
+  if (!board) {  // the blackboard's clicks place corners: no viewpoint to shoot from
+    ImGui::SameLine();
+    ImGui::Checkbox("from saved view", &shoot_from_saved_);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("a click aims from the saved viewpoint (Scene > Save view) at the point under the cursor");
+  }
   if (ImGui::TreeNode("Colours")) {
     ImGui::TextColored(kCurrentText, "current node and the ray's interval in it");
     ImGui::TextColored(ImVec4(0.85f, 0.88f, 0.95f, 1.0f), "nodes visited before (trail)");
@@ -275,11 +278,13 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
   return compare;
 }
 
-void RayDebugger::steps_panel(const PanelPlace& where) {
+void RayDebugger::steps_panel(const PanelPlace& where, bool board) {
   if (!ui::begin_panel(where, "Traversal steps")) return;
   const auto& events = ray_.player.events();
   if (events.empty()) {
-    ImGui::TextDisabled("no trace yet: click into the scene");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("no trace yet: %s", shoot_hint(board));
+    ImGui::PopStyleColor();
     ImGui::End();
     return;
   }

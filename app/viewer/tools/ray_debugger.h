@@ -78,10 +78,11 @@ class RayDebugger {
   /// Clicks shoot from the saved viewpoint ("from saved view").
   bool shoot_from_saved() const { return shoot_from_saved_; }
 
-  /// The "Debug ray" panel; true when its Compare button was pressed.
-  bool ray_panel(const PanelPlace& place, const BuiltStructure* built);
-  /// The "Traversal steps" panel.
-  void steps_panel(const PanelPlace& place);
+  /// The "Debug ray" panel; true when its Compare button was pressed. `board`: the
+  /// blackboard (2D mode), whose mouse shoots the ray otherwise (input.h: shoot_hint()).
+  bool ray_panel(const PanelPlace& place, const BuiltStructure* built, bool board);
+  /// The "Traversal steps" panel (`board` as for ray_panel()).
+  void steps_panel(const PanelPlace& place, bool board);
   /// The "Pseudo code" panel in `mono` (nullptr: the default font).
   void code_panel(const PanelPlace& place, const BuiltStructure* built, ImFont* mono);
   /// The trail / skipped / pending checkboxes (end of the Display section).

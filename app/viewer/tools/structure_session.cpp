@@ -274,7 +274,7 @@ void StructureSession::structure_section() {
   if (!chosen.empty()) switch_structure(chosen, {});
   if (editor_.kernel_combo()) rebuild();
   // Every change rebuilds in the background; the old structure stays drawn meanwhile.
-  if (editor_.parameter_widgets()) rebuild();
+  if (editor_.parameter_widgets(scene_->planar())) rebuild();
 
   if (builds_.busy()) {
     // Determinate: the builders report the fraction done through the BuildControl.

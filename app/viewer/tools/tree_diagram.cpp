@@ -14,6 +14,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "input.h"
 #include "panels.h"
 #include "registry.h"
 #include "tools/build_player.h"
@@ -256,6 +257,7 @@ void TreeDiagram::rebuild_highlight() {
   segments_.clear();
   lines_.clear();
   if (!on_ || selected_ == kNoNode || replay_mode_ || !structure_ || !shape_) return;
+  const bool planar = built_ && built_->scene && built_->scene->planar();  // 2D: spheres are circles
   if (isolate_) {
     // Breadth-first, so a huge subtree shows its top levels; coloured by depth below it.
     const int top = selected_view_.depth;
@@ -269,18 +271,13 @@ void TreeDiagram::rebuild_highlight() {
         const accel::NodeView v = structure_->node_view(n);
         const glm::vec3 c = colormap(static_cast<float>(v.depth - top) / span);
         const glm::vec4 color(c, v.leaf ? 0.85f : 0.6f);
-        if (!v.sphere.empty()) {
-          static const std::vector<glm::vec3> circle = unit_sphere_circles(32);
-          for (const glm::vec3& p : circle) lines_.push_back({v.sphere.center + v.sphere.radius * p, color});
-        } else {
-          append_box_edges(lines_, v.box, color);
-        }
+        append_node_lines(lines_, v, color, planar);
         for (NodeId k : shape_->children(n)) next.push_back(k);
       }
       level.swap(next);
     }
   }
-  append_node_segments(segments_, selected_view_, kSelected3D, 3.5f);
+  append_node_segments(segments_, selected_view_, kSelected3D, 3.5f, planar);
 }
 
 void TreeDiagram::draw(Renderer& renderer) {
@@ -594,12 +591,19 @@ void TreeDiagram::grid_table() {
   const int current = grid_current_row(grid_rows_, step_);
   int res[3];
   grid_resolution(built_->stats, res);
+  const bool board = built_->scene && built_->scene->planar();  // the blackboard: 2D texts
   if (grid_rows_.empty()) {
-    ImGui::TextDisabled("cell walk: no debug ray yet (click the scene)");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("cell walk: no debug ray yet (%s)", shoot_hint(board));
+    ImGui::PopStyleColor();
     return;
   }
-  ImGui::TextWrapped("cell walk of the 3D-DDA: %zu cells entered (grid %dx%dx%d), one row per step into a cell; "
-                     "current: row %d", grid_rows_.size(), res[0], res[1], res[2], current + 1);
+  if (board)
+    ImGui::TextWrapped("cell walk of the 2D DDA: %zu cells entered (grid %dx%d), one row per step into a cell; "
+                       "current: row %d", grid_rows_.size(), res[0], res[1], current + 1);
+  else
+    ImGui::TextWrapped("cell walk of the 3D-DDA: %zu cells entered (grid %dx%dx%d), one row per step into a cell; "
+                       "current: row %d", grid_rows_.size(), res[0], res[1], res[2], current + 1);
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV |
                                 ImGuiTableFlags_SizingFixedFit;
   if (!ImGui::BeginTable("##cell_walk", 8, flags, ImGui::GetContentRegionAvail())) return;

@@ -12,6 +12,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "input.h"
 #include "panels.h"
 #include "tools/false_claims.h"
 #include "tools/traversal_numbers.h"
@@ -213,13 +214,13 @@ void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* m
 }  // namespace
 
 void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel::TraceHighlight& h, TraversalKind kind,
-                      ImFont* mono, const std::function<void()>& top_block) {
+                      bool board, ImFont* mono, const std::function<void()>& top_block) {
   if (!ui::begin_panel(where, "Variables")) return;
   if (top_block) top_block();
   const auto& events = ray.player.events();
   if (!ray.active || events.empty() || !h.valid) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("the traversal's variables at the current step: click into the scene to shoot a ray");
+    ImGui::TextWrapped("the traversal's variables at the current step: %s", shoot_hint(board));
     ImGui::PopStyleColor();
     ImGui::End();
     return;

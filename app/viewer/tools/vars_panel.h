@@ -29,11 +29,11 @@ class VarsPanel {
   /// Its key (V: the window and the strip together).
   KeyGroup key_bindings();
 
-  /// The "Variables" window for `ray` at `highlight`'s step, traversal `kind`; `mono`
-  /// (may be null) for the numbers. `top_block` (optional) draws first inside the window
-  /// (the lecture trap's answers).
+  /// The "Variables" window for `ray` at `highlight`'s step, traversal `kind`, on the
+  /// blackboard (2D mode) or not (`board`: how a ray is shot); `mono` (may be null) for the
+  /// numbers. `top_block` (optional) draws first inside the window (the lecture trap's answers).
   void panel(const PanelPlace& place, const DebugRay& ray, const accel::TraceHighlight& highlight, TraversalKind kind,
-             ImFont* mono, const std::function<void()>& top_block = {});
+             bool board, ImFont* mono, const std::function<void()>& top_block = {});
   /// The t-axis strip in `rect` (window coordinates). `naive` (may be null): the answer a
   /// naive first-leaf traversal gives, marked on the axis when it differs from the answer.
   void strip(const WindowRect& rect, const DebugRay& ray, const accel::TraceHighlight& highlight,
