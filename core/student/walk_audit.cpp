@@ -139,11 +139,8 @@ namespace {
 /// The state of one audit: the ray, its hits, and the helpers that read the tree.
 class Audit {
  public:
-  Audit(const KitTree& tree, accelviz::Kind kind, const Scene& scene, const Ray& ray,
-        std::vector<ExactHit> hits,
-        double final_t)
+  Audit(const KitTree& tree, const Scene& scene, const Ray& ray, std::vector<ExactHit> hits, double final_t)
       : tree_(tree),
-        kind_(kind),
         ray_(ray),
         hits_(std::move(hits)),
         final_t_(final_t),
@@ -224,7 +221,6 @@ class Audit {
   }
 
   const KitTree& tree_;
-  accelviz::Kind kind_;
   const Ray& ray_;
   std::vector<ExactHit> hits_;
   double final_t_;
@@ -437,7 +433,7 @@ WalkAudit WalkAuditor::audit(const Ray& ray, std::span<const TraceEvent> events,
   double final_t = INFINITY;
   if (!events.empty() && events.back().kind == TraceEventKind::Done && events.back().hit)
     final_t = events.back().t0;
-  Audit a(tree_, kind_, scene_, ray, find_lossy ? all_hits(scene_, ray) : std::vector<ExactHit>{}, final_t);
+  Audit a(tree_, scene_, ray, find_lossy ? all_hits(scene_, ray) : std::vector<ExactHit>{}, final_t);
   a.closest = double(ray.tmax);
   size_t v = 0;
   NodeId current = kNoNode, prev_cell = kNoNode;
@@ -632,7 +628,7 @@ Diagnosis WalkAuditor::diagnose(const Ray& ray, std::span<const TraceEvent> even
   // Where the nearer hit is: in a leaf or cell that holds the triangle, or lost at a split.
   const Index& ix = index();
   const DVec3 p = DVec3(ray.org) + ref.t * DVec3(ray.dir);
-  Audit helper(tree_, kind_, scene_, ray, {}, INFINITY);
+  Audit helper(tree_, scene_, ray, {}, INFINITY);
   auto held = ix.holders.find(uint32_t(ref.prim));
   std::vector<uint32_t> holding;  // leaves / cells holding the triangle at the hit point
   if (held != ix.holders.end())
