@@ -7,6 +7,9 @@
 #include <cstdio>
 
 #include "app.h"
+#include "color_scheme.h"
+#include "tools/structure_session.h"
+#include "tools/node_display.h"
 
 namespace viz {
 
@@ -21,16 +24,15 @@ std::vector<VerbRun> App::global_verbs() {
       {CommandKind::Size,
        [this](const ScriptCommand& c, ScriptHost& host) -> accel::Status {
          if (auto st = host.resize(c.ints[0], c.ints[1]); !st) return st;
-         framebuffer_ = host.framebuffer_size();
-         layout_frames_ = 2;
+         layout_.set_framebuffer(host.framebuffer_size());
+         layout_.relayout();
          return {};
        }},
       {CommandKind::Camera,
        [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
          const glm::vec3 eye(c.values[0], c.values[1], c.values[2]), target(c.values[3], c.values[4], c.values[5]);
          const float fov = c.has_fov ? c.values[6] : camera_.pinhole().fovy_deg;
-         camera_.look_at(eye, target, fov, session_.scene().bounds());
-         frame_requested_ = false;
+         camera_.look_at(eye, target, fov, session().scene());
          return {};
        }},
       {CommandKind::Panel,
@@ -40,7 +42,7 @@ std::vector<VerbRun> App::global_verbs() {
        }},
       {CommandKind::Large,
        [this](const ScriptCommand& c, ScriptHost& host) -> accel::Status {
-         lecture_mode_ = c.on;
+         layout_.set_lecture(c.on);
          host.render(2);  // the font switches at the next frame
          return {};
        }},
@@ -50,7 +52,7 @@ std::vector<VerbRun> App::global_verbs() {
          parse_colormap(c.name, &scheme.map);  // checked by the parser
          scheme.cvd_safe_hits = c.on;
          set_color_scheme(scheme);
-         ray_.recolor();
+         notify(ToolEvent::ColorsChanged);
          return {};
        }},
       {CommandKind::Screenshot,
@@ -62,7 +64,7 @@ std::vector<VerbRun> App::global_verbs() {
          const double ms = host.measure_frames(c.ints[0]);
          const glm::ivec2 fb = host.framebuffer_size();
          std::printf("frame-time %.2f ms (mean of %d frames, %dx%d, %zu triangles, %zu nodes drawn, GL: %s)\n", ms,
-                     c.ints[0], fb.x, fb.y, session_.scene().triangle_count(), nodes_.drawn_nodes(),
+                     c.ints[0], fb.x, fb.y, session().scene().triangle_count(), tool<NodeDisplay>().drawn_nodes(),
                      host.gl_renderer().c_str());
          std::fflush(stdout);
          return {};

@@ -12,6 +12,7 @@
 #include "tools/structure_session.h"
 #include "tools/transport_controls.h"
 #include "tools/ui_colors.h"
+#include "window_layout.h"
 
 namespace viz {
 namespace {
@@ -185,7 +186,7 @@ std::string BuildPlayer::step_line() const {
   return build_step_line(*trace_, player_.step());
 }
 
-void BuildPlayer::update() {
+void BuildPlayer::refresh() {
   if (!replay_ || !scene_) return;
   if (!dirty_ && view_step_ == player_.step()) return;
   dirty_ = false;
@@ -372,7 +373,7 @@ void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
 // ---------------------------------------------------------------------------------------
 // Keys and script verbs (their GL-free half: build_player_verbs.cpp)
 
-KeyGroup BuildPlayer::key_bindings(ToolHost& host) {
+std::vector<KeyBinding> BuildPlayer::keys(ToolHost& host) {
   std::vector<KeyBinding> rows = {
       {GLFW_KEY_B, "B", "construction mode: record the current structure's build (again: back to the traversal)",
        [this, &host](const KeyPress&) {
@@ -392,7 +393,7 @@ KeyGroup BuildPlayer::key_bindings(ToolHost& host) {
                                GLFW_KEY_PAGE_UP, GLFW_KEY_PAGE_DOWN, "PgUp / PgDn", GLFW_KEY_MINUS, GLFW_KEY_EQUAL,
                                "- / =", " (with a playlist loaded: shift + PgUp / PgDn)"});
   rows.insert(rows.end(), transport.begin(), transport.end());
-  return {"construction", rows};
+  return rows;
 }
 
 std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
@@ -452,8 +453,50 @@ std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
 // ---------------------------------------------------------------------------------------
 // Drawing
 
-void BuildPlayer::draw(Renderer& renderer) {
-  if (active_) gl_.draw(renderer);
+void BuildPlayer::draw(Renderer& renderer, ToolHost&, DrawLayer layer) {
+  if (layer == DrawLayer::Scene && active_) gl_.draw(renderer);
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void BuildPlayer::on_event(ToolEvent event, ToolHost&) {
+  if (event == ToolEvent::SceneLoaded || event == ToolEvent::SceneEdited || event == ToolEvent::StructureInstalled)
+    reset();  // recorded on another structure
+  if (event == ToolEvent::PlaylistReset) set_active(false);
+}
+
+void BuildPlayer::update(ToolHost&, float dt) {
+  poll();
+  advance(static_cast<double>(dt));
+}
+
+void BuildPlayer::section(ToolHost& host, PanelSection section) {
+  if (section != PanelSection::Structure) return;
+  ImGui::BeginDisabled(!host.session().current() || recording());
+  if (ImGui::Button("Construct (B)")) host.construct();
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("record the build and watch it step by step");
+  ImGui::SameLine();
+  bool mode = active();
+  if (ImGui::Checkbox("construction mode", &mode)) set_active(mode);
+}
+
+void BuildPlayer::panels(ToolHost& host) {
+  if (!active() && !recording()) return;  // the traversal's panels are shown instead
+  WindowLayout& layout = host.layout();
+  const PanelSwitches& on = layout.panels();
+  // The construction panel also holds the SAH cost plot: it takes a third of the code
+  // panel's height (in lecture mode's large fonts the plot was cut off).
+  WindowRect control = layout.rects().ray, code = layout.rects().code;
+  const float moved = std::round(code.size.y / 3.0f);
+  control.size.y += moved;
+  code.pos.y += moved;
+  code.size.y -= moved;
+  const StructureSession& session = host.session();
+  if (on.ray) control_panel(layout.place(control), session.scene_ptr(), session.current_request());
+  if (on.steps) steps_panel(layout.place(layout.rects().steps));
+  if (on.code) code_panel(layout.place(code), layout.mono());
 }
 
 }  // namespace viz

@@ -20,6 +20,7 @@
 #include "result.h"
 #include "tool_host.h"
 #include "tools/build_playback.h"
+#include "tools/tool.h"
 #include "tools/transport_controls.h"
 #include "view_layout.h"
 
@@ -27,8 +28,30 @@ struct ImFont;
 
 namespace viz {
 
-class BuildPlayer {
+class BuildPlayer final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "construction"; }
+  /// B records or leaves the mode; play, step, first / last, speed.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  /// construct, construct-until, build-step, print-build-step, sah-plot; `host` gives the
+  /// structure.
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void init_gl() override { gl_.create(); }
+  void release_gl() override { gl_.release(); }
+  /// A new scene or structure forgets the recording (it was of another one).
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// A finished recording; the animation's clock.
+  void update(ToolHost& host, float dt) override;
+  /// Structure: Construct (B) and the mode's switch.
+  void section(ToolHost& host, PanelSection section) override;
+  /// In the construction mode its panels take the traversal's places.
+  void panels(ToolHost& host) override;
+  void late_update(ToolHost&) override { refresh(); }
+  void sync_gl(Renderer&, ToolHost&) override { gl_.sync(view_.segments, view_.triangles, view_.lines); }
+  /// In the construction mode: the partly built structure instead of the finished one.
+  void draw(Renderer& renderer, ToolHost& host, DrawLayer layer) override;
+
   /// Records the build of `request` over `scene` and turns the mode on; `synchronous`
   /// (script mode) records before returning. A recording in progress is cancelled first.
   void construct(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request, bool synchronous);
@@ -46,7 +69,7 @@ class BuildPlayer {
   /// Forgets the recording and leaves the mode (a new scene or structure).
   void reset();
   /// Waits for the recording thread (shutdown).
-  void wait();
+  void wait() override;
 
   /// The mode is on: its panels and drawing replace the traversal's.
   bool active() const { return active_; }
@@ -69,13 +92,7 @@ class BuildPlayer {
   /// the tree diagram.
   const accel::BuildReplay* replay() const { return replay_.get(); }
   /// Applies the player's step to the replay and rebuilds the view when it changed.
-  void update();
-
-  /// Its keys (B records or leaves the mode; play, step, first / last, speed) and script
-  /// verbs (construct, construct-until, build-step, print-build-step, sah-plot); `host`
-  /// gives the structure.
-  KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void refresh();
 
   /// The "Construction" panel (controls, counters, cost plot) at the ray panel's place.
   void control_panel(const PanelPlace& place, const std::shared_ptr<const accel::Scene>& scene,
@@ -85,10 +102,6 @@ class BuildPlayer {
   /// The "Construction code" panel in `mono`.
   void code_panel(const PanelPlace& place, ImFont* mono);
 
-  void init_gl() { gl_.create(); }
-  void sync_gl() { gl_.sync(view_.segments, view_.triangles, view_.lines); }
-  void draw(Renderer& renderer);
-  void release_gl() { gl_.release(); }
 
  private:
   void record(std::shared_ptr<const accel::Scene> scene, const StructureRequest& request,

@@ -10,7 +10,9 @@
 #include "panels.h"
 #include "params.h"
 #include "tools/ray_debugger.h"
+#include "tools/structure_session.h"
 #include "tools/ui_colors.h"
+#include "window_layout.h"
 
 namespace viz {
 
@@ -167,14 +169,13 @@ void CompareTool::builtin_lines() {
 // ---------------------------------------------------------------------------------------
 // Keys and script verbs (their GL-free half: compare_verbs.cpp)
 
-KeyGroup CompareTool::key_bindings(ToolHost& host) {
-  return {"compare",
-          {{GLFW_KEY_C, "C", "Compare: the same ray through every structure and traversal order",
+std::vector<KeyBinding> CompareTool::keys(ToolHost& host) {
+  return {{GLFW_KEY_C, "C", "Compare: the same ray through every structure and traversal order",
             [this, &host](const KeyPress&) {
               set_open(true);
               host.start_compare();
               return true;
-            }}}};
+            }}};
 }
 
 std::vector<VerbRun> CompareTool::script_verbs(ToolHost& host) {
@@ -185,6 +186,31 @@ std::vector<VerbRun> CompareTool::script_verbs(ToolHost& host) {
              print_rows();
              return {};
            }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void CompareTool::on_event(ToolEvent event, ToolHost& host) {
+  if (event == ToolEvent::SceneLoaded || event == ToolEvent::SceneEdited) clear();
+  if (event == ToolEvent::RayChanged && open_) host.start_compare();
+  if (event == ToolEvent::PlaylistReset) set_open(false);
+}
+
+void CompareTool::panels(ToolHost& host) {
+  if (!open_) return;
+  WindowLayout& layout = host.layout();
+  RayDebugger& ray = host.ray();
+  StructureSession& session = host.session();
+  if (auto choice = panel(layout.place(layout.rects().bottom, false), session.shown(), ray.ray().ray))
+    session.switch_structure(choice->name, choice->params);
+  if (auto step = take_seek(); step && ray.ray().active) ray.player().seek(*step);
+}
+
+bool CompareTool::set_panel(const std::string& name, bool on) {
+  if (name != "compare") return false;
+  set_open(on);
+  return true;
 }
 
 }  // namespace viz

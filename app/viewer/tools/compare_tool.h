@@ -15,6 +15,7 @@
 #include "student/trace_diff.h"
 #include "tool_host.h"
 #include "tools/compare_model.h"
+#include "tools/tool.h"
 #include "view_layout.h"
 
 namespace viz {
@@ -34,8 +35,21 @@ struct CompareResult {
 };
 
 /// The comparison table and its job.
-class CompareTool {
+class CompareTool final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "compare"; }
+  /// C: compare the debug ray; `host` gives the ray and starts the run.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void wait() override { job_.wait(); }
+  /// A new scene forgets the rows; a new ray runs again while the window is open.
+  void on_event(ToolEvent event, ToolHost& host) override;
+  void update(ToolHost&, float) override { poll(); }
+  /// The table, along the bottom of the view.
+  void panels(ToolHost& host) override;
+  bool set_panel(const std::string& name, bool on) override;
+
   /// Starts comparing `ray` over `scene`; `current` keeps its parameters (the traversal
   /// varied); `shown`, the structure built for `current`, is compared with the built-in of
   /// its kind when it is a student's. Synchronous in script mode.
@@ -51,14 +65,8 @@ class CompareTool {
   std::optional<size_t> take_seek() { return std::exchange(seek_, std::nullopt); }
   /// Prints the rows as the `compare` script command does.
   void print_rows() const;
-  /// Waits for the job.
-  void wait() { job_.wait(); }
 
   /// Whether the window is shown.
-  /// Its key (C) and script verb (compare); `host` gives the debug ray and starts the run.
-  KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   bool open() const { return open_; }
   /// Shows or hides the window.
   void set_open(bool open) { open_ = open; }

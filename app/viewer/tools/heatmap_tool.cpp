@@ -12,6 +12,7 @@
 #include "structure_view.h"
 #include "tools/structure_session.h"
 #include "tools/ui_colors.h"
+#include "window_layout.h"
 
 namespace viz {
 using ui::fmt;
@@ -66,7 +67,7 @@ void HeatmapTool::take(Images images) {
   uploaded_ = false;
 }
 
-void HeatmapTool::update(float dt, const HeatmapView& view) {
+void HeatmapTool::update_image(float dt, const HeatmapView& view) {
   if (job_.ready()) {
     Images images = job_.take();
     if (images.image.complete) shown_ = running_;
@@ -104,7 +105,7 @@ void HeatmapTool::compute_now(const HeatmapView& view) {
   last_ = now;
 }
 
-void HeatmapTool::section() {
+void HeatmapTool::settings_section() {
   const float em = ImGui::GetFontSize();
   ImGui::Checkbox("show (M)", &on_);
   int metric = static_cast<int>(metric_);
@@ -243,13 +244,13 @@ void HeatmapTool::init_gl() {
   uploaded_ = false;
 }
 
-void HeatmapTool::sync_gl() {
+void HeatmapTool::upload_image() {
   if (!texture_ || uploaded_ || !has_image_) return;
   texture_->upload(image_.values.data(), image_.width, image_.height);
   uploaded_ = true;
 }
 
-void HeatmapTool::draw(Renderer& renderer, const HeatmapView& view) {
+void HeatmapTool::draw_image(Renderer& renderer, const HeatmapView& view) {
   if (!texture_ || !on_ || !has_image_ || !(shown_ == inputs(view))) return;
   OverlayStyle overlay;
   const bool diff = other_.has_value() && error_.empty();
@@ -267,12 +268,11 @@ void HeatmapTool::release_gl() { texture_.reset(); }
 // ---------------------------------------------------------------------------------------
 // Keys and script verbs (their GL-free half: heatmap_verbs.cpp)
 
-KeyGroup HeatmapTool::key_bindings() {
-  return {"heat map",
-          {{GLFW_KEY_M, "M", "heat map: off, nodes visited, triangles tested, off", [this](const KeyPress&) {
-              cycle();
-              return true;
-            }}}};
+std::vector<KeyBinding> HeatmapTool::keys(ToolHost&) {
+  return {{GLFW_KEY_M, "M", "heat map: off, nodes visited, triangles tested, off", [this](const KeyPress&) {
+             cycle();
+             return true;
+           }}};
 }
 
 std::vector<VerbRun> HeatmapTool::script_verbs(ToolHost& host) {
@@ -322,6 +322,32 @@ std::vector<VerbRun> HeatmapTool::script_verbs(ToolHost& host) {
          return {};
        }},
   };
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void HeatmapTool::on_event(ToolEvent event, ToolHost&) {
+  if (event == ToolEvent::SceneLoaded || event == ToolEvent::SceneEdited) invalidate();
+  if (event == ToolEvent::PlaylistReset) set_on(false);
+}
+
+void HeatmapTool::update(ToolHost& host, float dt) { update_image(dt, host.heatmap_view()); }
+
+void HeatmapTool::section(ToolHost&, PanelSection section) {
+  if (section == PanelSection::Own && ImGui::CollapsingHeader("Cost heat map")) settings_section();
+}
+
+void HeatmapTool::panels(ToolHost& host) {
+  WindowLayout& layout = host.layout();
+  if (!layout.panels().legend || !on_) return;
+  const BuiltStructure* shown = host.session().shown();
+  const std::string noun = shown ? shown->info->node_noun : "nodes";
+  legend(layout.place({layout.rects().legend.pos, {0.0f, 0.0f}}, false), noun, host.heatmap_view());
+}
+
+void HeatmapTool::draw(Renderer& renderer, ToolHost& host, DrawLayer layer) {
+  if (layer == DrawLayer::Over) draw_image(renderer, host.heatmap_view());
 }
 
 }  // namespace viz

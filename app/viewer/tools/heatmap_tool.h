@@ -13,6 +13,7 @@
 #include "renderer.h"
 #include "tool_host.h"
 #include "tools/heatmap_scale.h"
+#include "tools/tool.h"
 #include "view_layout.h"
 
 namespace viz {
@@ -26,16 +27,35 @@ struct HeatmapView {
 };
 
 /// The heat map tool.
-class HeatmapTool {
+class HeatmapTool final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "heat map"; }
+  /// M cycles the metric.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void init_gl() override;
+  void release_gl() override;
+  void wait() override { job_.wait(); }
+  /// A new or edited scene: the image is of the old one.
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// A finished image, or a new one due (the camera, structure or metric changed).
+  void update(ToolHost& host, float dt) override;
+  /// Own: the "Cost heat map" section.
+  void section(ToolHost& host, PanelSection section) override;
+  /// The legend at the top of the view.
+  void panels(ToolHost& host) override;
+  void sync_gl(Renderer&, ToolHost&) override { upload_image(); }
+  /// Over everything: the image.
+  void draw(Renderer& renderer, ToolHost& host, DrawLayer layer) override;
+
   /// Takes a finished image; starts a new one once the view has been still for a moment.
-  void update(float dt, const HeatmapView& view);
+  void update_image(float dt, const HeatmapView& view);
   /// Computes the image now, on this thread (scripts).
   void compute_now(const HeatmapView& view);
   /// Forgets the image (a new scene).
   void invalidate() { has_image_ = false; }
   /// Waits for the job.
-  void wait() { job_.wait(); }
 
   /// Whether the overlay is shown.
   bool on() const { return on_; }
@@ -64,22 +84,18 @@ class HeatmapTool {
 
   /// Its key (M: cycle the metric) and script verbs (heatmap, heatmap-scale, heatmap-diff,
   /// print-heatmap); `host` gives the view and the structure.
-  KeyGroup key_bindings();
-  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The main panel's "Cost heat map" section.
-  void section();
+  void settings_section();
   /// The legend window; `node_noun` names what the structure's nodes are ("cells").
   void legend(const PanelPlace& place, const std::string& node_noun, const HeatmapView& view);
 
   /// Creates the texture (context current).
-  void init_gl();
   /// Uploads a new image (before the frame begins).
-  void sync_gl();
+  void upload_image();
   /// Draws the overlay when it is up to date for `view`.
-  void draw(Renderer& renderer, const HeatmapView& view);
+  void draw_image(Renderer& renderer, const HeatmapView& view);
   /// Releases the texture.
-  void release_gl();
 
  private:
   /// What a cost image depends on: it is recomputed when any of this changes.

@@ -5,7 +5,11 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/build_player.h"
+#include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
+#include "tools/tree_diagram.h"
+#include "window_layout.h"
 
 namespace viz {
 
@@ -57,7 +61,7 @@ void NodeDisplay::apply_lecture_colors(bool lecture) {
   }
 }
 
-bool NodeDisplay::section(const BuiltStructure* built) {
+bool NodeDisplay::display_section(const BuiltStructure* built) {
   bool empty_toggled = false;
   const float em = ImGui::GetFontSize();
   static const char* kMesh[] = {"solid", "translucent", "wireframe", "hidden"};
@@ -139,7 +143,7 @@ bool NodeDisplay::section(const BuiltStructure* built) {
   return empty_toggled;
 }
 
-void NodeDisplay::sync_gl() {
+void NodeDisplay::sync_instances() {
   if (boxes_gl_ && (geometry_dirty_ || !(node_filter(depth_) == uploaded_filter_))) upload();
 }
 
@@ -166,7 +170,7 @@ void NodeDisplay::upload() {
   geometry_dirty_ = false;
 }
 
-void NodeDisplay::draw(Renderer& renderer, const BuiltStructure* current, bool dimmed) {
+void NodeDisplay::draw_nodes(Renderer& renderer, const BuiltStructure* current, bool dimmed) {
   if (!boxes_gl_ || !current || !show_nodes_) return;
   NodeStyle style;
   const bool by_count = coloring_ == 2 || (coloring_ == 0 && geometry_.uniform_depth);
@@ -252,6 +256,45 @@ std::vector<VerbRun> NodeDisplay::script_verbs(ToolHost& host) {
          return {};
        }},
   };
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void NodeDisplay::on_event(ToolEvent event, ToolHost& host) {
+  if (event == ToolEvent::StructureInstalled) {
+    static const BuiltStructure kNothing;  // a failed build's replay: no structure to draw
+    const BuiltStructure* shown = host.session().shown();
+    install(shown ? *shown : kNothing);
+  }
+  if (event == ToolEvent::PlaylistReset) {
+    show_all();
+    set_visible(true);
+    set_opacity(0.55f);
+    set_mesh_mode(MeshStyle::Mode::Solid);
+  }
+}
+
+void NodeDisplay::update(ToolHost& host, float) {
+  const bool lecture = host.layout().lecture();
+  if (lecture == lecture_applied_) return;
+  lecture_applied_ = lecture;
+  apply_lecture_colors(lecture);
+}
+
+void NodeDisplay::section(ToolHost& host, PanelSection section) {
+  if (section != PanelSection::Display) return;
+  StructureSession& session = host.session();
+  if (display_section(session.shown())) session.set_empty_cells(empty_cells());
+}
+
+void NodeDisplay::draw(Renderer& renderer, ToolHost& host, DrawLayer layer) {
+  if (layer == DrawLayer::Under) renderer.draw_mesh(mesh_style_);
+  // The construction draws its partly built structure instead; while the tree isolates a
+  // subtree it draws that subtree instead of all the nodes.
+  if (layer != DrawLayer::Scene || host.build().active() || host.tool<TreeDiagram>().isolating()) return;
+  const DebugRay& ray = host.ray().ray();
+  draw_nodes(renderer, host.session().current(), ray.active && !ray.player.empty());
 }
 
 }  // namespace viz

@@ -10,12 +10,28 @@
 #include "structure_view.h"
 #include "tool_host.h"
 #include "tools/depth_filter.h"
+#include "tools/tool.h"
 
 namespace viz {
 
 /// The structure's nodes as drawn.
-class NodeDisplay {
+class NodeDisplay final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "nodes"; }
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void init_gl() override;
+  void release_gl() override;
+  /// A new structure's nodes; the defaults again for a playlist going back.
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// The lecture mode's brighter mesh and nodes.
+  void update(ToolHost& host, float dt) override;
+  void section(ToolHost& host, PanelSection section) override;
+  void sync_gl(Renderer&, ToolHost&) override { sync_instances(); }
+  /// Under: the mesh; Scene: the nodes (not while the construction or an isolated subtree
+  /// is shown).
+  void draw(Renderer& renderer, ToolHost& host, DrawLayer layer) override;
+
   /// Shows a newly built structure's nodes (a large one first with its top levels only).
   void install(const BuiltStructure& built);
   /// Shows or hides a grid's empty cells, re-listing `built`'s nodes (nullptr: none yet).
@@ -43,25 +59,19 @@ class NodeDisplay {
   /// The depth controls (for tests and the status line).
   const DepthSettings& depth_settings() const { return depth_; }
 
-  /// Its script verbs (show, mesh, empty-cells, nodes, opacity); `host` gives the structure.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   /// The Display section; `built` is the structure shown. True when "empty cells" was
   /// toggled (then the session must list them in its next builds too).
-  bool section(const BuiltStructure* built);
-
-  /// Creates the instance buffers (context current).
-  void init_gl();
-  /// Uploads the instances the filter shows when it or the structure changed (before the
-  /// frame begins: never per frame otherwise).
-  void sync_gl();
-  /// Draws `current`'s nodes (nullptr: none for this scene); `dimmed` while a trace is shown.
-  void draw(Renderer& renderer, const BuiltStructure* current, bool dimmed);
-  /// Releases the buffers.
-  void release_gl();
+  bool display_section(const BuiltStructure* built);
 
  private:
+  /// Uploads the instances the filter shows when it or the structure changed (before the
+  /// frame begins: never per frame otherwise).
+  void sync_instances();
+  /// Draws `current`'s nodes (nullptr: none for this scene); `dimmed` while a trace is shown.
+  void draw_nodes(Renderer& renderer, const BuiltStructure* current, bool dimmed);
   void upload();
+
+  bool lecture_applied_ = false;  // the lecture mode's colours are applied
 
   DepthSettings depth_;
   bool show_nodes_ = true;

@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "tools/ui_colors.h"
+#include "tool_host.h"
 
 namespace viz {
 namespace {
@@ -44,7 +45,7 @@ void PlaylistTool::fail(const std::string& message) {
   std::fprintf(stderr, "accelviz: %s\n", message.c_str());
 }
 
-void PlaylistTool::overlay(glm::vec4 view, double now) {
+void PlaylistTool::title_overlay(glm::vec4 view, double now) {
   if (!loaded()) return;
   if (shown_at_ < 0.0) shown_at_ = now;
   const bool title = now - shown_at_ < kTitleSeconds || has_pending();
@@ -74,7 +75,7 @@ void PlaylistTool::overlay(glm::vec4 view, double now) {
   ImGui::End();
 }
 
-std::optional<size_t> PlaylistTool::section() {
+std::optional<size_t> PlaylistTool::states_section() {
   std::optional<size_t> clicked;
   if (!loaded()) {
     ImGui::TextDisabled("accelviz --playlist FILE (scenes/lecture.playlist)");
@@ -96,7 +97,7 @@ std::optional<size_t> PlaylistTool::section() {
 // ---------------------------------------------------------------------------------------
 // Keys and script verbs (their GL-free half: playlist_verbs.cpp)
 
-KeyGroup PlaylistTool::key_bindings(ToolHost& host) {
+std::vector<KeyBinding> PlaylistTool::keys(ToolHost& host) {
   // A presenter's clicker sends PgDn / PgUp (some: the down and up arrows). Shift leaves
   // PgDn / PgUp to the construction's rows, as does having no playlist.
   auto move = [this, &host](bool forward, bool shift_passes) {
@@ -108,11 +109,10 @@ KeyGroup PlaylistTool::key_bindings(ToolHost& host) {
   };
   const char* keys = "PgDn / PgUp, down / up";
   const char* help = "with a playlist: next / previous state (a presenter's clicker sends these)";
-  return {"playlist",
-          {{GLFW_KEY_PAGE_DOWN, keys, help, move(true, true)},
-           {GLFW_KEY_PAGE_UP, keys, help, move(false, true)},
-           {GLFW_KEY_DOWN, keys, help, move(true, false)},
-           {GLFW_KEY_UP, keys, help, move(false, false)}}};
+  return {{GLFW_KEY_PAGE_DOWN, keys, help, move(true, true)},
+          {GLFW_KEY_PAGE_UP, keys, help, move(false, true)},
+          {GLFW_KEY_DOWN, keys, help, move(true, false)},
+          {GLFW_KEY_UP, keys, help, move(false, false)}};
 }
 
 std::vector<VerbRun> PlaylistTool::script_verbs(ToolHost& host) {
@@ -137,6 +137,34 @@ std::vector<VerbRun> PlaylistTool::script_verbs(ToolHost& host) {
              print_script_line(state_line());
              return {};
            }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void PlaylistTool::update(ToolHost& host, float) {
+  if (!host.synchronous() && loaded()) host.run_playlist(nullptr);
+}
+
+void PlaylistTool::section(ToolHost& host, PanelSection section) {
+  if (section != PanelSection::Own || !ImGui::CollapsingHeader("Playlist", loaded() ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    return;
+  if (const auto state = states_section()) host.go_to_state(*state);
+}
+
+void PlaylistTool::overlay(ToolHost& host) {
+  // At the top of the 3D view (window coordinates).
+  const float sx = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
+  const glm::ivec4 view = host.view_area();
+  title_overlay(glm::vec4(static_cast<float>(view.x) / sx, 0.0f, static_cast<float>(view.z) / sx, 0.0f),
+                ImGui::GetTime());
+}
+
+void PlaylistTool::window_title(std::string& title, const ToolHost&) const {
+  if (!loaded()) return;
+  title += " - " + state_line();
+  if (has_pending()) title += " (loading)";
+  else if (!error_.empty()) title += " (error)";
 }
 
 }  // namespace viz

@@ -12,12 +12,29 @@
 #include "playlist.h"
 #include "result.h"
 #include "tool_host.h"
+#include "tools/tool.h"
 #include "view_layout.h"
 
 namespace viz {
 
-class PlaylistTool {
+class PlaylistTool final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "playlist"; }
+  /// PgDn / PgUp and down / up while a playlist is loaded (a presenter's clicker); `host`
+  /// moves between states.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  /// playlist, next, prev, print-state.
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  /// In the window: the queued commands of the state, one per frame.
+  void update(ToolHost& host, float dt) override;
+  /// Own: the "Playlist" section (open while one is loaded).
+  void section(ToolHost& host, PanelSection section) override;
+  /// The state's title at the top of the view, with or without the panels.
+  void overlay(ToolHost& host) override;
+  /// " - state K/N: TITLE", and whether it is loading or failed.
+  void window_title(std::string& title, const ToolHost& host) const override;
+
   /// Loads `path` (errors "FILE:LINE: ..."); the previous playlist stays on failure.
   /// Does not show a state yet: go() does.
   accel::Status load(const std::string& path);
@@ -50,17 +67,12 @@ class PlaylistTool {
   /// "state K/N: TITLE" (print-state).
   std::string state_line() const { return viz::state_line(playlist_, cursor_.current()); }
 
-  /// Its keys (PgDn / PgUp and down / up while a playlist is loaded: a presenter's clicker)
-  /// and script verbs (playlist, next, prev, print-state); `host` moves between states.
-  KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   /// The title overlay, for a few seconds after a move (at the top centre of `view`, window
   /// coordinates x, y, w, h), and the last error until the next move.
-  void overlay(glm::vec4 view, double now);
+  void title_overlay(glm::vec4 view, double now);
   /// The main panel's "Playlist" section: previous / next and the list; returns the state
   /// clicked, if any.
-  std::optional<size_t> section();
+  std::optional<size_t> states_section();
 
  private:
   Playlist playlist_;

@@ -6,15 +6,18 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "camera_control.h"
 #include "input.h"
 #include "panels.h"
 #include "rays_io.h"
 #include "tools/build_player.h"
+#include "tools/compare_tool.h"
 #include "tools/false_claims.h"
 #include "tools/structure_session.h"
 #include "tools/transport_controls.h"
 #include "tools/traversal_numbers.h"
 #include "tools/ui_colors.h"
+#include "window_layout.h"
 
 namespace viz {
 using ui::fmt;
@@ -120,7 +123,7 @@ void RayDebugger::advance(double seconds) {
   if (ray_.player.advance(seconds)) dirty_ = true;
 }
 
-void RayDebugger::update(const accel::Scene& scene, const BuiltStructure* built) {
+void RayDebugger::refresh(const accel::Scene& scene, const BuiltStructure* built) {
   if (!dirty_ && highlight_step_ == ray_.player.step()) return;
   dirty_ = false;
   highlight_step_ = ray_.player.step();
@@ -331,7 +334,7 @@ void RayDebugger::highlight_options() {
 // ---------------------------------------------------------------------------------------
 // Keys and script verbs (their GL-free half: ray_debugger_verbs.cpp)
 
-KeyGroup RayDebugger::key_bindings() {
+std::vector<KeyBinding> RayDebugger::keys(ToolHost&) {
   std::vector<KeyBinding> rows = transport_keys(
       ray_.player, {"traversal", GLFW_KEY_SPACE, "space", GLFW_KEY_LEFT, GLFW_KEY_RIGHT, "left / right", GLFW_KEY_HOME,
                     GLFW_KEY_END, "Home / End", GLFW_KEY_LEFT_BRACKET, GLFW_KEY_RIGHT_BRACKET, "[ / ]"});
@@ -340,7 +343,7 @@ KeyGroup RayDebugger::key_bindings() {
                                    ray_.player.jump_to_hit();
                                    return true;
                                  }});
-  return {"traversal", rows};
+  return rows;
 }
 
 std::vector<VerbRun> RayDebugger::script_verbs(ToolHost& host) {
@@ -443,5 +446,59 @@ std::vector<VerbRun> RayDebugger::script_verbs(ToolHost& host) {
 // ---------------------------------------------------------------------------------------
 // Drawing
 
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame and its saved state
+
+void RayDebugger::on_event(ToolEvent event, ToolHost& host) {
+  if (event == ToolEvent::SceneLoaded) reset();
+  if (event == ToolEvent::StructureInstalled) replay(host.session().current());
+  if (event == ToolEvent::ColorsChanged) recolor();
+}
+
+void RayDebugger::mouse(const MouseFrame& m, ToolHost& host) {
+  if (!m.left.click || host.camera().camera().top_down()) return;  // the blackboard's clicks are its own
+  // A click: shoot through that pixel. Window coordinates -> framebuffer pixels.
+  host.shoot_at_pixel(m.left.press_pos.x * m.scale.x, m.left.press_pos.y * m.scale.y, shoot_from_saved() || m.shift);
+}
+
+void RayDebugger::update(ToolHost& host, float dt) {
+  advance(static_cast<double>(dt));
+  // The highlights (and the numbers the panels show) of the step this frame starts at.
+  refresh(host.session().scene(), host.session().current());
+}
+
+void RayDebugger::section(ToolHost&, PanelSection section) {
+  if (section == PanelSection::Display) highlight_options();
+}
+
+void RayDebugger::panels(ToolHost& host) {
+  const BuildPlayer& build = host.build();
+  if (build.active() || build.recording()) return;  // the construction's panels take these places
+  WindowLayout& layout = host.layout();
+  const PanelLayout& rects = layout.rects();
+  const PanelSwitches& on = layout.panels();
+  const BuiltStructure* shown = host.session().shown();
+  const bool board = host.session().scene().planar();
+  if (on.ray && ray_panel(layout.place(rects.ray), shown, board)) {
+    host.tool<CompareTool>().set_open(true);
+    host.start_compare();
+  }
+  if (on.steps) steps_panel(layout.place(rects.steps), board);
+  if (on.code) code_panel(layout.place(rects.code), shown, layout.mono());
+}
+
+void RayDebugger::late_update(ToolHost& host) { refresh(host.session().scene(), host.session().current()); }
+
+void RayDebugger::draw(Renderer& renderer, ToolHost& host, DrawLayer layer) {
+  if (layer == DrawLayer::Scene && !host.build().active()) gl_.draw(renderer);
+}
+
+void RayDebugger::save_state(std::string& out, const ToolHost& host) const {
+  const StructureSession& session = host.session();
+  if (!ray_.active || session.scene().planar() || session.current_request().build_call_limit) return;
+  out += "ray " + accel::format_ray_line(ray_.ray) + "\n";
+  if (ray_.player.step() > 0) out += "step " + std::to_string(ray_.player.step()) + "\n";
+}
 
 }  // namespace viz

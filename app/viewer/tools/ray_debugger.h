@@ -14,6 +14,7 @@
 #include "tool_host.h"
 #include "tools/debug_ray.h"
 #include "tools/highlights.h"
+#include "tools/tool.h"
 #include "tools/transport_controls.h"
 #include "view_layout.h"
 
@@ -22,8 +23,35 @@ struct ImFont;
 namespace viz {
 
 /// The debug ray and everything shown about its traversal.
-class RayDebugger {
+class RayDebugger final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "traversal"; }
+  /// Play, step, jump to the hit, speed.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  /// The ray, stepping, frames and the print-* of the ray; `host` gives the camera and the
+  /// other tools.
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void init_gl() override { gl_.create(); }
+  void release_gl() override { gl_.release(); }
+  /// A new scene forgets the ray; a new structure replays it; new colours recolour it.
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// A click into the 3D view shoots the ray through that pixel.
+  void mouse(const MouseFrame& mouse, ToolHost& host) override;
+  /// The animation's clock and the step's highlights.
+  void update(ToolHost& host, float dt) override;
+  void section(ToolHost& host, PanelSection section) override;
+  /// The Debug ray, Traversal steps and Pseudo code panels (the construction's take their
+  /// places in its mode).
+  void panels(ToolHost& host) override;
+  void late_update(ToolHost& host) override;
+  /// Uploads highlights rebuilt since the last frame (before the frame begins).
+  void sync_gl(Renderer&, ToolHost&) override { gl_.sync(highlights_.segments, highlights_.triangles, highlights_.lines); }
+  /// The highlights of the current step (rebuilt only when the step changes).
+  void draw(Renderer& renderer, ToolHost& host, DrawLayer layer) override;
+  /// The ray and its step (none on the blackboard, nor in a failed build's replay).
+  void save_state(std::string& script, const ToolHost& host) const override;
+
   /// Makes `ray` the debug ray and records its trace on `built` (nullptr: no structure);
   /// a student's structure's walk is audited with it (DebugRay::audit).
   void set_ray(const accel::Ray& ray, const std::string& origin, const BuiltStructure* built);
@@ -40,7 +68,7 @@ class RayDebugger {
   /// Plays the animation on by `seconds`.
   void advance(double seconds);
   /// Rebuilds the highlights when the step (or what they show) changed.
-  void update(const accel::Scene& scene, const BuiltStructure* built);
+  void refresh(const accel::Scene& scene, const BuiltStructure* built);
 
   /// The debug ray.
   const DebugRay& ray() const { return ray_; }
@@ -66,11 +94,6 @@ class RayDebugger {
   /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
   std::string ray_line() const;
 
-  /// Its keys (play, step, jump to the hit, speed) and script verbs (the ray, stepping,
-  /// frames and the print-* of the ray); `host` gives the camera and the other tools.
-  KeyGroup key_bindings();
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   /// Remembers `view` as the saved viewpoint.
   void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }
   /// The saved viewpoint, if any.
@@ -87,15 +110,6 @@ class RayDebugger {
   void code_panel(const PanelPlace& place, const BuiltStructure* built, ImFont* mono);
   /// The trail / skipped / pending checkboxes (end of the Display section).
   void highlight_options();
-
-  /// Creates the GL buffers (context current).
-  void init_gl() { gl_.create(); }
-  /// Uploads highlights rebuilt since the last frame (before the frame begins).
-  void sync_gl() { gl_.sync(highlights_.segments, highlights_.triangles, highlights_.lines); }
-  /// Draws the highlights of the current step (rebuilt only when the step changes).
-  void draw(Renderer& renderer) { gl_.draw(renderer); }
-  /// Releases the GL buffers.
-  void release_gl() { gl_.release(); }
 
  private:
   DebugRay ray_;

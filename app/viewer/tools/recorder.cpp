@@ -5,12 +5,16 @@
 #include <filesystem>
 #include <vector>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include "browser.h"
 #include "paths.h"
 #include "screenshot.h"
+#include "tool_host.h"
+#include "tools/build_player.h"
+#include "tools/ray_debugger.h"
 
 namespace viz {
 namespace {
@@ -122,7 +126,7 @@ void Recorder::capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer) {
   }
 }
 
-bool Recorder::section() {
+bool Recorder::settings_section() {
   const float em = ImGui::GetFontSize();
   bool pressed = false;
   ImGui::SetNextItemWidth(14.0f * em);
@@ -156,7 +160,7 @@ std::string Recorder::notice() const {
 // ---------------------------------------------------------------------------------------
 // Script verbs (their GL-free half: recorder_verbs.cpp)
 
-std::vector<VerbRun> Recorder::script_verbs() {
+std::vector<VerbRun> Recorder::script_verbs(ToolHost&) {
   return {{CommandKind::Record,
            [this](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
              RecordOptions o;
@@ -174,6 +178,43 @@ std::vector<VerbRun> Recorder::script_verbs() {
              print_script_line(notice());  // "wrote PATH (N frames)"
              return {};
            }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's keys and frame
+
+std::vector<KeyBinding> Recorder::keys(ToolHost&) {
+  return {
+      // The notice says what happened.
+      {GLFW_KEY_R, "R", "start / stop recording a GIF or MP4",
+       [this](const KeyPress&) {
+         (void)toggle();
+         return true;
+       }},
+      {GLFW_KEY_F12, "F12", "screenshot: writes a numbered accelviz_NNNN.png into the pictures folder and says where",
+       [this](const KeyPress&) {
+         request_screenshot();
+         return true;
+       }},
+  };
+}
+
+accel::Status Recorder::toggle() { return recording() ? stop() : start(path_field_, options_); }
+
+void Recorder::update(ToolHost& host, float) {
+  const StepSeen seen{host.ray().player().step(), host.build().player().step(), host.build().active()};
+  if (seen == step_seen_) return;
+  step_seen_ = seen;
+  step_changed();
+}
+
+void Recorder::section(ToolHost&, PanelSection section) {
+  if (section != PanelSection::Own || !ImGui::CollapsingHeader("Recording")) return;
+  if (settings_section()) (void)toggle();  // the section shows the result
+}
+
+void Recorder::window_title(std::string& title, const ToolHost&) const {
+  if (recording()) title += " - recording (R stops)";
 }
 
 }  // namespace viz

@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "result.h"
+#include "tools/tool.h"
 #include "video_writer.h"
 
 namespace viz {
@@ -23,8 +24,23 @@ struct RecordOptions {
   int height = 0;
 };
 
-class Recorder {
+class Recorder final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "recording"; }
+  /// R starts and stops a recording; F12 takes a screenshot.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  /// record, record stop.
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  /// A new step of the animation (traversal or construction) is a new frame of a recording.
+  void update(ToolHost& host, float dt) override;
+  /// Own: the "Recording" section.
+  void section(ToolHost& host, PanelSection section) override;
+  /// " - recording (R stops)" while one runs.
+  void window_title(std::string& title, const ToolHost& host) const override;
+
+  /// Starts a recording with the section's path and options, or stops the one running.
+  accel::Status toggle();
   /// Starts recording to `path` (.gif or .mp4). The first frame is the next one drawn.
   /// Errors name the path: an unknown extension, a bad fps, a recording already running.
   accel::Status start(const std::string& path, const RecordOptions& options);
@@ -44,12 +60,9 @@ class Recorder {
   /// panels (`framebuffer` is the whole size). Records or saves what is due.
   void capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer);
 
-  /// Its script verbs (record, record stop).
-  std::vector<VerbRun> script_verbs();
-
   /// The main panel's "Recording" section; true when Record / Stop was pressed (the
   /// caller starts or stops with the section's path and options).
-  bool section();
+  bool settings_section();
   const std::string& path_field() const { return path_field_; }
   const RecordOptions& options() const { return options_; }
   /// One line for the status overlay: the running recording, or the last result (a file
@@ -59,6 +72,13 @@ class Recorder {
   bool recording_ui() const { return recording() && options_.ui; }
 
  private:
+  /// The animation's step at the last frame: a new one is recorded.
+  struct StepSeen {
+    size_t trace = ~size_t(0), build = ~size_t(0);
+    bool build_mode = false;
+    bool operator==(const StepSeen&) const = default;
+  } step_seen_;
+
   struct Pending {
     std::string path;
     RecordOptions options;

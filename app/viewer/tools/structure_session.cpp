@@ -4,11 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include "batch.h"
+#include "camera_control.h"
+#include "rays_io.h"
+#include "tools/ray_debugger.h"
 #include "browser.h"
 #include "panels.h"
 #include "memory_budget.h"
@@ -441,6 +445,61 @@ std::vector<VerbRun> StructureSession::script_verbs(ToolHost& host) {
          return {};
        }},
   };
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame and its saved state
+
+void StructureSession::update(ToolHost& host, float) {
+  poll();
+  host.sync_session();
+}
+
+void StructureSession::section(ToolHost& host, PanelSection section) {
+  if (section == PanelSection::Structure) structure_section();
+  if (section != PanelSection::Scene) return;
+  RayDebugger& ray = host.ray();
+  CameraControl& camera = host.camera();
+  const SceneActions a = scene_section(ray.saved_view().has_value());
+  if (a.load_preset >= 0) (void)host.apply_preset(presets()[static_cast<size_t>(a.load_preset)]);  // shown in the panel
+  if (a.frame) camera.request_frame();
+  if (a.save_view) ray.save_view(camera.pinhole());
+  if (a.go_to_saved && ray.saved_view()) {
+    const accel::PinholeCamera& v = *ray.saved_view();
+    camera.look_at(v.eye, v.target, v.fovy_deg, scene());
+  }
+}
+
+void StructureSession::save_state(std::string& out, const ToolHost& host) const {
+  using accel::format_ray_number;
+  const std::string& spec = scene_info_.spec;
+  const bool file_scene = !spec.empty() && spec.rfind("procedural:", 0) != 0;
+  const bool board = scene().planar();
+  if (board) {
+    out += "# the blackboard's triangles are not part of the state: save them with its Save button\n";
+    out += "mode 2d\n";
+  } else if (!spec.empty()) {
+    std::error_code ec;
+    out += "scene " + (file_scene ? std::filesystem::absolute(spec, ec).native() : spec) + "\n";
+  }
+  const StructureRequest request = current_request();
+  out += "structure " + request.name;
+  for (const std::string& p : request.params) out += " " + p;
+  out += "\n";
+  if (request.kernel != accel::Kernel::Watertight && !board)
+    out += "kernel " + std::string(accel::kernel_name(request.kernel)) + "\n";
+  const accel::PinholeCamera cam = host.camera().pinhole();
+  if (!board) {
+    out += "camera";
+    for (float v : {cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z, cam.fovy_deg}) {
+      out += ' ';
+      out += format_ray_number(v);
+    }
+    out += "\n";
+  }
+  // A failed build's replay: reopened as one (its structure line then builds only as far);
+  // there is no structure to trace a ray through (RayDebugger writes no ray then).
+  if (request.build_call_limit) out += "construct-until " + std::to_string(request.build_call_limit) + "\n";
 }
 
 }  // namespace viz

@@ -17,6 +17,7 @@
 #include "scene.h"
 #include "tool_host.h"
 #include "tools/param_editor.h"
+#include "tools/tool.h"
 
 namespace viz {
 
@@ -37,8 +38,26 @@ struct SceneActions {
 };
 
 /// Scene + structure + editor.
-class StructureSession {
+class StructureSession final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "structure"; }
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void init_gl() override;
+  void release_gl() override;
+  void wait() override;
+  /// The finished build or load, and what it means for the other tools.
+  void update(ToolHost& host, float dt) override;
+  /// Scene: the loaded scene, presets and the camera's buttons; Structure: its choice.
+  void section(ToolHost& host, PanelSection section) override;
+  void sync_gl(Renderer& renderer, ToolHost&) override { upload(renderer); }
+  void draw(Renderer& renderer, ToolHost&, DrawLayer layer) override {
+    if (layer == DrawLayer::Over) draw_bounds(renderer);
+  }
+  void window_title(std::string& title, const ToolHost&) const override { title += window_title(); }
+  /// The scene (or `mode 2d`), structure, kernel and camera; a failed build's replay.
+  void save_state(std::string& script, const ToolHost& host) const override;
+
   /// Starts with the lecture's binary BVH in the editor and an empty scene.
   StructureSession();
 
@@ -119,25 +138,15 @@ class StructureSession {
   /// "accelviz - SCENE - STRUCTURE".
   std::string window_title() const;
 
-  /// Its script verbs (scene, preset, structure, kernel, memory-limit, print-stats,
-  /// trace-rays); `host` syncs the other tools after a change.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   /// The Scene section; its camera buttons are returned (`has_saved_view` shows "Go to saved").
   SceneActions scene_section(bool has_saved_view);
   /// The Structure section: structure, kernel, parameters, build progress and statistics.
   void structure_section();
 
-  /// Creates the GL objects (context current).
-  void init_gl();
   /// Uploads a new scene's mesh to `renderer` (and its box lines) when needed.
   void upload(Renderer& renderer);
   /// Draws the scene's bounding box.
   void draw_bounds(Renderer& renderer) const;
-  /// Waits for the build thread.
-  void wait();
-  /// Releases the GL objects.
-  void release_gl();
 
  private:
   bool matches_scene() const { return built_ && built_->scene == scene_; }

@@ -9,8 +9,10 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/compare_tool.h"
 #include "tools/structure_session.h"
 #include "tools/ui_colors.h"
+#include "window_layout.h"
 
 namespace viz {
 using ui::fmt;
@@ -72,7 +74,7 @@ accel::Status SweepTool::start(const accel::StructureInfo& info, std::shared_ptr
   return {};
 }
 
-bool SweepTool::section(const accel::StructureInfo& info) {
+bool SweepTool::settings_section(const accel::StructureInfo& info) {
   bool run = false;
   const float em = ImGui::GetFontSize();
   std::vector<const accel::ParamSpec*> numeric;
@@ -213,6 +215,32 @@ std::vector<VerbRun> SweepTool::script_verbs(ToolHost& host) {
              host.settle_camera(h);
              return host.start_sweep();
            }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void SweepTool::on_event(ToolEvent event, ToolHost&) {
+  if (event == ToolEvent::PlaylistReset) set_open(false);
+}
+
+void SweepTool::section(ToolHost& host, PanelSection section) {
+  if (section != PanelSection::Own || !ImGui::CollapsingHeader("Parameter sweep")) return;
+  if (settings_section(host.session().editor_info())) (void)host.start_sweep();  // errors shown in the section
+}
+
+void SweepTool::panels(ToolHost& host) {
+  if (!open_) return;
+  WindowLayout& layout = host.layout();
+  WindowRect rect = layout.rects().bottom;
+  if (host.tool<CompareTool>().open()) rect.pos.y -= rect.size.y + 0.4f * ImGui::GetFontSize();  // stacked above the compare table
+  panel(layout.place(rect, false));
+}
+
+bool SweepTool::set_panel(const std::string& name, bool on) {
+  if (name != "sweep") return false;
+  set_open(on);
+  return true;
 }
 
 }  // namespace viz

@@ -12,13 +12,26 @@
 #include "result.h"
 #include "tool_host.h"
 #include "tools/sweep_model.h"
+#include "tools/tool.h"
 #include "view_layout.h"
 
 namespace viz {
 
 /// The sweep's settings, job and results.
-class SweepTool {
+class SweepTool final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "sweep"; }
+  /// `sweep`; `host` gives the structure and starts the run.
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void wait() override { job_.wait(); }
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// Own: the "Parameter sweep" section.
+  void section(ToolHost& host, PanelSection section) override;
+  /// The plots, along the bottom (above the compare table when it is open).
+  void panels(ToolHost& host) override;
+  bool set_panel(const std::string& name, bool on) override;
+
   /// Chooses numeric parameter `param` of `info`, its range and steps (the sweep command).
   accel::Status configure(const accel::StructureInfo& info, const std::string& param, float lo, float hi, int steps);
   /// Sweeps the chosen parameter of `info` from `base` (the editor's request) over the
@@ -26,15 +39,10 @@ class SweepTool {
   /// (also shown in the section) when nothing can be swept or the run failed.
   accel::Status start(const accel::StructureInfo& info, std::shared_ptr<const accel::Scene> scene,
                       const StructureRequest& base, const accel::PinholeCamera& camera, bool synchronous);
-  /// Waits for the job.
-  void wait() { job_.wait(); }
 
   /// The main panel's "Parameter sweep" section; true when "Run sweep" was pressed.
-  bool section(const accel::StructureInfo& info);
+  bool settings_section(const accel::StructureInfo& info);
   /// Whether the window is shown.
-  /// Its script verb (sweep); `host` gives the structure and starts the run.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   bool open() const { return open_; }
   /// Shows or hides the window.
   void set_open(bool open) { open_ = open; }

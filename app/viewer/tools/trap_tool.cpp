@@ -45,7 +45,7 @@ std::string TrapTool::trap_line(const BuiltStructure* built) const {
   return demo_applies(built) ? "trap " + demo_->name + ": " + demo_->title : "trap: none";
 }
 
-void TrapTool::update(const DebugRay& ray, const accel::Scene& scene, const BuiltStructure* built) {
+void TrapTool::check_ray(const DebugRay& ray, const accel::Scene& scene, const BuiltStructure* built) {
   demo_applies_ = demo_applies(built);
   const auto& events = ray.player.events();
   const bool same = computed_ && ray.ray.org == ray_.org && ray.ray.dir == ray_.dir && events.data() == events_ &&
@@ -70,7 +70,7 @@ std::optional<size_t> TrapTool::marked_step() const {
   return naive_.stop_step;
 }
 
-std::string TrapTool::section() const {
+std::string TrapTool::traps_section() const {
   std::string pressed;
   ImGui::TextDisabled("where a naive traversal goes wrong");
   for (const std::string& name : accel::trap_names()) {
@@ -139,6 +139,31 @@ std::vector<VerbRun> TrapTool::script_verbs(ToolHost& host) {
              print_script_line(trap_line(host.session().current()));
              return {};
            }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void TrapTool::on_event(ToolEvent event, ToolHost& host) {
+  if (event == ToolEvent::SceneLoaded) on_scene_loaded(host.session().scene_info().spec);
+  if (event == ToolEvent::PlaylistReset) set_open(true);
+}
+
+void TrapTool::update(ToolHost& host, float) {
+  RayDebugger& ray = host.ray();
+  check_ray(ray.ray(), host.session().scene(), host.session().current());
+  ray.set_marked_step(marked_step(), "a naive traversal stops here");
+}
+
+void TrapTool::section(ToolHost& host, PanelSection section) {
+  if (section != PanelSection::Own || !ImGui::CollapsingHeader("Lecture traps")) return;
+  if (const std::string name = traps_section(); !name.empty()) (void)host.load_trap(name);  // errors: the scene section shows them
+}
+
+bool TrapTool::set_panel(const std::string& name, bool on) {
+  if (name != "trap") return false;
+  set_open(on);
+  return true;
 }
 
 }  // namespace viz

@@ -15,13 +15,24 @@
 #include "scene.h"
 #include "tool_host.h"
 #include "tools/debug_ray.h"
+#include "tools/tool.h"
 #include "traps.h"
 #include "view_layout.h"
 
 namespace viz {
 
-class TrapTool {
+class TrapTool final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "traps"; }
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// The naive answer on the current ray, and its step marked in the ray's steps list.
+  void update(ToolHost& host, float dt) override;
+  /// Own: the "Lecture traps" section.
+  void section(ToolHost& host, PanelSection section) override;
+  bool set_panel(const std::string& name, bool on) override;
+
   /// Marks `demo` as the one shown (after its scene, structure and ray were loaded).
   void set_demo(const accel::TrapDemo& demo);
   /// A scene other than the demonstration's was loaded.
@@ -31,7 +42,7 @@ class TrapTool {
   /// Recomputes the naive answer (and brute force, when it is shown) when the debug ray or
   /// its trace changed; `built` (may be null) is the structure the ray was traced on: the
   /// demonstration's explanation is shown only while it is the demonstration's.
-  void update(const DebugRay& ray, const accel::Scene& scene, const BuiltStructure* built);
+  void check_ray(const DebugRay& ray, const accel::Scene& scene, const BuiltStructure* built);
   /// Whether the demonstration's explanation applies to `built`: the demonstration's
   /// structure with the same parameters, over its scene.
   bool demo_applies(const BuiltStructure* built) const;
@@ -49,10 +60,9 @@ class TrapTool {
   std::optional<size_t> marked_step() const;
 
   /// Its script verbs (trap, print-naive, print-trap); `host` loads the trap's scene and ray.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
 
   /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
-  std::string section() const;
+  std::string traps_section() const;
   /// Show the block (panel trap on|off).
   void set_open(bool open) { open_ = open; }
   /// Whether block() draws anything for `ray` now.

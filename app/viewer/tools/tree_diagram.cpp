@@ -21,6 +21,8 @@
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
 #include "tools/ui_colors.h"
+#include "tools/vars_panel.h"
+#include "window_layout.h"
 
 namespace viz {
 namespace {
@@ -99,7 +101,7 @@ SahConstants sah_constants(const BuiltStructure* b) {
 // =======================================================================================
 // [SECTION] Following
 
-void TreeDiagram::update(const BuiltPtr& built, const DebugRay& ray, const accel::BuildReplay* replay) {
+void TreeDiagram::follow(const BuiltPtr& built, const DebugRay& ray, const accel::BuildReplay* replay) {
   ray_ = &ray;
   if (built != built_) {
     // Another structure: its ids mean other nodes. Index it again when shown.
@@ -280,7 +282,7 @@ void TreeDiagram::rebuild_highlight() {
   append_node_segments(segments_, selected_view_, kSelected3D, 3.5f, planar);
 }
 
-void TreeDiagram::draw(Renderer& renderer) {
+void TreeDiagram::draw_selection(Renderer& renderer) {
   if (on_ && !(segments_.empty() && lines_.empty())) gl_.draw(renderer);
 }
 
@@ -652,12 +654,12 @@ void TreeDiagram::grid_table() {
 // ---------------------------------------------------------------------------------------
 // Keys and script verbs (their GL-free half: tree_diagram_verbs.cpp)
 
-KeyGroup TreeDiagram::key_bindings(ToolHost& host) {
-  return {"tree", {{GLFW_KEY_T, "T", "the tree diagram", [this, &host](const KeyPress&) {
-                      toggle();
-                      host.relayout();  // the bottom dock appears or goes
-                      return true;
-                    }}}};
+std::vector<KeyBinding> TreeDiagram::keys(ToolHost& host) {
+  return {{GLFW_KEY_T, "T", "the tree diagram", [this, &host](const KeyPress&) {
+             toggle();
+             host.relayout();  // the bottom dock appears or goes
+             return true;
+           }}};
 }
 
 std::vector<VerbRun> TreeDiagram::script_verbs(ToolHost& host) {
@@ -671,12 +673,42 @@ std::vector<VerbRun> TreeDiagram::script_verbs(ToolHost& host) {
           {CommandKind::TreeSelect, [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
              if (auto st = host.session().need_structure(); !st)
                return accel::make_error("tree-select: " + st.error().message);
-             update(host.session().current_ptr(), host.ray().ray(),
+             follow(host.session().current_ptr(), host.ray().ray(),
                     host.build().active() ? host.build().replay() : nullptr);
              if (auto st = select(static_cast<NodeId>(c.ints[0]), c.on); !st) return st;
              host.show_ui();
              return {};
            }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void TreeDiagram::on_event(ToolEvent event, ToolHost&) {
+  if (event == ToolEvent::PlaylistReset) set_on(false);
+}
+
+void TreeDiagram::update(ToolHost& host, float) {
+  const BuildPlayer& build = host.build();
+  follow(host.session().current_ptr(), host.ray().ray(), build.active() ? build.replay() : nullptr);
+}
+
+void TreeDiagram::panels(ToolHost& host) {
+  if (!on_) return;
+  WindowLayout& layout = host.layout();
+  const PanelLayout& rects = layout.rects();
+  WindowRect rect = rects.tree;  // docks along the bottom; the whole width when the left column is empty
+  // In lecture mode the controls are collapsed: the tree takes the whole width and the
+  // Variables panel the column above it (its larger font needs the room more).
+  if ((!layout.panels().main && !host.tool<VarsPanel>().shown()) || layout.lecture()) {
+    rect.size.x += rect.pos.x - rects.main.pos.x;
+    rect.pos.x = rects.main.pos.x;
+  }
+  panel(layout.place(rect));
+}
+
+void TreeDiagram::draw(Renderer& renderer, ToolHost& host, DrawLayer layer) {
+  if (layer == DrawLayer::Scene && !host.build().active()) draw_selection(renderer);
 }
 
 }  // namespace viz

@@ -15,27 +15,41 @@
 #include "result.h"
 #include "tool_host.h"
 #include "tools/debug_ray.h"
+#include "tools/tool.h"
 #include "tools/tree_layout.h"
 #include "view_layout.h"
 
 namespace viz {
 
-class TreeDiagram {
+class TreeDiagram final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "tree"; }
+  /// T shows or hides the window; `host` lays the panels out again.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  /// tree, tree-select; `host` gives the structure.
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void init_gl() override { gl_.create(); }
+  void release_gl() override { gl_.release(); }
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// Follows the structure, the debug ray and the construction's replay.
+  void update(ToolHost& host, float dt) override;
+  /// The window, docked along the bottom.
+  void panels(ToolHost& host) override;
+  /// Uploads the selection's highlight when it changed.
+  void sync_gl(Renderer&, ToolHost&) override { gl_.sync(segments_, {}, lines_); }
+  /// The selected node (or isolated subtree) over the scene, in the traversal mode.
+  void draw(Renderer& renderer, ToolHost& host, DrawLayer layer) override;
+
   /// The window shown or not (`tree on|off`, key T).
   bool on() const { return on_; }
   void set_on(bool on) { on_ = on; }
   void toggle() { on_ = !on_; }
 
-  /// Its key (T) and script verbs (tree, tree-select); `host` lays the panels out and gives
-  /// the structure, the ray and the construction.
-  KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
-
   /// Follows this frame's structure, debug ray and construction replay (nullptr: the
   /// construction mode is off). Cheap when nothing changed: the layout is remade when the
   /// structure, the trace or the selection changes, the states when the step changes.
-  void update(const BuiltPtr& built, const DebugRay& ray, const accel::BuildReplay* replay);
+  void follow(const BuiltPtr& built, const DebugRay& ray, const accel::BuildReplay* replay);
 
   /// `tree-select NODE [isolate]`: selects a node of the current structure (errors name
   /// the command and the valid ids).
@@ -48,14 +62,9 @@ class TreeDiagram {
   /// The window at `place` (it docks along the bottom: the 3D view ends above it).
   void panel(const PanelPlace& place);
 
-  void init_gl() { gl_.create(); }
-  /// Uploads the selection's highlight when it changed.
-  void sync_gl() { gl_.sync(segments_, {}, lines_); }
-  /// Draws the selected node (or isolated subtree) over the scene.
-  void draw(Renderer& renderer);
-  void release_gl() { gl_.release(); }
-
  private:
+  /// Draws the selected node (or isolated subtree) over the scene.
+  void draw_selection(Renderer& renderer);
   void rebuild_layout();
   void refresh_states();
   void rebuild_highlight();

@@ -14,9 +14,16 @@
 
 #include "input.h"
 #include "panels.h"
+#include "tool_host.h"
+#include "tools/build_player.h"
 #include "tools/false_claims.h"
+#include "tools/ray_debugger.h"
+#include "tools/structure_session.h"
+#include "tools/trap_tool.h"
+#include "tools/tree_diagram.h"
 #include "tools/traversal_numbers.h"
 #include "tools/ui_colors.h"
+#include "window_layout.h"
 
 namespace viz {
 namespace {
@@ -367,13 +374,65 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
 // ---------------------------------------------------------------------------------------
 // Keys
 
-KeyGroup VarsPanel::key_bindings() {
-  return {"Variables",
-          {{GLFW_KEY_V, "V", "the Variables panel and the t-axis strip, together", [this](const KeyPress&) {
-              shown_ = !(shown_ && strip_shown_);
-              strip_shown_ = shown_;
-              return true;
-            }}}};
+std::vector<KeyBinding> VarsPanel::keys(ToolHost&) {
+  return {{GLFW_KEY_V, "V", "the Variables panel and the t-axis strip, together", [this](const KeyPress&) {
+             shown_ = !(shown_ && strip_shown_);
+             strip_shown_ = shown_;
+             return true;
+           }}};
+}
+
+// ---------------------------------------------------------------------------------------
+// The tool's frame
+
+void VarsPanel::on_event(ToolEvent event, ToolHost&) {
+  if (event != ToolEvent::PlaylistReset) return;
+  shown_ = true;
+  strip_shown_ = true;
+}
+
+void VarsPanel::update(ToolHost& host, float) {
+  const BuildPlayer& build = host.build();
+  host.layout().set_vars_column(shown_ && !build.active() && !build.recording());
+}
+
+void VarsPanel::panels(ToolHost& host) {
+  const BuildPlayer& build = host.build();
+  if (build.active()) return;
+  WindowLayout& layout = host.layout();
+  const PanelLayout& rects = layout.rects();
+  RayDebugger& ray = host.ray();
+  TrapTool& trap = host.tool<TrapTool>();
+  if (shown_ && !build.recording()) {
+    WindowRect rect = rects.vars;
+    const float em = ImGui::GetFontSize();
+    if (layout.lecture() && host.tool<TreeDiagram>().on())
+      rect.size.y = std::max(rects.tree.pos.y - rect.pos.y - rects.main.pos.y, 6.0f * em);
+    const BuiltStructure* shown = host.session().shown();
+    panel(layout.place(rect), ray.ray(), ray.step_highlight(), shown ? shown->kind : TraversalKind::Unknown,
+          host.session().scene().planar(), layout.mono(), [&] { trap.block(ray.ray(), ray.player()); });
+  }
+  if (!strip_shown_) return;
+  // The t-axis strip along the bottom of the 3D view, between the docked panels (known
+  // now: every docked panel of this frame has been drawn).
+  const DockEdges& dock = layout.dock();
+  const ImGuiIO& io = ImGui::GetIO();
+  const float em = ImGui::GetFontSize(), pad = 0.4f * em;
+  const float left = dock.left > 0.0f ? dock.left + pad : pad;
+  const float right = (dock.right < io.DisplaySize.x ? dock.right : io.DisplaySize.x) - pad;
+  const float h = strip_height(em);
+  if (right - left < 12.0f * em) return;  // no room beside the panels
+  // Above the tree diagram when it is docked along the bottom.
+  const float bottom = dock.bottom > 0.0f ? dock.bottom : io.DisplaySize.y;
+  strip({{left, bottom - h - pad}, {right - left, h}}, ray.ray(), ray.step_highlight(),
+        trap.misleads() || trap.marked_step() ? &trap.naive() : nullptr);
+}
+
+bool VarsPanel::set_panel(const std::string& name, bool on) {
+  if (name == "vars") shown_ = on;
+  else if (name == "strip") strip_shown_ = on;
+  else return false;
+  return true;
 }
 
 }  // namespace viz

@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "pseudo_code.h"
 #include "tools/debug_ray.h"
+#include "tools/tool.h"
 #include "trace_player.h"
 #include "traps.h"
 #include "view_layout.h"
@@ -19,15 +20,24 @@ struct ImFont;
 
 namespace viz {
 
-class VarsPanel {
+class VarsPanel final : public Tool {
  public:
+  // ---- The tool (tool.h)
+  const char* name() const override { return "Variables"; }
+  /// V: the panel and the strip, together.
+  std::vector<KeyBinding> keys(ToolHost& host) override;
+  void on_event(ToolEvent event, ToolHost& host) override;
+  /// The panel shares the left column with the controls in the traversal mode only.
+  void update(ToolHost& host, float dt) override;
+  /// The panel, and the strip along the bottom of the view between the docked panels.
+  void panels(ToolHost& host) override;
+  bool set_panel(const std::string& name, bool on) override;
+
   /// The Variables window and the t-axis strip shown (`panel vars|strip on|off`, key V).
   bool shown() const { return shown_; }
   bool strip_shown() const { return strip_shown_; }
   void set_shown(bool on) { shown_ = on; }
   void set_strip_shown(bool on) { strip_shown_ = on; }
-  /// Its key (V: the window and the strip together).
-  KeyGroup key_bindings();
 
   /// The "Variables" window for `ray` at `highlight`'s step, traversal `kind`, on the
   /// blackboard (2D mode) or not (`board`: how a ray is shot); `mono` (may be null) for the

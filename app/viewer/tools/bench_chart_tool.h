@@ -1,14 +1,31 @@
 #pragma once
-// The ImGui side of the speed-against-error chart (bench_chart.h computes it): the
-// "Speed vs error" window, the main panel's section that loads a file and opens it, and the
-// chart's script verbs.
+// The speed-against-error chart as a tool (bench_chart.h computes it): the "Speed vs
+// error" window, the main panel's section that loads a file and opens it, and the chart's
+// script verbs (GL-free half in bench_chart_verbs.cpp).
 #include <glm/vec2.hpp>
 
 #include "bench_chart.h"
 #include "commands.h"
 #include "tool_host.h"
+#include "tools/tool.h"
 
 namespace viz {
+
+class BenchChartTool final : public Tool {
+ public:
+  const char* name() const override { return "speed vs error chart"; }
+  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void section(ToolHost& host, PanelSection section) override;
+  void panels(ToolHost& host) override;
+
+  /// Loads a bench JSON file (accelviz-cli bench --out-json) and opens the chart; on
+  /// failure the previous chart stays and the one-line error ("PATH: ...") is returned and
+  /// shown in the chart's file row.
+  accel::Status load(const std::string& path) { return load_bench_into(state_, path); }
+
+ private:
+  BenchChartState state_;
+};
 
 /// Draws the "Speed vs error" window when state.open (its close button clears it): the
 /// file row, the group / x-metric / speed controls, a caption, and the chart with its

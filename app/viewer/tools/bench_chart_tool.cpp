@@ -3,7 +3,7 @@
 //   [SECTION] Colours, markers, text helpers
 //   [SECTION] The chart: frame, zero band, ticks, baseline, points, legend, tooltip
 //   [SECTION] The window and the main panel's section
-#include "bench_chart_panel.h"
+#include "tools/bench_chart_tool.h"
 
 #include <algorithm>
 #include <array>
@@ -14,6 +14,7 @@
 #include <imgui_stdlib.h>
 
 #include "panels.h"
+#include "window_layout.h"
 
 namespace viz {
 using ui::fmt;
@@ -582,6 +583,17 @@ std::vector<VerbRun> bench_chart_script_verbs(BenchChartState& state, ToolHost& 
          host.show_ui();
          return {};
        }}};
+}
+
+std::vector<VerbRun> BenchChartTool::script_verbs(ToolHost& host) { return bench_chart_script_verbs(state_, host); }
+
+void BenchChartTool::section(ToolHost&, PanelSection section) {
+  if (section == PanelSection::Own && ImGui::CollapsingHeader("Speed vs error chart")) bench_chart_section(state_);
+}
+
+void BenchChartTool::panels(ToolHost& host) {
+  const WindowLayout& layout = host.layout();
+  bench_chart_window(state_, layout.rects().chart.pos, layout.rects().chart.size, layout.applying());
 }
 
 }  // namespace viz
