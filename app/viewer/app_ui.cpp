@@ -42,18 +42,11 @@ void App::main_panel() {
 }
 
 void App::set_panel(const std::string& name, bool on) {
-  PanelSwitches& panels = layout_.panels();
   if (name == "all") {
     layout_.set_ui_visible(on);
     return;
   }
-  bool* own = name == "scene"   ? &panels.main
-              : name == "ray"   ? &panels.ray
-              : name == "steps" ? &panels.steps
-              : name == "code"  ? &panels.code
-              : name == "legend" ? &panels.legend
-                                : nullptr;
-  if (own) *own = on;
+  if (bool* own = layout_.panels().find(name)) *own = on;
   else
     for (Tool* tool : tool_list_)
       if (tool->set_panel(name, on)) break;

@@ -7,6 +7,20 @@
 
 namespace viz {
 
+bool* PanelSwitches::find(const std::string& name) {
+  const struct {
+    const char* name;
+    bool PanelSwitches::*flag;
+  } kSwitches[] = {{"scene", &PanelSwitches::main},
+                   {"ray", &PanelSwitches::ray},
+                   {"steps", &PanelSwitches::steps},
+                   {"code", &PanelSwitches::code},
+                   {"legend", &PanelSwitches::legend}};
+  for (const auto& s : kSwitches)
+    if (name == s.name) return &(this->*s.flag);
+  return nullptr;
+}
+
 void WindowLayout::set_vars_column(bool on) {
   if (on == vars_column_) return;
   vars_column_ = on;

@@ -4,6 +4,8 @@
 // at all, the lecture mode's fonts and colours, the docked edges and the 3D view's rectangle
 // between them, and the framebuffer's size. App owns it; the tools place their windows
 // through it (host.layout().place(...)).
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "view_layout.h"
@@ -24,6 +26,9 @@ struct Fonts {
 /// their own switch.
 struct PanelSwitches {
   bool main = true, ray = true, steps = true, code = true, legend = true;
+  /// The switch `panel NAME` sets (scene, ray, steps, code, legend), or nullptr when NAME
+  /// is a tool's window.
+  bool* find(const std::string& name);
 };
 
 class WindowLayout {

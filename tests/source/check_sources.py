@@ -4,10 +4,14 @@
   * no source file in core/ or app/ is over 700 lines (one lecture algorithm per file);
   * nothing in app/ compares a structure's name to a literal: what a front end needs of a
     structure comes from its registry entry (core/registry.h);
+  * no function in core/ or app/ is over 100 lines, from its signature to its closing brace
+    (issue #50: split where its steps are);
+  * App is thin (issue #50): at most 20 data members and 800 lines over app/viewer/app.h and
+    its app*.cpp files;
   * the viewer's tools own their keys and script verbs (issue #42, app/viewer/commands.h):
-    app/viewer/app.cpp and app_script.cpp dispatch through the rows and hold no switch over
-    keys, no key a tool binds (a GLFW_KEY_ named in app/viewer/tools/), and no verb or
-    command kind a tool declares (the rows of the *_verbs.cpp files).
+    every App file (app/viewer/app.h, app*.cpp) dispatches through the rows and holds no
+    switch over keys, no key a tool binds (a GLFW_KEY_ named in app/viewer/tools/), and no
+    verb or command kind a tool declares (the rows of the *_verbs.cpp files).
 
     python3 tests/source/check_sources.py [REPO]
 
@@ -18,6 +22,9 @@ import re
 import sys
 
 MAX_LINES = 700
+MAX_FUNCTION_LINES = 100
+MAX_APP_MEMBERS = 20
+MAX_APP_LINES = 800
 SOURCE = re.compile(r'\.(cpp|h|hpp|cc)$')
 
 
@@ -27,8 +34,13 @@ def structure_names(repo):
     return re.findall(r'^\s*\{"([a-z_]+)",', text, re.M)
 
 
-# The files that dispatch keys and script commands: only App's global ones may be named there.
-DISPATCHERS = ('app/viewer/app.cpp', 'app/viewer/app_script.cpp')
+def app_files(repo):
+    """App's files: app/viewer/app.h and every app/viewer/app*.cpp."""
+    viewer = os.path.join(repo, 'app', 'viewer')
+    if not os.path.isdir(viewer):
+        return []
+    return ['app/viewer/app.h'] + sorted(f'app/viewer/{name}' for name in os.listdir(viewer)
+                                         if name.startswith('app') and name.endswith('.cpp'))
 KEY = re.compile(r'\bGLFW_KEY_\w+')
 VERB_ROW = re.compile(r'\{\s*"([a-z0-9][a-z0-9-]*)",\s*CommandKind::(\w+)')
 KIND = re.compile(r'\bCommandKind::(\w+)')
@@ -67,7 +79,7 @@ def dispatch_problems(repo):
     alternatives = '|'.join(map(re.escape, sorted(verbs)))
     verb_use = re.compile(rf'(?:\{{\s*|[=!]=\s*)"({alternatives})"|"({alternatives})"\s*[=!]=')
     problems = []
-    for rel in DISPATCHERS:
+    for rel in app_files(repo):
         path = os.path.join(repo, rel)
         if not os.path.exists(path):
             continue
@@ -82,6 +94,95 @@ def dispatch_problems(repo):
             for kind in sorted(set(KIND.findall(code)) & kinds):
                 problems.append(f'{rel}:{number}: CommandKind::{kind} is a tool\'s command (its run row belongs in '
                                 'the tool)')
+    return problems
+
+
+def without_comments_and_strings(text):
+    """`text` with comments removed and string and character literals emptied, newlines kept
+    (so braces in them do not count and line numbers stay)."""
+    out, i, n = [], 0, len(text)
+    while i < n:
+        if text.startswith('//', i):
+            j = text.find('\n', i)
+            i = n if j < 0 else j
+        elif text.startswith('/*', i):
+            j = text.find('*/', i + 2)
+            j = n if j < 0 else j + 2
+            out.append('\n' * text.count('\n', i, j))
+            i = j
+        elif text.startswith('R"', i) and re.match(r'R"([^(]*)\(', text[i:]):
+            end = ')' + re.match(r'R"([^(]*)\(', text[i:]).group(1) + '"'
+            j = text.find(end, i)
+            j = n if j < 0 else j + len(end)
+            out.append('""' + '\n' * text.count('\n', i, j))
+            i = j
+        elif text[i] in '"\'' and not (text[i] == "'" and i > 0 and text[i - 1].isalnum()):  # 1'000 is a number
+            quote, j = text[i], i + 1
+            while j < n and text[j] != quote:
+                j += 2 if text[j] == '\\' else 1
+            out.append(quote * 2)
+            i = j + 1
+        else:
+            out.append(text[i])
+            i += 1
+    return ''.join(out)
+
+
+# A function's body opens after its parameter list, perhaps with qualifiers or a trailing
+# return type between: `) const {`, `) -> std::string {`; if / for / while / switch / catch
+# open statements, not functions.
+FUNCTION_HEAD = re.compile(r'\)\s*(?:const|override|noexcept|final|mutable|->\s*[\w:<>,\s*&]+|\s)*$')
+STATEMENT = re.compile(r'\b(?:if|for|while|switch|catch)\s*\($')
+
+
+def long_functions(path, limit):
+    """(first line, lines, name) of each function (or lambda outside any function) whose body
+    spans more than `limit` lines, counted from its signature's first line."""
+    text = without_comments_and_strings(open(path, encoding='utf-8').read())
+    found, stack, line, depth_in_function = [], [], 1, 0
+    for i, c in enumerate(text):
+        if c == '\n':
+            line += 1
+        elif c == '{':
+            before = text[max(0, i - 400):i]
+            head = before[max(before.rfind(';'), before.rfind('{'), before.rfind('}')) + 1:]
+            call = head.split('(')[0] + '(' if '(' in head else ''
+            is_function = depth_in_function == 0 and FUNCTION_HEAD.search(head) and not STATEMENT.search(call)
+            if is_function:
+                names = re.findall(r'([~\w:]+)\s*\(', head)
+                stack.append((True, line - head.lstrip('\n').count('\n'), names[0] if names else '?'))
+                depth_in_function += 1
+            else:
+                stack.append((False, line, ''))
+        elif c == '}' and stack:
+            is_function, first, name = stack.pop()
+            if is_function:
+                depth_in_function -= 1
+                if line - first + 1 > limit:
+                    found.append((first, line - first + 1, name))
+    return found
+
+
+def app_problems(repo):
+    """App's data members and lines."""
+    files = app_files(repo)
+    if not files:
+        return []
+    problems = []
+    lines = sum(len(open(os.path.join(repo, rel), encoding='utf-8').read().rstrip('\n').split('\n')) for rel in files)
+    if lines > MAX_APP_LINES:
+        problems.append(f'app/viewer/app.h:1: App is {lines} lines over {", ".join(files)}, over the '
+                        f'{MAX_APP_LINES}-line ceiling (move a tool\'s work into its tool)')
+    header = without_comments_and_strings(open(os.path.join(repo, 'app/viewer/app.h'), encoding='utf-8').read())
+    body = header[header.find('class App'):]
+    # Data members end in an underscore: `Type name_;`, `Type name_ = ...;`, `Type name_{...};`,
+    # and a member of an unnamed struct type, `} name_;`.
+    members = re.findall(r'^\s*(?:[\w:<>,*&\s()]+?\s|\}\s*)(\w+_)\s*(?:=[^;]*|\{[^;]*\})?;', body, re.M)
+    if len(members) > MAX_APP_MEMBERS:
+        problems.append(f'app/viewer/app.h:1: App has {len(members)} data members, over the {MAX_APP_MEMBERS} '
+                        f'allowed ({", ".join(members)})')
+    if not members:
+        problems.append('app/viewer/app.h:1: found no data member of App: the check reads nothing')
     return problems
 
 
@@ -105,11 +206,15 @@ def main():
                 count = len(lines) - (1 if lines and lines[-1] == '' else 0)
                 if count > MAX_LINES:
                     problems.append(f'{rel}:{count}: {count} lines, over the {MAX_LINES}-line ceiling')
+                for first, length, function in long_functions(path, MAX_FUNCTION_LINES):
+                    problems.append(f'{rel}:{first}: {function} is {length} lines, over the '
+                                    f'{MAX_FUNCTION_LINES}-line ceiling (split it where its steps are)')
                 if top == 'app':
                     for number, line in enumerate(lines, 1):
                         if compare.search(line.split('//')[0]):
                             problems.append(f'{rel}:{number}: compares a structure name to a literal '
                                             '(take it from the registry entry)')
+    problems += app_problems(repo)
     problems += dispatch_problems(repo)
     for p in problems:
         print(p)
