@@ -158,6 +158,14 @@ std::string keys_markdown(const std::vector<KeyGroup>& groups) {
 
 std::string keys_summary_markdown(const std::vector<KeyGroup>& groups) {
   std::string table = "| tool | keys | what they do |\n|---|---|---|\n";
+  // The mouse in the 3D view first (input.h's rows; the blackboard's are in docs/viewer.md).
+  std::string mice, meanings;
+  for (const MouseRow& row : mouse_rows()) {
+    if (!*row.in_3d) continue;
+    mice += (mice.empty() ? "" : ", ") + table_cell(row.mouse);
+    meanings += (meanings.empty() ? "" : "; ") + table_cell(row.in_3d);
+  }
+  table += "| mouse (3D view) | " + mice + " | " + meanings + " |\n";
   for (const KeyGroup& g : groups) {
     std::string keys, helps;
     for_each_label(g.rows, [&](const KeyBinding& b) {

@@ -149,7 +149,8 @@ struct VerbRun {
 std::vector<std::string> keys_help_lines(const std::vector<KeyGroup>& groups);
 /// docs/viewer.md's keys table: "| key | what it does |", one row per key label.
 std::string keys_markdown(const std::vector<KeyGroup>& groups);
-/// README.md's keys table: one row per tool, its keys and what they do.
+/// README.md's keys table: the mouse in the 3D view (input.h's rows), then one row per tool,
+/// its keys and what they do.
 std::string keys_summary_markdown(const std::vector<KeyGroup>& groups);
 /// docs/viewer.md's script table: "| command | what it does |", one row per verb, its forms
 /// as code.
