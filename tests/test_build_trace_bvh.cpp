@@ -368,5 +368,48 @@ TEST(BuildTraceBvh, InsertionPathsCostsAndChoices) {
   EXPECT_EQ(r.tree.event_ids, (std::vector<uint32_t>{4, 2, 6}));
 }
 
+// ----------------------------------------------------------------------------
+// The leaf rule at the depth limit (every top-down builder: leaf_verdict() in bvh_top_down.h)
+// ----------------------------------------------------------------------------
+
+/// A staircase of kMaxBvhDepth + 2 flat triangles, each twice the size of the one before
+/// and beside it on x. With leaves priced per test of 64 (a leaf of up to 64 costs one test)
+/// and cheap steps, the SAH sweep's best split peels the largest off the rest at every level
+/// (ct + 1/4 + 1/2 of the parent's area; two off: ct + 1/16 + 3/4), and beats the leaf (1),
+/// so the chain reaches the depth limit with 3 triangles left.
+Scene doubling_staircase() {
+  std::vector<Vec3> p;
+  std::vector<UVec3> t;
+  for (uint32_t k = 0; k < uint32_t(kMaxBvhDepth) + 2; ++k) {
+    const float s = std::ldexp(1.0f, int(k));
+    p.insert(p.end(), {{s, 0, 0}, {2 * s, 0, 0}, {s, s, 0}});
+    t.emplace_back(3 * k, 3 * k + 1, 3 * k + 2);
+  }
+  return Scene(std::move(p), std::move(t));
+}
+
+// A node at the depth limit that the leaf rule would have split is a MaxDepth leaf, small
+// or not, for every builder (before, a small one was FewPrims for the sweep and PCA, NoGain
+// for binned SAH and SBVH). At least the SAH sweep reaches the limit on this scene.
+TEST(BuildTraceBvh, DepthLimitLeavesAreMaxDepthForEveryBuilder) {
+  const Scene scene = doubling_staircase();
+  bool sweep_reached = false;
+  for (const BvhBuilderInfo& row : bvh_builder_table()) {
+    SCOPED_TRACE(row.name);
+    BvhBuildOptions o;
+    o.builder = row.kind;
+    o.prims_per_test = 64;
+    o.ct = 0.01f;
+    const Recorded r = record(scene, o);
+    for (const BuildEvent& e : r.trace.events) {
+      if (e.kind != K::Leaf || e.depth < kMaxBvhDepth - 1 || e.count < 2) continue;
+      EXPECT_NE(e.reason, LeafReason::FewPrims) << "leaf " << e.node << " of " << e.count;
+      if (e.reason == LeafReason::MaxDepth && e.count <= size_t(o.leaf_size) && row.kind == BvhBuilderKind::Sah)
+        sweep_reached = true;
+    }
+  }
+  EXPECT_TRUE(sweep_reached) << "the sweep never made a small leaf at the depth limit";
+}
+
 }  // namespace
 }  // namespace accel

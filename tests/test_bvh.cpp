@@ -466,7 +466,8 @@ TEST(BvhBuilders, InsertionOfIdenticalTrianglesStaysShallow) {
   // limit rebuilds it.
   std::vector<UVec3> t(3000, UVec3(0, 1, 2));
   Scene scene({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, std::move(t));
-  for (const char* builder : {"insertion", "bottom_up", "sah", "median"}) {
+  for (const BvhBuilderInfo& row : bvh_builder_table()) {
+    const char* builder = row.name;
     auto s = build_structure("bvh", scene, {std::string("builder=") + builder, "leaf_size=1"});
     ASSERT_TRUE(s);
     EXPECT_LT(s.value()->build_stats().max_depth, kMaxBvhDepth) << builder;

@@ -1,7 +1,7 @@
-// The sweep-based and the other non-binned BVH builders (bvh_builders.cpp): the SAH sweep
-// over presorted lists builds exactly the tree of sorting every node (kept here as the
-// reference), no builder's tree depends on the thread count, and every builder reports its
-// progress and stops when cancelled.
+// Every BVH builder of the table (bvh_builders.cpp): the SAH sweep over presorted lists
+// builds exactly the tree of sorting every node (kept here as the reference), no builder's
+// tree depends on the thread count, and every builder reports its progress and stops when
+// cancelled.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -221,24 +221,25 @@ struct BuilderCase {
   BvhBuildOptions options;
 };
 
-/// Every non-binned builder, and every option that changes its code path.
+/// Every builder of the table with its default options, and the options that change a
+/// builder's code path (the median's axis rules, the sweep's leaf cost table).
 std::vector<BuilderCase> builder_cases() {
   std::vector<BuilderCase> cases;
+  for (const BvhBuilderInfo& row : bvh_builder_table()) {
+    BvhBuildOptions o;
+    o.builder = row.kind;
+    cases.push_back({row.name, o});
+  }
   const auto add = [&](std::string label, BvhBuilderKind kind, auto&& tweak) {
     BvhBuildOptions o;
     o.builder = kind;
     tweak(o);
     cases.push_back({std::move(label), o});
   };
-  add("sah", BvhBuilderKind::Sah, [](BvhBuildOptions&) {});
   add("sah leaf 1", BvhBuilderKind::Sah, [](BvhBuildOptions& o) { o.leaf_size = 1; });
   add("sah 4 per test", BvhBuilderKind::Sah, [](BvhBuildOptions& o) { o.prims_per_test = 4; });
-  add("median longest", BvhBuilderKind::Median, [](BvhBuildOptions&) {});
   add("median x", BvhBuilderKind::Median, [](BvhBuildOptions& o) { o.axis = MedianAxis::X; });
   add("median round robin", BvhBuilderKind::Median, [](BvhBuildOptions& o) { o.axis = MedianAxis::RoundRobin; });
-  add("pca_sah", BvhBuilderKind::PcaSah, [](BvhBuildOptions&) {});
-  add("bottom_up", BvhBuilderKind::BottomUp, [](BvhBuildOptions&) {});
-  add("insertion", BvhBuilderKind::Insertion, [](BvhBuildOptions&) {});
   return cases;
 }
 
@@ -296,7 +297,8 @@ TEST(BvhSweep, TreeDoesNotDependOnTheThreadCount) {
 }
 
 TEST(BvhSweep, EveryBuilderReportsProgressInsideItsSpan) {
-  for (const char* builder : {"sah", "median", "pca_sah", "bottom_up", "insertion"}) {
+  for (const BvhBuilderInfo& row : bvh_builder_table()) {
+    const char* builder = row.name;
     SCOPED_TRACE(builder);
     std::vector<double> seen;
     BuildControl control([&](double f) { seen.push_back(f); });

@@ -1,8 +1,8 @@
 #pragma once
-// Internals of the binned SAH builder (bvh_binned_builder.cpp), shared with the
-// spatial-split builder (bvh_spatial_builder.cpp), which takes its object split from here:
-// the 32-byte references, the SSE bins and sweep, the in-place partition and the median
-// fallback. Not a public interface: only these two builders include it.
+// The binned SAH object split of the binned builder's splitter (bvh_binned_builder.cpp),
+// shared with the spatial-split builder's (bvh_spatial_builder.cpp): the 32-byte
+// references, the SSE bins and sweep, the in-place partition and the median fallback. The
+// recursion is bvh_top_down.h's. Not a public interface: only these two builders include it.
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU (as in geometry.h)
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 #include "geometry.h"
 #include "parallel.h"
 #include "structures/bvh_build_types.h"
-#include "structures/bvh_chunk_links.h"
+#include "structures/bvh_top_down.h"
 
 namespace accel::binned {
 
@@ -65,8 +65,14 @@ struct Range {
   size_t begin = 0, end = 0;
   Box4 box;       ///< union of the triangle boxes (the node's box)
   Box4 centroid;  ///< bounds of the doubled centroids lo + hi
-  int depth = 0;
   size_t size() const { return end - begin; }
+  /// The centroid bounds in scene units (the references hold twice the centroid, lo + hi).
+  Aabb centroid_bounds() const {
+    Aabb c = centroid.aabb();
+    c.min *= 0.5f;
+    c.max *= 0.5f;
+    return c;
+  }
 };
 
 /// A bin's box; trivially constructible, so a BinSet is not initialised beyond the bins in use.
@@ -134,82 +140,57 @@ struct BinMap {
   }
 };
 
-/// The chosen plane: left are the references whose bin on `axis` is below `bin`.
+/// The chosen plane: left are the references whose bin on `axis` (by `map`) is below `bin`.
 struct BinSplit {
   bool valid = false;
   int axis = -1, bin = 0;
   float cost = 0.0f;
+  BinMap map{};  ///< the node's bin map, which partition() classifies by
 };
 
-/// The builder, over a build sink (build_trace.h): NullBuildSink for the normal build,
-/// BuildRecorder for the recorded one (serial, through build_serial() from the root).
+/// Per-task buffers of the binned split, allocated once per task, not per node, and off the
+/// stack: a BinSet is 27 KB and the recursion may be 96 deep.
+struct Scratch : top_down::ScratchBase {
+  std::unique_ptr<BinSet> bins = std::make_unique<BinSet>();
+  std::unique_ptr<BinSet> spare = std::make_unique<BinSet>();
+  struct RightSweep {
+    __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
+    __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
+  };
+  std::unique_ptr<RightSweep> right = std::make_unique<RightSweep>();
+  std::vector<SplitCandidate> planes[3];  ///< recording only: the planes of the node being swept
+};
+
+/// The binned object split of a node's references refs[r.begin, r.end), over a build sink
+/// (build_trace.h): NullBuildSink for the normal build, BuildRecorder for the recorded one.
+/// Stateless between nodes (the state of a node is in its Range, BinSplit and Scratch), so
+/// one serves every task.
 template <class Sink>
-class BinnedBuilder {
+class BinnedSah {
  public:
-  BinnedBuilder(const BvhBuildOptions& o, Ref* refs, Sink& sink) : o_(o), refs_(refs), sink_(sink) {
+  BinnedSah(const BvhBuildOptions& o, Sink& sink) : o_(o), sink_(sink) {
     const uint32_t ppt = uint32_t(o.prims_per_test);
     if (ppt > 0 && (ppt & (ppt - 1)) == 0) ppt_shift_ = std::countr_zero(ppt);
   }
 
-  /// Points the builder at another reference array (the spatial-split builder's nodes each
-  /// own theirs); the ranges passed afterwards index into it.
-  void rebind(Ref* refs) { refs_ = refs; }
-
-  /// Serial build of the subtree `r`, appended to `nodes` in pre-order; returns its index
-  /// (the node's id in the recorded steps: the index in the finished tree).
-  uint32_t build_serial(const Range& r, std::vector<BuildNode>& nodes, uint32_t parent = kNoBuildNode) {
-    const uint32_t index = uint32_t(nodes.size());
-    nodes.emplace_back();
-    nodes[index].box = r.box.aabb();
-    if constexpr (Sink::kRecords) record_node(r, index, parent);
-    Range left, right;
-    if (!split_node(r, left, right, index)) {
-      nodes[index].first = uint32_t(r.begin);
-      nodes[index].count = uint32_t(r.size());
-      return index;
-    }
-    const uint32_t l = build_serial(left, nodes, index);
-    const uint32_t rr = build_serial(right, nodes, index);
-    nodes[index].left = l;
-    nodes[index].right = rr;
-    return index;
-  }
-
-  /// The leaf rule of the top-down framework in bvh_builders.cpp, then the binned split or
-  /// the object-median fallback. False when `r` becomes a leaf; else fills the children.
-  /// `id`: the node's id for the sink.
-  bool split_node(const Range& r, Range& left, Range& right, uint32_t id = 0) {
-    const size_t count = r.size();
-    BinSplit split;
-    if (count > 1) split = find_split(r, id);
-    const bool small = count <= size_t(o_.leaf_size);
-    if (count <= 1 || (small && (!split.valid || split.cost >= o_.leaf_cost(count))) ||
-        r.depth >= kMaxBvhDepth - 1) {
-      ACCEL_CHECK(count <= size_t(o_.leaf_size) || r.depth >= kMaxBvhDepth - 1);
-      if constexpr (Sink::kRecords) {
-        const LeafReason why = r.depth >= kMaxBvhDepth - 1 && !small ? LeafReason::MaxDepth
-                               : split.valid                          ? LeafReason::NoGain
-                                                                      : LeafReason::FewPrims;
-        const std::vector<uint32_t> prims = prims_of(r);
-        sink_.leaf(id, why, prims.data(), prims.size());
-      }
-      return false;
-    }
-    const bool binned = split.valid && partition(r, split, left, right);
-    if (!binned) median_split(r, left, right);
-    left.depth = right.depth = r.depth + 1;
+  /// Splits the node `r` of `refs` into `left` and `right` by `split` (the binned plane),
+  /// or by the object median when there is no binned split, and records the Split step.
+  /// `partitioned`: refs is already partitioned by `split` into `left` and `right`.
+  void split_objects(Ref* refs, const Range& r, const BinSplit& split, bool partitioned, Range& left, Range& right,
+                     [[maybe_unused]] uint32_t id, [[maybe_unused]] float leaf_cost) const {
+    const bool binned = split.valid && (partitioned || partition(refs, r, split, left, right));
+    if (!binned) median_split(refs, r, left, right);
     if constexpr (Sink::kRecords) {
       if (binned) {
-        sink_.split(id, split.axis, plane_position(map_, split.axis, split.bin), split.cost, o_.leaf_cost(count),
-                    uint32_t(left.size()), uint32_t(right.size()), 0);
+        sink_.split(id, split.axis, split_position(split), split.cost, leaf_cost, uint32_t(left.size()),
+                    uint32_t(right.size()), 0);
       } else {  // the object median: no cost computed
         const int axis = r.centroid.aabb().longest_axis();
         sink_.axis(id, axis, Vec3(0.0f));
-        sink_.split(id, axis, 0.5f * (refs_[left.end - 1].lo[axis] + refs_[left.end - 1].hi[axis]), std::nanf(""),
-                    o_.leaf_cost(count), uint32_t(left.size()), uint32_t(right.size()), 0);
+        sink_.split(id, axis, 0.5f * (refs[left.end - 1].lo[axis] + refs[left.end - 1].hi[axis]), std::nanf(""),
+                    leaf_cost, uint32_t(left.size()), uint32_t(right.size()), 0);
       }
     }
-    return true;
   }
 
  private:
@@ -236,22 +217,6 @@ class BinnedBuilder {
     return _mm_mul_ps(_mm_set1_ps(o_.ci), _mm_cvtepi32_ps(_mm_srl_epi32(rounded, _mm_cvtsi32_si128(ppt_shift_))));
   }
 
-  /// The triangles of refs[r.begin, r.end), in their current order (recording only).
-  std::vector<uint32_t> prims_of(const Range& r) const {
-    std::vector<uint32_t> prims(r.size());
-    for (size_t i = r.begin; i < r.end; ++i) prims[i - r.begin] = refs_[i].prim;
-    return prims;
-  }
-  /// The node's Node step: its box, its centroid bounds (the references hold twice the
-  /// centroid, lo + hi) and its triangles.
-  void record_node(const Range& r, uint32_t id, uint32_t parent) {
-    if (!sink_.records(int(r.depth))) return;
-    Aabb centroids = r.centroid.aabb();
-    centroids.min *= 0.5f;
-    centroids.max *= 0.5f;
-    const std::vector<uint32_t> prims = prims_of(r);
-    sink_.node(id, parent, int(r.depth), r.box.aabb(), centroids, prims.data(), prims.size());
-  }
   /// Where the plane between bins b - 1 and b lies on `axis`, in scene units (the map bins
   /// twice the centroid).
   static float plane_position(const BinMap& map, int axis, int b) {
@@ -281,15 +246,16 @@ class BinnedBuilder {
   /// every update wait for the previous one's store; large ranges therefore alternate
   /// between `bins` and `spare` (merged at the end: min/max and counts are exact in any
   /// order), which halves that chain.
-  void bin_refs(size_t begin, size_t end, const BinMap& map, int nb, BinSet& bins, BinSet& spare) const {
+  static void bin_refs(const Ref* refs, size_t begin, size_t end, const BinMap& map, int nb, BinSet& bins,
+                       BinSet& spare) {
     const __m128 mask = xyz_mask();
     alignas(16) int32_t idx[4], idx2[4];
     size_t i = begin;
     if (end - begin >= kDualBinThreshold) {
       spare.clear(nb);
       for (; i + 1 < end; i += 2) {
-        const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]);
-        const __m128 lo2 = load_lo(refs_[i + 1], mask), hi2 = load_hi(refs_[i + 1]);
+        const __m128 lo = load_lo(refs[i], mask), hi = load_hi(refs[i]);
+        const __m128 lo2 = load_lo(refs[i + 1], mask), hi2 = load_hi(refs[i + 1]);
         _mm_store_si128(reinterpret_cast<__m128i*>(idx), map.bins(_mm_add_ps(lo, hi)));
         _mm_store_si128(reinterpret_cast<__m128i*>(idx2), map.bins(_mm_add_ps(lo2, hi2)));
         for (int a = 0; a < 3; ++a) {
@@ -300,25 +266,26 @@ class BinnedBuilder {
       bins.merge(spare, nb);
     }
     for (; i < end; ++i) {
-      const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]);
+      const __m128 lo = load_lo(refs[i], mask), hi = load_hi(refs[i]);
       _mm_store_si128(reinterpret_cast<__m128i*>(idx), map.bins(_mm_add_ps(lo, hi)));
       for (int a = 0; a < 3; ++a) bins.add(a, idx[a], lo, hi);
     }
   }
 
  public:  // the object split, also used by the spatial-split builder (bvh_spatial_builder.cpp)
-  /// Where the plane of `split` (the last successful find_split()'s) lies, in scene units.
-  float split_position(const BinSplit& split) const { return plane_position(map_, split.axis, split.bin); }
+  /// Where the plane of `split` lies, in scene units.
+  static float split_position(const BinSplit& split) { return plane_position(split.map, split.axis, split.bin); }
 
   /// The cheapest binned plane on any axis by the SAH; ties keep the lower axis and plane.
-  BinSplit find_split(const Range& r, uint32_t id) {
+  /// `depth`, `id`: the node's, for the recorded Candidates steps.
+  BinSplit find_split(Scratch& scratch, const Ref* refs, const Range& r, int depth, uint32_t id) const {
     const size_t n = r.size();
     const int nb = bin_count(n);
     bool any_extent = false;
     const BinMap map = bin_map(r, nb, &any_extent);
     BinSplit best;
     if (!any_extent) return best;  // all centroids equal: the caller falls back to the median
-    BinSet& bins = *bins_;
+    BinSet& bins = *scratch.bins;
     bins.clear(nb);
     if (n >= kParallelBinThreshold) {
       // Fixed slices, merged in slice order: the bins do not depend on the scheduling.
@@ -327,26 +294,29 @@ class BinnedBuilder {
       par::parallel_for(size_t(0), slices, [&](size_t s) {
         partial[s].clear(nb);
         BinSet spare;  // uninitialised: bin_refs clears what it uses
-        bin_refs(r.begin + s * kBinSlice, std::min(r.end, r.begin + (s + 1) * kBinSlice), map, nb, partial[s], spare);
+        bin_refs(refs, r.begin + s * kBinSlice, std::min(r.end, r.begin + (s + 1) * kBinSlice), map, nb, partial[s],
+                 spare);
       });
       for (size_t s = 0; s < slices; ++s) bins.merge(partial[s], nb);
     } else {
-      bin_refs(r.begin, r.end, map, nb, bins, *spare_);
+      bin_refs(refs, r.begin, r.end, map, nb, bins, *scratch.spare);
     }
-    return sweep(bins, nb, r, map, id);
+    return sweep(scratch, nb, r, map, depth, id);
   }
 
   /// SAH sweep over the bins (Wald 2007, section 3.2), the three axes side by side in SSE
   /// lanes. Per lane it is the scalar sweep: the cost formula of sah_split_cost() in
   /// bvh_builders.cpp in the same operation order, the first (lowest) plane kept on ties,
   /// then the lowest axis among equal costs, as a loop over axes then planes would choose.
-  BinSplit sweep(const BinSet& bins, int nb, const Range& r, const BinMap& map, uint32_t id) {
+  BinSplit sweep(Scratch& scratch, int nb, const Range& r, const BinMap& map, [[maybe_unused]] int depth,
+                 [[maybe_unused]] uint32_t id) const {
+    const BinSet& bins = *scratch.bins;
     const __m128 axis_ok = _mm_cmpgt_ps(_mm_sub_ps(r.centroid.hi, r.centroid.lo), _mm_setzero_ps());
     const float parent_area = r.box.area();
     const __m128 inv = _mm_set1_ps(parent_area > 0.0f ? 1.0f / parent_area : 1.0f);
     const __m128 ct = _mm_set1_ps(o_.ct);
-    __m128* right_area = right_->area;
-    __m128i* right_count = right_->count;
+    __m128* right_area = scratch.right->area;
+    __m128i* right_count = scratch.right->count;
     AxisBoxes acc;
     __m128i cnt = _mm_setzero_si128();
     for (int b = nb - 1; b > 0; --b) {
@@ -373,9 +343,9 @@ class BinnedBuilder {
       best_cost = select(take, cost, best_cost);
       best_bin = _mm_castps_si128(select(take, _mm_castsi128_ps(_mm_set1_epi32(b)), _mm_castsi128_ps(best_bin)));
       best_valid = _mm_or_ps(best_valid, valid);
-      if constexpr (Sink::kRecords) record_plane(b, valid, cost, cnt, right_count[b]);
+      if constexpr (Sink::kRecords) record_plane(scratch, b, valid, cost, cnt, right_count[b]);
     }
-    if constexpr (Sink::kRecords) record_candidates(id, map, r);
+    if constexpr (Sink::kRecords) record_candidates(scratch, id, map, depth);
     alignas(16) float costs[4];
     alignas(16) int32_t bin[4], ok[4];
     _mm_store_ps(costs, best_cost);
@@ -383,8 +353,7 @@ class BinnedBuilder {
     _mm_store_si128(reinterpret_cast<__m128i*>(ok), _mm_castps_si128(best_valid));
     BinSplit best;
     for (int a = 0; a < 3; ++a)
-      if (ok[a] && (!best.valid || costs[a] < best.cost)) best = {true, a, bin[a], costs[a]};
-    if (best.valid) map_ = map;
+      if (ok[a] && (!best.valid || costs[a] < best.cost)) best = {true, a, bin[a], costs[a], map};
     return best;
   }
 
@@ -394,13 +363,13 @@ class BinnedBuilder {
   /// float operations, so a reference goes to the side its bin says), and the four bounds
   /// live in registers, not in the Ranges. False if a side came out empty (cannot happen
   /// for a plane the binning found).
-  bool partition(const Range& r, const BinSplit& split, Range& left, Range& right) {
+  static bool partition(Ref* refs, const Range& r, const BinSplit& split, Range& left, Range& right) {
     const __m128 mask = xyz_mask();
     alignas(16) float map_lo[4], map_scale[4];
-    _mm_store_ps(map_lo, map_.lo);
-    _mm_store_ps(map_scale, map_.scale);
+    _mm_store_ps(map_lo, split.map.lo);
+    _mm_store_ps(map_scale, split.map.scale);
     const int axis = split.axis;
-    const float lo_a = map_lo[axis], scale_a = map_scale[axis], top = _mm_cvtss_f32(map_.top);
+    const float lo_a = map_lo[axis], scale_a = map_scale[axis], top = _mm_cvtss_f32(split.map.top);
     const int split_bin = split.bin;
     auto goes_left = [&](const Ref& ref) {
       const float c = ref.lo[axis] + ref.hi[axis];
@@ -415,7 +384,6 @@ class BinnedBuilder {
       box.extend(lo, hi);
       cen.extend(c, c);
     };
-    Ref* const refs = refs_;
     size_t i = r.begin, j = r.end;
     while (true) {
       while (i < j && goes_left(refs[i])) add(refs[i++], lbox, lcen);
@@ -440,11 +408,11 @@ class BinnedBuilder {
 
   /// Fallback: object median along the longest centroid axis, ties by triangle index, as
   /// object_median_split() in bvh_builders.cpp (always valid for >= 2 references).
-  void median_split(const Range& r, Range& left, Range& right) {
+  static void median_split(Ref* refs, const Range& r, Range& left, Range& right) {
     const Aabb cb = r.centroid.aabb();
     const int axis = cb.longest_axis();
     const size_t mid = r.begin + r.size() / 2;
-    std::nth_element(refs_ + r.begin, refs_ + mid, refs_ + r.end, [axis](const Ref& a, const Ref& b) {
+    std::nth_element(refs + r.begin, refs + mid, refs + r.end, [axis](const Ref& a, const Ref& b) {
       const float ca = a.lo[axis] + a.hi[axis], cb_ = b.lo[axis] + b.hi[axis];
       return ca < cb_ || (ca == cb_ && a.prim < b.prim);
     });
@@ -456,7 +424,7 @@ class BinnedBuilder {
     const __m128 mask = xyz_mask();
     for (Range* side : {&left, &right}) {
       for (size_t i = side->begin; i < side->end; ++i) {
-        const __m128 lo = load_lo(refs_[i], mask), hi = load_hi(refs_[i]), c = _mm_add_ps(lo, hi);
+        const __m128 lo = load_lo(refs[i], mask), hi = load_hi(refs[i]), c = _mm_add_ps(lo, hi);
         side->box.extend(lo, hi);
         side->centroid.extend(c, c);
       }
@@ -466,7 +434,7 @@ class BinnedBuilder {
  private:
   /// Recording: keeps the plane between bins b - 1 and b of each axis whose both sides hold
   /// references, with the cost the sweep computed.
-  void record_plane(int b, __m128 valid, __m128 cost, __m128i left, __m128i right) {
+  static void record_plane(Scratch& scratch, int b, __m128 valid, __m128 cost, __m128i left, __m128i right) {
     alignas(16) float c[4], ok[4];
     alignas(16) uint32_t l[4], rr[4];
     _mm_store_ps(c, cost);
@@ -475,33 +443,22 @@ class BinnedBuilder {
     _mm_store_si128(reinterpret_cast<__m128i*>(rr), right);
     for (int a = 0; a < 3; ++a) {
       if (accel::bit_cast<uint32_t>(ok[a]) == 0) continue;
-      planes_[a].push_back({float(b), c[a], l[a], rr[a]});
+      scratch.planes[a].push_back({float(b), c[a], l[a], rr[a]});
     }
   }
   /// Recording: one Candidates step per axis, the bin index turned into the plane's position.
-  void record_candidates(uint32_t id, const BinMap& map, const Range& r) {
+  void record_candidates(Scratch& scratch, uint32_t id, const BinMap& map, int depth) const {
     for (int a = 0; a < 3; ++a) {
-      for (SplitCandidate& c : planes_[a]) c.pos = plane_position(map, a, int(c.pos));
-      if (sink_.records(int(r.depth))) sink_.candidates(id, a, planes_[a].data(), planes_[a].size());
-      planes_[a].clear();
+      std::vector<SplitCandidate>& planes = scratch.planes[a];
+      for (SplitCandidate& c : planes) c.pos = plane_position(map, a, int(c.pos));
+      if (sink_.records(depth)) sink_.candidates(id, a, planes.data(), planes.size());
+      planes.clear();
     }
   }
 
   const BvhBuildOptions& o_;
-  Ref* refs_;
   Sink& sink_;
-  std::vector<SplitCandidate> planes_[3];  ///< recording only: the planes of the node being swept
   int ppt_shift_ = -1;  ///< log2(prims_per_test) when it is a power of two
-  BinMap map_{};  ///< bin map of the last successful find_split(), used by partition()
-  // Scratch of find_split(), allocated once per builder (one per task), not per node, and
-  // off the stack: a BinSet is 27 KB and the recursion may be 96 deep.
-  std::unique_ptr<BinSet> bins_ = std::make_unique<BinSet>();
-  std::unique_ptr<BinSet> spare_ = std::make_unique<BinSet>();
-  struct RightSweep {
-    __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
-    __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
-  };
-  std::unique_ptr<RightSweep> right_ = std::make_unique<RightSweep>();
 };
 
 }  // namespace accel::binned

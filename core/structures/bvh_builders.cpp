@@ -1,13 +1,19 @@
 // The BVH builders' front door: build_bvh_tree() runs the builder the options name, each in
 // its own file after the lecture's algorithm --
 //   top-down   bvh_median_builder.cpp (median split), bvh_sweep_builder.cpp (SAH plane
-//              sweep on all axes), bvh_pca_builder.cpp (SAH sweep along the PCA axis), all
-//              three over bvh_top_down.h's recursion; bvh_binned_builder.cpp (binned SAH,
-//              the default) and bvh_spatial_builder.cpp (SBVH) with their own;
+//              sweep on all axes), bvh_pca_builder.cpp (SAH sweep along the PCA axis),
+//              bvh_binned_builder.cpp (binned SAH, the default) and bvh_spatial_builder.cpp
+//              (SBVH): each a splitter of the one recursion, bvh_top_down.h;
 //   bottom-up  bvh_ploc_builder.cpp (clustering), bvh_insertion_builder.cpp (Goldsmith &
 //              Salmon), both finished by bvh_binary_tree.cpp;
 // and the table that names them (bvh_builders.h).
 #include "structures/bvh_builders.h"
+
+#include <atomic>
+#include <iterator>
+#include <limits>
+#include <type_traits>
+#include <vector>
 
 #include "check.h"
 
@@ -34,13 +40,42 @@ constexpr BvhBuilderInfo kBuilders[] = {
      "binned SAH with spatial splits (SBVH: a triangle may be in several leaves)", true, build_spatial_split_tree},
 };
 
-std::span<const BvhBuilderInfo> bvh_builder_table() { return kBuilders; }
+namespace {
+
+/// kBuilders and the rows add_bvh_builder() appended; `read` once anyone has looked.
+struct BuilderRows {
+  std::vector<BvhBuilderInfo> rows{std::begin(kBuilders), std::end(kBuilders)};
+  std::atomic<bool> read{false};
+};
+
+BuilderRows& builder_rows() {
+  static BuilderRows table;
+  return table;
+}
+
+}  // namespace
+
+std::span<const BvhBuilderInfo> bvh_builder_table() {
+  BuilderRows& table = builder_rows();
+  table.read.store(true, std::memory_order_relaxed);
+  return table.rows;
+}
+
+BvhBuilderKind add_bvh_builder(BvhBuilderInfo row) {
+  BuilderRows& table = builder_rows();
+  ACCEL_CHECK(!table.read.load(std::memory_order_relaxed) && "add_bvh_builder() after the table was read");
+  ACCEL_CHECK(table.rows.size() <= std::numeric_limits<std::underlying_type_t<BvhBuilderKind>>::max());
+  row.kind = BvhBuilderKind(table.rows.size());
+  table.rows.push_back(row);
+  return row.kind;
+}
 
 const BvhBuilderInfo& bvh_builder(BvhBuilderKind kind) {
-  for (const BvhBuilderInfo& row : kBuilders)
+  const std::span<const BvhBuilderInfo> rows = bvh_builder_table();
+  for (const BvhBuilderInfo& row : rows)
     if (row.kind == kind) return row;
-  ACCEL_CHECK(false && "a BvhBuilderKind without a row in kBuilders");
-  return kBuilders[0];
+  ACCEL_CHECK(false && "a BvhBuilderKind without a row in the table");
+  return rows[0];
 }
 
 const char* builder_name(BvhBuilderKind kind) { return bvh_builder(kind).name; }

@@ -25,8 +25,15 @@ struct BvhBuilderInfo {
                      BuildRecorder* recorder);
 };
 
-/// Every builder, in the order the parameter lists them.
+/// Every builder, in the order the parameter lists them: the built-in rows, then any added
+/// by add_bvh_builder().
 std::span<const BvhBuilderInfo> bvh_builder_table();
+/// Adds a builder from outside the core, such as a test's own (tests/test_bvh_custom_builder.cpp;
+/// docs/structures.md, "Adding a BVH builder"): its row goes after the others, with the next
+/// free kind, which is returned (row.kind is ignored). Only before the table is first read,
+/// i.e. at static initialisation: the table is then fixed, so the `builder` parameter and
+/// every reader see the same rows.
+BvhBuilderKind add_bvh_builder(BvhBuilderInfo row);
 /// The row of `kind`.
 const BvhBuilderInfo& bvh_builder(BvhBuilderKind kind);
 

@@ -1,6 +1,6 @@
 #pragma once
 // How the top-down driver (top_down_tasks.h) stitches BuildNode chunks: beside the BVH
-// builders that run on it (bvh_top_down.h, bvh_binned_detail.h), so the node type's header
+// builders' one recursion that runs on it (bvh_top_down.h), so the node type's header
 // (bvh_build_types.h) needs neither the driver nor TBB.
 #include <cstdint>
 
@@ -11,7 +11,8 @@ namespace accel {
 
 namespace top_down {
 /// Stitching BuildNode chunks (top_down_tasks.h): a node names both children; a leaf's
-/// `first` moves only for chunks with triangles of their own (the others' offsets are 0).
+/// `first` moves by the triangles of the chunks before its own (every BVH chunk lists its
+/// leaves' triangles).
 template <>
 struct ChunkLinks<BuildNode> {
   static void link(BuildNode& inner, uint32_t left, uint32_t right) {

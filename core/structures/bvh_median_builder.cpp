@@ -14,26 +14,20 @@ using namespace top_down;
 
 /// Splits a node at the median of its centres along the axis the options choose.
 template <class Sink>
-class MedianSplitter : public InPlaceSplitter {
+class MedianSplitter : public InPlaceSplitter<MedianSplitter<Sink>, Sink> {
  public:
   static constexpr bool kSahLeafRule = false;
   using Scratch = ScratchBase;
+  using InPlaceSplitter<MedianSplitter<Sink>, Sink>::InPlaceSplitter;
 
-  MedianSplitter(const BvhBuildOptions& o, std::vector<PrimRef>& refs, Sink& sink)
-      : InPlaceSplitter(refs), o_(o), sink_(sink) {}
-
-  Split split(Scratch&, size_t begin, size_t end, const Aabb&, int depth, [[maybe_unused]] uint32_t id) {
+  Split split(Scratch&, RefRange& w, const Aabb&, int depth, [[maybe_unused]] uint32_t id) {
     int axis = 0;
-    if (o_.axis == MedianAxis::RoundRobin) axis = depth % 3;
-    if (o_.axis == MedianAxis::Longest) axis = centroid_bounds_of(refs_, begin, end).longest_axis();
-    Split s = object_median_split(refs_, begin, end, axis);
-    if constexpr (Sink::kRecords) record_median_split(sink_, o_, refs_, id, axis, begin, end, s);
+    if (this->o_.axis == MedianAxis::RoundRobin) axis = depth % 3;
+    if (this->o_.axis == MedianAxis::Longest) axis = centroid_bounds_of(this->refs_, w.begin, w.end).longest_axis();
+    Split s = object_median_split(this->refs_, w.begin, w.end, axis);
+    if constexpr (Sink::kRecords) record_median_split(this->sink_, this->o_, this->refs_, id, axis, w.begin, w.end, s);
     return s;
   }
-
- private:
-  const BvhBuildOptions& o_;
-  Sink& sink_;
 };
 
 }  // namespace

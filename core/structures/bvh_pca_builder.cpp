@@ -39,7 +39,7 @@ Split sweep_order(const BvhBuildOptions& o, const PrimRef* base, const uint32_t*
 
 /// Splits a node by the SAH sweep along the principal axis of its centres.
 template <class Sink>
-class PcaSplitter : public InPlaceSplitter {
+class PcaSplitter : public InPlaceSplitter<PcaSplitter<Sink>, Sink> {
  public:
   static constexpr bool kSahLeafRule = true;
   struct Scratch : ScratchBase {
@@ -49,12 +49,11 @@ class PcaSplitter : public InPlaceSplitter {
     std::vector<PrimRef> refs;
   };
 
-  PcaSplitter(const BvhBuildOptions& o, std::vector<PrimRef>& refs, Sink& sink)
-      : InPlaceSplitter(refs), o_(o), sink_(sink) {}
+  using InPlaceSplitter<PcaSplitter<Sink>, Sink>::InPlaceSplitter;
 
-  Split split(Scratch& scratch, size_t begin, size_t end, const Aabb& box, [[maybe_unused]] int depth,
+  Split split(Scratch& scratch, RefRange& w, const Aabb& box, [[maybe_unused]] int depth,
               [[maybe_unused]] uint32_t id) {
-    const size_t n = end - begin;
+    const size_t begin = w.begin, end = w.end, n = end - begin;
     const DVec3 axis = principal_axis(begin, end);
     std::vector<uint32_t>& order = scratch.order;
     std::vector<double>& key = scratch.key;
@@ -120,8 +119,9 @@ class PcaSplitter : public InPlaceSplitter {
     std::copy(scratch.refs.begin(), scratch.refs.end(), refs_.begin() + long(begin));
   }
 
-  const BvhBuildOptions& o_;
-  Sink& sink_;
+  using InPlaceSplitter<PcaSplitter<Sink>, Sink>::o_;
+  using InPlaceSplitter<PcaSplitter<Sink>, Sink>::sink_;
+  using InPlaceSplitter<PcaSplitter<Sink>, Sink>::refs_;
 };
 
 }  // namespace

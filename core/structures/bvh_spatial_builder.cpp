@@ -1,8 +1,9 @@
 // Spatial-split BVH builder (Stich, Friedrich & Dietrich 2009, "Spatial Splits in Bounding
 // Volume Hierarchies"), builder=sbvh.
 //
-// Per node:
-//  1. the object split of the binned builder (BinnedBuilder::find_split/partition from
+// A splitter of the one top-down builder (bvh_top_down.h), whose nodes own their
+// references. Per node:
+//  1. the object split of the binned builder (BinnedSah::find_split/partition from
 //     bvh_binned_detail.h: the same bins, sweep and costs), over the centroids of the
 //     references' (clipped) boxes;
 //  2. when its children overlap by more than sbvh_alpha times the root's area (Stich's
@@ -11,9 +12,9 @@
 //     node's box on each axis, every reference chopped into the bins it overlaps (clipped by
 //     split_triangle_box in large nodes, its box cut to the slabs in small ones:
 //     kClipBinsThreshold), entry/exit counts per bin, and an SAH sweep over the boundaries;
-//  3. the cheaper of the two, or a leaf by the leaf rule of the other builders (at most
-//     leaf_size references and no split cheaper than the leaf; forced at depth
-//     kMaxBvhDepth - 1; the object median when there is no binned object split).
+//  3. the cheaper of the two, or a leaf by the leaf rule of every builder (leaf_verdict():
+//     at most leaf_size references and no split cheaper than the leaf; forced at depth
+//     kMaxBvhDepth - 1); the object median when there is no binned object split.
 // A spatial split puts each straddling reference in both children, clipped to their sides,
 // unless keeping it whole on one side is cheaper by the SAH ("reference unsplitting",
 // Stich section 4.4, decided greedily reference by reference as in the paper).
@@ -31,10 +32,10 @@
 // shrinks both children's reference counts, and the depth limit forces leaves as in the
 // other builders.
 //
-// Parallel as the binned builder, through the top-down driver: large subtrees are TBB
-// tasks building into their own chunks (nodes and leaf triangles in local pre-order), placed
-// at their pre-order offsets at the end (top_down_tasks.h); the recorded build is the serial
-// recursion from the root, with the same decisions, so the same tree.
+// Parallel as every top-down builder: large subtrees are TBB tasks building into their own
+// chunks (nodes and leaf triangles in local pre-order), placed at their pre-order offsets
+// at the end (top_down_tasks.h); the recorded build is the serial recursion from the root,
+// with the same decisions, so the same tree.
 #include "structures/bvh_spatial_builder.h"
 
 #include <algorithm>
@@ -49,7 +50,7 @@
 #include "check.h"
 #include "parallel.h"
 #include "structures/bvh_binned_detail.h"
-#include "structures/top_down_tasks.h"
+#include "structures/bvh_top_down.h"
 
 namespace accel {
 namespace {
@@ -131,7 +132,7 @@ TriangleSplit split_triangle_box(const Vec3& v0, const Vec3& v1, const Vec3& v2,
 
 namespace {
 
-using binned::BinnedBuilder;
+using binned::BinnedSah;
 using binned::BinSplit;
 using binned::Box4;
 using binned::Range;
@@ -155,7 +156,7 @@ inline Ref ref_of(uint32_t prim, const Aabb& b) {
   return {{b.min.x, b.min.y, b.min.z}, prim, {b.max.x, b.max.y, b.max.z}, 0.0f};
 }
 /// The node bounds of a set of references: box and doubled centroids, as the binned builder keeps them.
-Range range_of(const std::vector<Ref>& refs, int depth) {
+Range range_of(const std::vector<Ref>& refs) {
   Range r;
   const __m128 mask = binned::xyz_mask();
   for (const Ref& ref : refs) {
@@ -165,15 +166,14 @@ Range range_of(const std::vector<Ref>& refs, int depth) {
   }
   r.begin = 0;
   r.end = refs.size();
-  r.depth = depth;
   return r;
 }
 
 /// A node to build: its references (the node owns them), their bounds, its share of the
 /// reference budget and of the progress.
-struct Task {
+struct SpatialWork {
   std::vector<Ref> refs;
-  Range range;
+  Range range;          ///< refs [0, refs.size()) with their bounds
   size_t budget = 0;    ///< references this subtree may add by spatial splits
   double weight = 1.0;  ///< share of the whole build (progress)
 };
@@ -186,116 +186,114 @@ struct SpatialSplit {
   float cost = 0.0f;
 };
 
-template <class Sink>
-class SpatialBuilder {
- public:
-  SpatialBuilder(const Scene& scene, const BvhBuildOptions& o, float root_area, Sink& sink)
-      : scene_(scene), o_(o), sink_(sink), object_(o, nullptr, sink), root_area_(root_area) {}
+/// A node's choice: the binned object split (with its partition, when the overlap test made
+/// it), the spatial split, and which of the two is cheaper.
+struct SpatialChoice {
+  bool valid = false;  ///< any split
+  float cost = 0.0f;   ///< the chosen split's
+  bool use_spatial = false;
+  BinSplit object;
+  bool partitioned = false;  ///< the references are partitioned by `object` into left and right
+  Range left, right;
+  SpatialSplit spatial;
+};
 
-  /// Serial build of `t` (consumed), appended to `out` in pre-order; returns its index
-  /// there (the node's id in the recorded steps: the index in the finished tree).
-  uint32_t build_serial(Task& t, top_down::Chunk<BuildNode>& out, ProgressCounter* progress,
-                        uint32_t parent = kNoBuildNode) {
-    const uint32_t index = uint32_t(out.nodes.size());
-    out.nodes.emplace_back();
-    out.nodes[index].box = t.range.box.aabb();
-    Task left, right;
-    if ((progress && progress->stopped()) || !decide(t, index, parent, left, right)) {
-      out.nodes[index].first = uint32_t(out.prims.size());
-      out.nodes[index].count = uint32_t(t.refs.size());
-      for (const Ref& r : t.refs) out.prims.push_back(r.prim);
-      if (progress) progress->add_share(t.weight);
-      t.refs = {};
-      return index;
-    }
-    const uint32_t l = build_serial(left, out, progress, index);
-    const uint32_t r = build_serial(right, out, progress, index);
-    out.nodes[index].left = l;
-    out.nodes[index].right = r;
-    return index;
+/// Per-task buffers: the object split's, and the spatial planes of one axis (recording).
+struct SpatialScratch : binned::Scratch {
+  std::vector<SplitCandidate> spatial_planes;
+};
+
+/// The SBVH splitter. A triangle may be in several leaves, so the leaves list their own
+/// triangles; progress counts the leaves' shares of the build (SpatialWork::weight).
+template <class Sink>
+class SpatialSplitter {
+ public:
+  static constexpr bool kSahLeafRule = true;
+  using Work = SpatialWork;
+  using Split = SpatialChoice;
+  using Scratch = SpatialScratch;
+
+  SpatialSplitter(const Scene& scene, const BvhBuildOptions& o, Sink& sink)
+      : scene_(scene), o_(o), sink_(sink), object_(o, sink) {}
+
+  SpatialWork root() {
+    const std::vector<uint32_t>& valid = scene_.valid_prims();
+    const size_t n = valid.size();
+    SpatialWork root;
+    root.refs.resize(n);
+    par::parallel_for(size_t(0), n,
+                      [&](size_t i) { root.refs[i] = ref_of(valid[i], scene_.triangle_bounds(valid[i])); });
+    root.range = range_of(root.refs);
+    const double extra = std::max(0.0, double(o_.sbvh_budget) - 1.0) * double(n);
+    root.budget = size_t(std::min(extra, double(uint32_t(-1)) - double(n)));  // uint32 prims indices
+    root_area_ = root.range.box.area();
+    return root;
+  }
+  uint64_t progress_total() const { return ProgressCounter::kWhole; }
+  uint64_t progress_units(const SpatialWork& w) const { return uint64_t(w.weight * double(ProgressCounter::kWhole)); }
+  size_t count(const SpatialWork& w) const { return w.refs.size(); }
+  Aabb box(const SpatialWork& w) const { return w.range.box.aabb(); }
+  void leaf(const SpatialWork& w, const SpatialChoice&, std::vector<uint32_t>& prims) const {
+    for (const Ref& r : w.refs) prims.push_back(r.prim);
+  }
+  Aabb node_triangles(const SpatialWork& w, std::vector<uint32_t>& prims) const {
+    prims.clear();
+    leaf(w, SpatialChoice{}, prims);
+    return w.range.centroid_bounds();
   }
 
-  /// One node: false when `t` becomes a leaf (t.refs are its triangles, in order);
-  /// otherwise fills the children (t.refs are consumed). `id`, `parent`: for the sink.
-  bool decide(Task& t, uint32_t id, uint32_t parent, Task& left, Task& right) {
-    std::vector<Ref>& refs = t.refs;
-    const size_t n = refs.size();
-    Range r = t.range;
-    r.begin = 0;
-    r.end = n;
-    object_.rebind(refs.data());
-    if constexpr (Sink::kRecords) record_node(refs, r, id, parent);
-    const bool at_depth_limit = r.depth >= kMaxBvhDepth - 1;
-    BinSplit object;
-    if (n > 1) object = object_.find_split(r, id);
-    Range ol, orr;
-    bool partitioned = false;
-    SpatialSplit spatial;
-    if (n > 1 && t.budget > 0 && !at_depth_limit) {
+  /// The object split, and where its children overlap (or there is none) and the budget and
+  /// the depth allow, the spatial split; the cheaper of the two.
+  SpatialChoice split(Scratch& scratch, SpatialWork& w, const Aabb&, int depth, uint32_t id) {
+    std::vector<Ref>& refs = w.refs;
+    const Range& r = w.range;
+    SpatialChoice c;
+    c.object = object_.find_split(scratch, refs.data(), r, depth, id);
+    if (w.budget > 0 && depth < kMaxBvhDepth - 1) {
       bool overlap = true;  // no object split: try the spatial one
-      if (object.valid) {
-        partitioned = object_.partition(r, object, ol, orr);
-        if (partitioned) {
-          Aabb both = ol.box.aabb();
-          overlap = clip_to(both, orr.box.aabb()) && double(both.area()) > o_.sbvh_alpha * double(root_area_);
+      if (c.object.valid) {
+        c.partitioned = BinnedSah<Sink>::partition(refs.data(), r, c.object, c.left, c.right);
+        if (c.partitioned) {
+          Aabb both = c.left.box.aabb();
+          overlap = clip_to(both, c.right.box.aabb()) && double(both.area()) > o_.sbvh_alpha * double(root_area_);
         }
       }
-      if (overlap) spatial = find_spatial(refs, r, t.budget, id);
+      if (overlap) c.spatial = find_spatial(scratch, refs, r, w.budget, depth, id);
     }
-    const bool use_spatial = spatial.valid && (!object.valid || spatial.cost < object.cost);
-    const bool any_split = use_spatial || object.valid;
-    const float best_cost = use_spatial ? spatial.cost : object.cost;
-    const float leaf_cost = o_.leaf_cost(n);
-    const bool small = n <= size_t(o_.leaf_size);
-    if (n <= 1 || (small && (!any_split || best_cost >= leaf_cost)) || at_depth_limit) {
-      ACCEL_CHECK(small || at_depth_limit);
-      if constexpr (Sink::kRecords) {
-        const LeafReason why = at_depth_limit && !small ? LeafReason::MaxDepth
-                               : any_split              ? LeafReason::NoGain
-                                                        : LeafReason::FewPrims;
-        const std::vector<uint32_t> prims = prims_of(refs);
-        sink_.leaf(id, why, prims.data(), prims.size());
-      }
-      return false;
-    }
+    c.use_spatial = c.spatial.valid && (!c.object.valid || c.spatial.cost < c.object.cost);
+    c.valid = c.use_spatial || c.object.valid;
+    c.cost = c.use_spatial ? c.spatial.cost : c.object.cost;
+    return c;
+  }
+
+  /// The children of the split `c` (w.refs are consumed), with their shares of the budget
+  /// left and of the progress, in proportion to their references.
+  void partition(Scratch&, SpatialWork& w, SpatialChoice& c, SpatialWork& left, SpatialWork& right, int, uint32_t id,
+                 float leaf_cost) {
+    std::vector<Ref>& refs = w.refs;
+    const size_t n = refs.size();
     size_t added = 0;  // references the split added
-    const bool done = use_spatial && spatial_split(refs, r, spatial, left, right, id, leaf_cost);
-    if (done) {
+    if (c.use_spatial && spatial_split(refs, c.spatial, left, right, id, leaf_cost)) {
       added = left.refs.size() + right.refs.size() - n;
     } else {
-      const bool binned = object.valid && (partitioned || object_.partition(r, object, ol, orr));
-      if (!binned) object_.median_split(r, ol, orr);
-      if constexpr (Sink::kRecords) {
-        if (binned) {
-          sink_.split(id, object.axis, object_.split_position(object), object.cost, leaf_cost, uint32_t(ol.size()),
-                      uint32_t(orr.size()), 0);
-        } else {  // the object median: no cost computed
-          const int axis = r.centroid.aabb().longest_axis();
-          sink_.axis(id, axis, Vec3(0.0f));
-          sink_.split(id, axis, 0.5f * (refs[ol.end - 1].lo[axis] + refs[ol.end - 1].hi[axis]), std::nanf(""),
-                      leaf_cost, uint32_t(ol.size()), uint32_t(orr.size()), 0);
-        }
-      }
-      right.refs.assign(refs.begin() + long(orr.begin), refs.begin() + long(orr.end));
-      refs.resize(ol.end);
+      object_.split_objects(refs.data(), w.range, c.object, c.partitioned, c.left, c.right, id, leaf_cost);
+      right.refs.assign(refs.begin() + long(c.right.begin), refs.begin() + long(c.right.end));
+      refs.resize(c.left.end);
       left.refs = std::move(refs);
-      left.range = ol;
-      right.range = orr;
+      left.range = c.left;
+      right.range = c.right;
       left.range.begin = right.range.begin = 0;
       left.range.end = left.refs.size();
       right.range.end = right.refs.size();
     }
-    t.refs = {};
-    left.range.depth = right.range.depth = r.depth + 1;
-    // The budget left, and the progress share, in proportion to the children's references.
+    w.refs = {};
     const size_t nl = left.refs.size(), nr = right.refs.size();
-    ACCEL_CHECK(nl > 0 && nr > 0 && added <= t.budget);
-    const size_t remaining = t.budget - added;
+    ACCEL_CHECK(nl > 0 && nr > 0 && added <= w.budget);
+    const size_t remaining = w.budget - added;
     left.budget = size_t(uint64_t(remaining) * nl / (nl + nr));
     right.budget = remaining - left.budget;
-    left.weight = t.weight * double(nl) / double(nl + nr);
-    right.weight = t.weight - left.weight;
-    return true;
+    left.weight = w.weight * double(nl) / double(nl + nr);
+    right.weight = w.weight - left.weight;
   }
 
  private:
@@ -326,7 +324,8 @@ class SpatialBuilder {
   /// references chopped into equal bins over the node's box, the bins' boxes, entry and
   /// exit counts, and the SAH of every bin boundary. A plane is valid when both sides keep
   /// fewer references than the node (progress) and the duplicates fit the budget.
-  SpatialSplit find_spatial(const std::vector<Ref>& refs, const Range& r, size_t budget, uint32_t id) {
+  SpatialSplit find_spatial([[maybe_unused]] Scratch& scratch, const std::vector<Ref>& refs, const Range& r,
+                            size_t budget, [[maybe_unused]] int depth, [[maybe_unused]] uint32_t id) const {
     const size_t n = refs.size();
     const Aabb box = r.box.aabb();
     const float parent_area = box.area();
@@ -390,18 +389,20 @@ class SpatialBuilder {
       }
       acc = Aabb{};
       count = 0;
-      if constexpr (Sink::kRecords) planes_.clear();
+      if constexpr (Sink::kRecords) scratch.spatial_planes.clear();
       for (int k = 1; k < nb; ++k) {
         acc.extend(bin_box[k - 1]);
         count += enter[k - 1];
         const uint32_t nl = count, nr = right_count[k];
         if (nl == 0 || nr == 0 || nl >= n || nr >= n || size_t(nl) + nr - n > budget) continue;
         const float cost = o_.ct + (acc.area() * o_.leaf_cost(nl) + right_area[k] * o_.leaf_cost(nr)) * inv;
-        if constexpr (Sink::kRecords) planes_.push_back({pos[k], cost, nl, nr});
+        if constexpr (Sink::kRecords) scratch.spatial_planes.push_back({pos[k], cost, nl, nr});
         if (!best.valid || cost < best.cost) best = {true, a, pos[k], cost};
       }
-      if constexpr (Sink::kRecords)
-        if (!planes_.empty() && sink_.records(r.depth)) sink_.candidates(id, a, planes_.data(), planes_.size());
+      if constexpr (Sink::kRecords) {
+        const std::vector<SplitCandidate>& planes = scratch.spatial_planes;
+        if (!planes.empty() && sink_.records(depth)) sink_.candidates(id, a, planes.data(), planes.size());
+      }
     }
     return best;
   }
@@ -410,8 +411,8 @@ class SpatialBuilder {
   /// changed, if a side came out empty or as large as the node -- a rounding corner the
   /// sweep's counts cannot see). Straddling references are clipped to both sides, then,
   /// one by one, kept whole on one side when that is cheaper by the SAH (unsplitting).
-  bool spatial_split(const std::vector<Ref>& refs, const Range& r, const SpatialSplit& split, Task& left, Task& right,
-                     [[maybe_unused]] uint32_t id, [[maybe_unused]] float leaf_cost) {
+  bool spatial_split(const std::vector<Ref>& refs, const SpatialSplit& split, SpatialWork& left, SpatialWork& right,
+                     [[maybe_unused]] uint32_t id, [[maybe_unused]] float leaf_cost) const {
     const int a = split.axis;
     const float pos = split.pos;
     const size_t n = refs.size();
@@ -485,104 +486,25 @@ class SpatialBuilder {
       }
       if (listed) ++k;
     }
-    left.range = range_of(left.refs, r.depth + 1);
-    right.range = range_of(right.refs, r.depth + 1);
+    left.range = range_of(left.refs);
+    right.range = range_of(right.refs);
     if constexpr (Sink::kRecords)
       sink_.split(id, a, pos, split.cost, leaf_cost, uint32_t(nl), uint32_t(nr), uint32_t(straddling), true);
     return true;
   }
 
-  /// The triangles of `refs` in order (recording only).
-  static std::vector<uint32_t> prims_of(const std::vector<Ref>& refs) {
-    std::vector<uint32_t> prims(refs.size());
-    for (size_t i = 0; i < refs.size(); ++i) prims[i] = refs[i].prim;
-    return prims;
-  }
-  /// The node's Node step: its box, the centroid bounds of its references' boxes, its triangles.
-  void record_node(const std::vector<Ref>& refs, const Range& r, uint32_t id, uint32_t parent) {
-    if (!sink_.records(r.depth)) {
-      sink_.node(id, parent, r.depth, r.box.aabb(), Aabb{}, nullptr, refs.size());
-      return;
-    }
-    Aabb centroids = r.centroid.aabb();
-    centroids.min *= 0.5f;
-    centroids.max *= 0.5f;
-    const std::vector<uint32_t> prims = prims_of(refs);
-    sink_.node(id, parent, r.depth, r.box.aabb(), centroids, prims.data(), prims.size());
-  }
-
   const Scene& scene_;
   const BvhBuildOptions& o_;
   Sink& sink_;
-  BinnedBuilder<Sink> object_;  ///< the object split, on the node's own references
-  float root_area_;
-  std::vector<SplitCandidate> planes_;  ///< recording only: one axis's spatial planes
-};
-
-/// The spatial-split builder under the top-down driver (top_down_tasks.h). A triangle may be
-/// in several leaves, so each chunk lists its leaves' triangles; progress counts the
-/// leaves' shares of the build (Task::weight).
-template <class Sink>
-class SpatialTasks : public top_down::SinkTasks<Sink> {
- public:
-  using Node = BuildNode;
-  using Task = accel::Task;
-  using Stats = top_down::NoChunkStats;
-  using ChunkT = top_down::Chunk<BuildNode>;
-
-  SpatialTasks(const Scene& scene, const BvhBuildOptions& o, float root_area, ProgressCounter& progress, Sink& sink)
-      : top_down::SinkTasks<Sink>(progress, sink), scene_(scene), o_(o), root_area_(root_area) {}
-
-  size_t refs(const Task& t) const { return t.refs.size(); }
-  void build_serial(Task& t, ChunkT& chunk) {
-    SpatialBuilder<Sink>(scene_, o_, root_area_, this->sink_).build_serial(t, chunk, &this->progress_);
-  }
-  top_down::RootSplit split_root(Task& t, ChunkT& chunk, Task& left, Task& right) {
-    SpatialBuilder<Sink> builder(scene_, o_, root_area_, this->sink_);
-    chunk.node.box = t.range.box.aabb();
-    if (!builder.decide(t, 0, kNoBuildNode, left, right)) {  // only at the depth limit
-      chunk.node.count = uint32_t(t.refs.size());
-      chunk.nodes.push_back(chunk.node);
-      for (const Ref& r : t.refs) chunk.prims.push_back(r.prim);
-      this->progress_.add_share(t.weight);
-      return top_down::RootSplit::Leaf;
-    }
-    return top_down::RootSplit::Split;
-  }
-
- private:
-  const Scene& scene_;
-  const BvhBuildOptions& o_;
-  float root_area_;
+  BinnedSah<Sink> object_;  ///< the object split, on the node's own references
+  float root_area_ = 0.0f;  ///< set by root()
 };
 
 }  // namespace
 
 BuildTree build_spatial_split_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                                    BuildRecorder* recorder) {
-  BuildTree tree;
-  const std::vector<uint32_t>& valid = scene.valid_prims();
-  const size_t n = valid.size();
-  if (recorder) recorder->scene_box(scene.bounds());
-  if (n == 0) return tree;
-  Task root;
-  root.refs.resize(n);
-  par::parallel_for(size_t(0), n, [&](size_t i) { root.refs[i] = ref_of(valid[i], scene.triangle_bounds(valid[i])); });
-  root.range = range_of(root.refs, 0);
-  const double extra = std::max(0.0, double(options.sbvh_budget) - 1.0) * double(n);
-  root.budget = size_t(std::min(extra, double(uint32_t(-1)) - double(n)));  // uint32 prims indices
-  const float root_area = root.range.box.area();
-  ProgressCounter shared(progress, ProgressCounter::kWhole);  // leaves add their share (weight) of the build
-  const bool cancelled = with_build_sink(recorder, [&](auto& sink) {
-    SpatialTasks<std::remove_reference_t<decltype(sink)>> tasks(scene, options, root_area, shared, sink);
-    const auto chunks = top_down::TopDownTasks(tasks).build(root);
-    if (shared.stopped()) return true;  // cancelled: the caller discards the tree
-    top_down::stitch(*chunks, tree.nodes, &tree.prims);
-    return false;
-  });
-  if (cancelled) return tree;
-  tree.root = 0;
-  return tree;
+  return top_down::build_top_down<SpatialSplitter>(scene, options, progress, recorder);
 }
 
 }  // namespace accel

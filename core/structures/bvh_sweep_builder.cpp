@@ -75,17 +75,17 @@ struct SweepBox {
 
 /// Splits a node by the SAH sweep over its three sorted axis lists.
 template <class Sink>
-class SweepSplitter {
+class SweepSplitter : public RefRangeSplitter<SweepSplitter<Sink>, Sink> {
  public:
   static constexpr bool kSahLeafRule = true;
-  static constexpr bool kInPlace = false;  // refs stays in scene order; the lists move
   struct Scratch : ScratchBase {
     std::vector<float> right_area;
     std::vector<SweepRef> right_side;
   };
 
-  SweepSplitter(const BvhBuildOptions& o, std::vector<PrimRef>& refs, Sink& sink)
-      : o_(o), refs_(refs), total_(refs.size()), sink_(sink) {}
+  // refs_ stays in scene order; the sorted lists move.
+  SweepSplitter(const Scene& scene, const BvhBuildOptions& o, Sink& sink)
+      : RefRangeSplitter<SweepSplitter<Sink>, Sink>(scene, o, sink), total_(refs_.size()) {}
 
   /// The node's box, scanned in the order its references arrive in.
   Aabb bounds(int order, size_t begin, size_t end) const {
@@ -99,9 +99,10 @@ class SweepSplitter {
     return order == kRefsOrder ? refs_[k].centroid : centroid_of_prim(lists_[order][k].prim);
   }
 
-  /// The root's three sorted lists. A node owns the same range [begin, end) of all three
-  /// (the children get its two halves), so tasks never touch the same entries.
-  void prepare() {
+  /// The root, after its three sorted lists are made. A node owns the same range
+  /// [begin, end) of all three (the children get its two halves), so tasks never touch the
+  /// same entries.
+  RefRange root() {
     left_.assign(refs_.back().prim + 1, 0);
     if constexpr (Sink::kRecords) {
       ref_of_prim_.assign(refs_.back().prim + 1, 0);
@@ -134,6 +135,7 @@ class SweepSplitter {
         list[i] = {{b.min.x, b.min.y, b.min.z}, refs_[ref].prim, {b.max.x, b.max.y, b.max.z}};
       });
     });
+    return {0, total_, kRefsOrder};
   }
 
   /// Lecture: "try all 3 axes, search for the minimum along each axis, choose the smallest".
@@ -142,9 +144,9 @@ class SweepSplitter {
   /// the boxes read in place and the leaf costs from a table (the same floats as
   /// leaf_cost(), without its division). As there, the first minimum of an axis wins, and
   /// on equal costs the lower axis.
-  Split split(Scratch& scratch, size_t begin, size_t end, const Aabb& box, [[maybe_unused]] int depth,
+  Split split(Scratch& scratch, RefRange& w, const Aabb& box, [[maybe_unused]] int depth,
               [[maybe_unused]] uint32_t id) {
-    const size_t n = end - begin;  // >= 2
+    const size_t begin = w.begin, n = w.end - w.begin;  // n >= 2
     [[maybe_unused]] float* rec_costs = nullptr;  // recorded builds: every position's cost
     if constexpr (Sink::kRecords) {
       if (sink_.records(depth)) {
@@ -215,9 +217,13 @@ class SweepSplitter {
     return s;
   }
 
-  /// After the split: the children's sorted lists (partition_axis_lists()).
-  void partition(Scratch& scratch, const Split& split, size_t begin, size_t end) {
-    partition_axis_lists(scratch, split.child_order, begin, split.mid, end);
+  /// After the split: the children's sorted lists (partition_axis_lists()). The sweep's
+  /// split is always inside the node (it tries every position).
+  void partition(Scratch& scratch, RefRange& w, Split& split, RefRange& left, RefRange& right, int, uint32_t id,
+                 float leaf_cost) {
+    ACCEL_CHECK(split.valid && split.mid > w.begin && split.mid < w.end);
+    this->children(w, split, left, right, id, leaf_cost);
+    partition_axis_lists(scratch, split.child_order, w.begin, split.mid, w.end);
   }
 
  private:
@@ -253,10 +259,10 @@ class SweepSplitter {
     }
   }
 
-  const BvhBuildOptions& o_;
-  const std::vector<PrimRef>& refs_;
+  using RefRangeSplitter<SweepSplitter<Sink>, Sink>::o_;
+  using RefRangeSplitter<SweepSplitter<Sink>, Sink>::sink_;
+  using RefRangeSplitter<SweepSplitter<Sink>, Sink>::refs_;
   const size_t total_;
-  Sink& sink_;
   std::array<std::vector<SweepRef>, 3> lists_;  ///< per axis, each node's references in sorted order
   std::vector<uint8_t> left_;                   ///< per triangle, 1 = left side of its node's split
   std::vector<float> leaf_costs_;               ///< leaf_cost(k) for k = 0..N
