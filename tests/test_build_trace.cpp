@@ -264,7 +264,9 @@ TEST(BuildRecorder, DepthBoundRebuildIsReplayed) {
     triangles.push_back(UVec3(3 * i, 3 * i + 1, 3 * i + 2));
   }
   const Scene same(std::move(positions), std::move(triangles), "identical");
-  for (const char* builder : {"insertion", "bottom_up"}) {
+  for (const BvhBuilderInfo& row : bvh_builder_table()) {
+    if (row.top_down) continue;  // the bottom-up builders rebuild past the bound
+    const char* builder = row.name;
     for (const char* width : {"width=2", "width=4"}) {
       const std::vector<std::string> params = {std::string("builder=") + builder, width};
       auto normal = build_structure("bvh", same, params);
@@ -336,13 +338,14 @@ TEST(BuildRecorder, StopsAtTheBudgetWithoutAStall) {
 // The counter "SAH cost so far": the root alone costs ci * N, the finished tree what the
 // structure's statistics say.
 TEST(BuildReplay, SahCostSoFarEndsAtTheTreesCost) {
-  for (const char* builder : {"sah", "binned_sah", "bottom_up"}) {
+  for (const BvhBuilderInfo& row : bvh_builder_table()) {
+    const char* builder = row.name;
     BuildRecorder recorder;
     auto built = build_structure("bvh", cornell(), {std::string("builder=") + builder, "width=2", "ct=1", "ci=2"},
                                  Kernel::Watertight, nullptr, &recorder);
     ASSERT_TRUE(built);
     BuildReplay replay(recorder.trace());
-    if (std::string(builder) != "bottom_up") {
+    if (row.top_down) {
       replay.seek(2);  // scene box, root node
       EXPECT_DOUBLE_EQ(replay.sah_cost(1.0, 2.0), 2.0 * double(cornell().valid_prims().size()));
     }

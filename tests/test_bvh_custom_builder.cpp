@@ -6,13 +6,8 @@
 // test_bvh.cpp and test_sphere_tree.cpp, the recorded builds of test_build_trace.cpp, the
 // thread-count and cancel tests of test_bvh_sweep.cpp).
 //
-// Construction listing (the viewer's pseudo code of a top-down builder around it):
-//   build(objects):
-//       axis = the longest axis of the node's box
-//       left = the objects whose centre is below the box's middle on it, right = the rest
-//       (a side empty: split at the median of the centres instead)
-//       build(left); build(right)
-//       terminate when at most leaf_size objects: leaf
+// Its construction listing is beside its row (kMiddleListing): the viewer puts the one
+// recursion's lines around it.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -65,9 +60,15 @@ BuildTree build_middle_tree(const Scene& scene, const BvhBuildOptions& options, 
   return build_top_down<MiddleSplitter>(scene, options, progress, recorder);
 }
 
+constexpr ListingLine kMiddleLines[] = {
+    {"axis", "    axis = the longest axis of the node's box"},
+    {"split", "    split at the box's middle on it (a side empty: at the median)"},
+};
+constexpr BuilderListing kMiddleListing{"BVH: top-down, middle of the box (test)", kMiddleLines};
+
 const BvhBuilderKind kMiddle = add_bvh_builder({BvhBuilderKind{}, "test_middle", "middle (test)",
-                                                "the middle of the node box's longest axis (test only)", false,
-                                                build_middle_tree});
+                                                "the middle of the node box's longest axis (test only)", false, true,
+                                                &kMiddleListing, build_middle_tree});
 
 /// Four small triangles in the planes x = 0, 1, 2, 3 (prims 0..3), 2 units tall.
 Scene four_walls() {

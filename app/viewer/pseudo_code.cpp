@@ -475,108 +475,40 @@ std::vector<std::pair<const char*, const char*>> hierarchy_tail() {
   };
 }
 
-PseudoCode top_down(std::string title, std::vector<std::pair<const char*, const char*>> choose) {
-  std::vector<std::pair<const char*, const char*>> rows = {
-      {"scene_box", "elementary BVs around all objects"},
-      {"node", "build(objects):"},
-  };
-  rows.insert(rows.end(), choose.begin(), choose.end());
-  for (auto r : std::vector<std::pair<const char*, const char*>>{
-           {"", "    left = objects before the plane, right = the rest"},
-           {"", "    build(left); build(right)"},
-           {"leaf", "    terminate when fewer than n objects: leaf"},
-       })
-    rows.push_back(r);
-  for (auto r : hierarchy_tail()) rows.push_back(r);
-  return listing(std::move(title), rows);
-}
-
-const PseudoCode& build_bvh_median_code() {
-  static const PseudoCode code = top_down("BVH: top-down, median (lecture)", {
-      {"axis", "    axis: x / cycle x,y,z / longest extent"},
-      {"", "    sort the objects by their centre along it"},
-      {"split", "    split at the median: half left, half right"},
-  });
-  return code;
-}
-
-const PseudoCode& build_bvh_sah_code() {
-  static const PseudoCode code = top_down("BVH: top-down, SAH plane sweep", {
-      {"axis", "    for each axis x, y, z:"},
-      {"candidates", "        sweep: C(B) at every position"},
-      {"split", "    split at the minimum of C(B),"},
-      {"", "        unless the leaf is cheaper"},
-  });
-  return code;
-}
-
-const PseudoCode& build_bvh_binned_code() {
-  static const PseudoCode code = top_down("BVH: top-down, binned SAH", {
-      {"axis", "    for each axis x, y, z:"},
-      {"candidates", "        bin the centres; C(B) at each bin boundary"},
-      {"split", "    split at the minimum of C(B),"},
-      {"", "        unless the leaf is cheaper"},
-  });
-  return code;
-}
-
-const PseudoCode& build_bvh_spatial_code() {
-  static const PseudoCode code = top_down("BVH: top-down, spatial splits (Stich et al. 2009)", {
-      {"axis", "    for each axis x, y, z:"},
-      {"candidates", "        object split: bin the centres, C(B) per boundary;"},
-      {"", "        if the two boxes overlap: spatial split: cut the"},
-      {"", "        node's box into bins, clip each triangle into the"},
-      {"", "        bins it crosses, C(B) per bin boundary"},
-      {"split", "    split at the cheaper minimum (spatial: triangles"},
-      {"", "        on both sides go to both, with clipped boxes),"},
-      {"", "        unless the leaf is cheaper"},
-  });
-  return code;
-}
-
-const PseudoCode& build_bvh_pca_code() {
-  static const PseudoCode code = top_down("BVH: top-down, PCA + SAH (lecture)", {
-      {"", "    represent all polygons by their midpoints"},
-      {"axis", "    axis of largest extent (using PCA)"},
-      {"", "    project the midpoints onto it and sort"},
-      {"candidates", "    search minimum of C(B) by plane sweep"},
-      {"split", "    split there, unless the leaf is cheaper"},
-  });
-  return code;
-}
-
-const PseudoCode& build_bvh_bottom_up_code() {
-  static std::vector<std::pair<const char*, const char*>> rows = [] {
-    std::vector<std::pair<const char*, const char*>> r = {
+/// A hierarchy builder's listing from its row (BvhBuilderInfo::listing): a top-down one
+/// inside the one recursion's lines, a bottom-up one as it is; the common tail after either.
+PseudoCode hierarchy_listing(const accel::BvhBuilderInfo& row) {
+  std::vector<std::pair<const char*, const char*>> rows;
+  if (row.top_down) {
+    rows = {
         {"scene_box", "elementary BVs around all objects"},
-        {"node", "each object is a cluster (a leaf)"},
-        {"leaf", "    leaf of one triangle"},
-        {"", "while more than one cluster:"},
-        {"merge", "    combine the two whose BV is smallest"},
-        {"", "    enclose them in a (larger) BV"},
+        {"node", "build(objects):"},
     };
-    for (auto t : hierarchy_tail()) r.push_back(t);
-    return r;
-  }();
-  static const PseudoCode code = listing("BVH: bottom-up (lecture)", rows);
-  return code;
+  }
+  for (const accel::ListingLine& line : row.listing->lines) rows.emplace_back(line.anchor, line.text);
+  if (row.top_down) {
+    rows.insert(rows.end(), {
+                                {"", "    left = objects before the plane, right = the rest"},
+                                {"", "    build(left); build(right)"},
+                                {"leaf", "    terminate when fewer than n objects: leaf"},
+                            });
+  }
+  for (auto line : hierarchy_tail()) rows.push_back(line);
+  return listing(row.listing->title, rows);
 }
 
-const PseudoCode& build_bvh_insertion_code() {
-  static std::vector<std::pair<const char*, const char*>> rows = [] {
-    std::vector<std::pair<const char*, const char*>> r = {
-        {"scene_box", "start with an empty tree"},
-        {"", "for each polygon:   [Goldsmith/Salmon]"},
-        {"insert_step", "    sift: here, left or right (least cost)"},
-        {"node", "    new leaf (sibling where it stopped)"},
-        {"leaf", "    leaf of the polygon"},
-        {"merge", "    new inner node over it and that sibling"},
-    };
-    for (auto t : hierarchy_tail()) r.push_back(t);
-    return r;
+/// The listing of a hierarchy's builder, made once per row of the builders' table (fixed
+/// once read).
+const PseudoCode& builder_code(accel::BvhBuilderKind builder) {
+  static const std::vector<PseudoCode> codes = [] {
+    std::vector<PseudoCode> all;
+    for (const accel::BvhBuilderInfo& row : accel::bvh_builder_table()) all.push_back(hierarchy_listing(row));
+    return all;
   }();
-  static const PseudoCode code = listing("BVH: iterative insert (lecture)", rows);
-  return code;
+  const std::span<const accel::BvhBuilderInfo> rows = accel::bvh_builder_table();
+  for (size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].kind == builder) return codes[i];
+  return unknown_code();  // not a row (a corrupt value): no listing
 }
 
 }  // namespace
@@ -609,28 +541,6 @@ const char* build_code_label(BuildCodeKind kind) {
   return "?";
 }
 
-namespace {
-
-/// The listing of a hierarchy's builder. No `default:`, and -Wswitch made an error here: a
-/// builder added to the table without its listing does not compile.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic error "-Wswitch"
-const PseudoCode& builder_code(accel::BvhBuilderKind builder) {
-  using K = accel::BvhBuilderKind;
-  switch (builder) {
-    case K::Median: return build_bvh_median_code();
-    case K::Sah: return build_bvh_sah_code();
-    case K::BinnedSah: return build_bvh_binned_code();
-    case K::PcaSah: return build_bvh_pca_code();
-    case K::BottomUp: return build_bvh_bottom_up_code();
-    case K::Insertion: return build_bvh_insertion_code();
-    case K::Sbvh: return build_bvh_spatial_code();
-  }
-  return unknown_code();  // not an enumerator (a corrupt value): no listing
-}
-#pragma GCC diagnostic pop
-
-}  // namespace
 
 const PseudoCode& build_pseudo_code(BuildCodeKind kind) {
   if (!kind.known) return unknown_code();

@@ -27,17 +27,88 @@
 
 namespace accel {
 
+// The builders' construction listings (BvhBuilderInfo::listing), after the lecture's slides.
+constexpr ListingLine kMedianLines[] = {
+    {"axis", "    axis: x / cycle x,y,z / longest extent"},
+    {"", "    sort the objects by their centre along it"},
+    {"split", "    split at the median: half left, half right"},
+};
+constexpr BuilderListing kMedianListing{"BVH: top-down, median (lecture)", kMedianLines};
+
+constexpr ListingLine kSweepLines[] = {
+    {"axis", "    for each axis x, y, z:"},
+    {"candidates", "        sweep: C(B) at every position"},
+    {"split", "    split at the minimum of C(B),"},
+    {"", "        unless the leaf is cheaper"},
+};
+constexpr BuilderListing kSweepListing{"BVH: top-down, SAH plane sweep", kSweepLines};
+
+constexpr ListingLine kBinnedLines[] = {
+    {"axis", "    for each axis x, y, z:"},
+    {"candidates", "        bin the centres; C(B) at each bin boundary"},
+    {"split", "    split at the minimum of C(B),"},
+    {"", "        unless the leaf is cheaper"},
+};
+constexpr BuilderListing kBinnedListing{"BVH: top-down, binned SAH", kBinnedLines};
+
+constexpr ListingLine kPcaLines[] = {
+    {"", "    represent all polygons by their midpoints"},
+    {"axis", "    axis of largest extent (using PCA)"},
+    {"", "    project the midpoints onto it and sort"},
+    {"candidates", "    search minimum of C(B) by plane sweep"},
+    {"split", "    split there, unless the leaf is cheaper"},
+};
+constexpr BuilderListing kPcaListing{"BVH: top-down, PCA + SAH (lecture)", kPcaLines};
+
+constexpr ListingLine kBottomUpLines[] = {
+    {"scene_box", "elementary BVs around all objects"},
+    {"node", "each object is a cluster (a leaf)"},
+    {"leaf", "    leaf of one triangle"},
+    {"", "while more than one cluster:"},
+    {"merge", "    combine the two whose BV is smallest"},
+    {"", "    enclose them in a (larger) BV"},
+};
+constexpr BuilderListing kBottomUpListing{"BVH: bottom-up (lecture)", kBottomUpLines};
+
+constexpr ListingLine kInsertionLines[] = {
+    {"scene_box", "start with an empty tree"},
+    {"", "for each polygon:   [Goldsmith/Salmon]"},
+    {"insert_step", "    sift: here, left or right (least cost)"},
+    {"node", "    new leaf (sibling where it stopped)"},
+    {"leaf", "    leaf of the polygon"},
+    {"merge", "    new inner node over it and that sibling"},
+};
+constexpr BuilderListing kInsertionListing{"BVH: iterative insert (lecture)", kInsertionLines};
+
+constexpr ListingLine kSpatialLines[] = {
+    {"axis", "    for each axis x, y, z:"},
+    {"candidates", "        object split: bin the centres, C(B) per boundary;"},
+    {"", "        if the two boxes overlap: spatial split: cut the"},
+    {"", "        node's box into bins, clip each triangle into the"},
+    {"", "        bins it crosses, C(B) per bin boundary"},
+    {"split", "    split at the cheaper minimum (spatial: triangles"},
+    {"", "        on both sides go to both, with clipped boxes),"},
+    {"", "        unless the leaf is cheaper"},
+};
+constexpr BuilderListing kSpatialListing{"BVH: top-down, spatial splits (Stich et al. 2009)", kSpatialLines};
+
 // The table: the one place a builder is named. Its order is the parameter's.
 constexpr BvhBuilderInfo kBuilders[] = {
-    {BvhBuilderKind::Median, "median", "median", "top-down median split", false, build_median_tree},
-    {BvhBuilderKind::Sah, "sah", "SAH sweep", "SAH plane sweep on all axes", false, build_sweep_tree},
-    {BvhBuilderKind::BinnedSah, "binned_sah", "binned SAH", "binned SAH", false, build_binned_sah_tree},
-    {BvhBuilderKind::PcaSah, "pca_sah", "PCA + SAH", "SAH sweep along the PCA axis", false, build_pca_tree},
-    {BvhBuilderKind::BottomUp, "bottom_up", "bottom-up", "bottom-up agglomerative clustering", false,
-     build_ploc_tree},
-    {BvhBuilderKind::Insertion, "insertion", "insertion", "Goldsmith-Salmon insertion", false, build_insertion_tree},
+    {BvhBuilderKind::Median, "median", "median", "top-down median split", false, true, &kMedianListing,
+     build_median_tree},
+    {BvhBuilderKind::Sah, "sah", "SAH sweep", "SAH plane sweep on all axes", false, true, &kSweepListing,
+     build_sweep_tree},
+    {BvhBuilderKind::BinnedSah, "binned_sah", "binned SAH", "binned SAH", false, true, &kBinnedListing,
+     build_binned_sah_tree},
+    {BvhBuilderKind::PcaSah, "pca_sah", "PCA + SAH", "SAH sweep along the PCA axis", false, true, &kPcaListing,
+     build_pca_tree},
+    {BvhBuilderKind::BottomUp, "bottom_up", "bottom-up", "bottom-up agglomerative clustering", false, false,
+     &kBottomUpListing, build_ploc_tree},
+    {BvhBuilderKind::Insertion, "insertion", "insertion", "Goldsmith-Salmon insertion", false, false,
+     &kInsertionListing, build_insertion_tree},
     {BvhBuilderKind::Sbvh, "sbvh", "spatial splits",
-     "binned SAH with spatial splits (SBVH: a triangle may be in several leaves)", true, build_spatial_split_tree},
+     "binned SAH with spatial splits (SBVH: a triangle may be in several leaves)", true, true, &kSpatialListing,
+     build_spatial_split_tree},
 };
 
 namespace {

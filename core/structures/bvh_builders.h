@@ -11,6 +11,22 @@
 
 namespace accel {
 
+/// One line of a builder's construction listing (the viewer's pseudo code): the recorded
+/// step it stands for (a BuildEventKind's name, "" for none) and its text.
+struct ListingLine {
+  const char* anchor;
+  const char* text;
+};
+
+/// A builder's construction listing, in the lecture's words. A top-down builder lists how
+/// it chooses the split; the viewer puts the one recursion's lines around it (build(objects):
+/// ... build(left); build(right), the leaf). A bottom-up builder lists its whole loop. The
+/// hierarchies' common tail (collapse, fit the volumes) follows either.
+struct BuilderListing {
+  const char* title;  ///< "BVH: top-down, binned SAH"
+  std::span<const ListingLine> lines;
+};
+
 /// One builder: its row in the table.
 struct BvhBuilderInfo {
   BvhBuilderKind kind;
@@ -20,6 +36,12 @@ struct BvhBuilderInfo {
   /// Spatial splits: a triangle may be referenced by several leaves (tests that compare trees
   /// or count references treat these apart; their own tests cover them).
   bool splits_triangles;
+  /// A splitter of the one top-down recursion (bvh_top_down.h); false: bottom-up (clusters
+  /// merged, or objects inserted one by one), whose depth limit is a rebuild of the tree.
+  bool top_down;
+  /// Its construction listing, beside its row (a row without one does not compile: the
+  /// build function would land here).
+  const BuilderListing* listing;
   /// build_bvh_tree()'s contract for this builder.
   BuildTree (*build)(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress,
                      BuildRecorder* recorder);

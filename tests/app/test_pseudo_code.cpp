@@ -1,11 +1,13 @@
 // The pseudo-code mapping of real traces: every event of every traversal has a line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "built_structure.h"
 #include "pseudo_code.h"
 #include "registry.h"
+#include "structures/bvh_builders.h"
 #include "viewer_test_support.h"
 
 namespace viz {
@@ -103,3 +105,25 @@ TEST(PseudoCode, KdTreeCasesAndGridAxes) {
 
 }  // namespace
 }  // namespace viz
+
+// Every row of the builders' table shows its own listing, beside the row in the core: the
+// title and lines it gives, inside the one recursion's lines when it is top-down, and the
+// anchors the construction's steps map to.
+TEST(PseudoCode, EveryBvhBuilderShowsTheListingBesideItsRow) {
+  for (const accel::BvhBuilderInfo& row : accel::bvh_builder_table()) {
+    ASSERT_NE(row.listing, nullptr) << row.name;
+    const viz::PseudoCode& code = viz::build_pseudo_code(viz::build_code_of(row.kind));
+    EXPECT_EQ(code.title, row.listing->title) << row.name;
+    for (const accel::ListingLine& line : row.listing->lines) {
+      EXPECT_NE(std::find(code.lines.begin(), code.lines.end(), line.text), code.lines.end()) << row.name;
+    }
+    for (const char* anchor : {"scene_box", "node", "leaf", "fit", "done"}) {
+      EXPECT_NE(std::find(code.anchors.begin(), code.anchors.end(), anchor), code.anchors.end())
+          << row.name << ": " << anchor;
+    }
+    if (row.top_down) {
+      EXPECT_NE(std::find(code.lines.begin(), code.lines.end(), "    build(left); build(right)"), code.lines.end())
+          << row.name;
+    }
+  }
+}
