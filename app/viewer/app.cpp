@@ -35,17 +35,26 @@ App::App() {
   key_groups_ = {
       global_keys(),        ray_.key_bindings(),      compare_.key_bindings(host),  heatmap_.key_bindings(),
       vars_.key_bindings(), tree_.key_bindings(host), playlist_.key_bindings(host), build_.key_bindings(host)};
-  for (std::vector<VerbRun> rows :
-       {global_verbs(), session_.script_verbs(host), ray_.script_verbs(host), blackboard_verbs(),
-        nodes_.script_verbs(host), heatmap_.script_verbs(host), compare_.script_verbs(host), sweep_.script_verbs(host),
-        build_.script_verbs(host), tree_.script_verbs(host), trap_.script_verbs(host), playlist_.script_verbs(host),
-        recorder_.script_verbs(), bench_chart_script_verbs(chart_, host)}) {
-    for (VerbRun& row : rows) {
-      ACCEL_CHECK(!runs_.count(row.kind));  // one tool runs each kind
-      runs_[row.kind] = std::move(row.run);
-    }
-  }
-  for (const ScriptVerb& verb : script_verbs()) ACCEL_CHECK(runs_.count(verb.kind));  // every verb runs
+  // The verbs in the catalogue's order (script_verbs.h), each bound to whoever runs it.
+  ToolVerbs<App> own_verbs(verbs_, *this, host);
+  global_verbs(own_verbs);
+  session_.add_verbs(verbs_, host);
+  ray_.add_verbs(verbs_, host);
+  blackboard_verbs(own_verbs);
+  nodes_.add_verbs(verbs_, host);
+  heatmap_.add_verbs(verbs_, host);
+  compare_.add_verbs(verbs_, host);
+  sweep_.add_verbs(verbs_, host);
+  build_.add_verbs(verbs_, host);
+  tree_.add_verbs(verbs_, host);
+  trap_.add_verbs(verbs_, host);
+  playlist_.add_verbs(verbs_, host);
+  recorder_.add_verbs(verbs_, host);
+  add_bench_chart_verbs(verbs_, chart_, host);
+  // Exactly the verbs the parser knows, in its order: none parses without a run.
+  const VerbTable& catalogue = script_verbs();
+  ACCEL_CHECK(verbs_.size() == catalogue.size());
+  for (size_t i = 0; i < catalogue.size(); ++i) ACCEL_CHECK(std::string_view(verbs_[i].name) == catalogue[i].name);
 }
 
 App::~App() { shutdown(); }

@@ -16,7 +16,6 @@
 //                   mouse, and its verbs
 //   app_state.cpp   the state as a script (save-state, --restore)
 #include <functional>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,8 +103,8 @@ class App : private ToolHost {
   /// The builds' memory budget in bytes (0: the default); rebuilds the current structure.
   void set_memory_limit(size_t bytes) { session_.set_memory_limit(bytes); }
 
-  /// Runs one script command through the run row of its kind; rendering commands go
-  /// through `host`. Errors are the message only (the caller adds "SCRIPT:LINE: ").
+  /// Runs one script command through its verb's run; rendering commands go through `host`.
+  /// Errors are the message only (the caller adds "SCRIPT:LINE: ").
   accel::Status execute(const ScriptCommand& command, ScriptHost& host);
   /// The key rows, App's global ones first, in the order a press is offered to them: what
   /// the help and `accelviz --list keys` show. Needs no GL.
@@ -181,10 +180,13 @@ class App : private ToolHost {
   void update_window_title();
   glm::ivec2 view_size() const { return {view_.z, view_.w}; }
 
-  // ---- app_script.cpp
-  /// App's own verbs: size, camera, panel, large, colors, screenshot, save-state,
-  /// print-frame-time.
-  std::vector<VerbRun> global_verbs();
+  // ---- The verbs whose runs set App's own state: global_verbs.h (size, camera, panel,
+  // large, colors, screenshot, save-state, print-frame-time) and tools/blackboard_verbs.h
+  // (the 2D mode)
+  template <class Verbs>
+  friend void global_verbs(Verbs& verbs);
+  template <class Verbs>
+  friend void blackboard_verbs(Verbs& verbs);
 
   // ---- app_blackboard.cpp: the 2D mode
   /// 2D: the blackboard (the current 2D scene, else an empty one); 3D: back to the last 3D scene.
@@ -208,8 +210,6 @@ class App : private ToolHost {
   void draw_board(bool grid);
   /// What the camera frames: the scene's box, or a 10 x 10 board for an empty 2D scene.
   accel::Aabb frame_box() const;
-  /// The 2D mode's script verbs (mode, scene2d, add2d, ray2d, save2d).
-  std::vector<VerbRun> blackboard_verbs();
 
   // ---- app_ui.cpp
   void apply_lecture_mode();
@@ -245,9 +245,9 @@ class App : private ToolHost {
   std::string board_path_ = "blackboard.scene2d";     // the Scene section's save field
   std::string board_status_;                          // what the last save said
 
-  // ---- The rows: keys in the order a press is offered, script runs by kind
+  // ---- The rows: keys in the order a press is offered, every verb with its run
   std::vector<KeyGroup> key_groups_;
-  std::map<CommandKind, std::function<accel::Status(const ScriptCommand&, ScriptHost&)>> runs_;
+  VerbTable verbs_;
 
   // ---- Camera, input and the 3D view
   Camera camera_;

@@ -1,7 +1,7 @@
 // App, part 4: the blackboard (2D mode, issue #32). A 2D scene (triangles in the plane
 // z = 0, docs/hits.md) is shown from above by the camera's top-down orthographic view and
 // built and traversed by the very structures of the 3D mode; this file switches the mode,
-// edits the scene (its script verbs, GL-free half in tools/blackboard_verbs.cpp, and the
+// edits the scene (its script verbs, registered in tools/blackboard_verbs.h, and the
 // mouse: BlackboardEditor) and draws the board's grid of world units.
 #include <cmath>
 
@@ -13,32 +13,6 @@
 #include "scene2d.h"
 
 namespace viz {
-
-std::vector<VerbRun> App::blackboard_verbs() {
-  return {
-      {CommandKind::Mode,
-       [this](const ScriptCommand& c, ScriptHost& host) -> accel::Status {
-         if (auto st = set_mode_2d(c.on); !st) return st;
-         settle_camera(host);
-         return {};
-       }},
-      {CommandKind::Scene2d,
-       [this](const ScriptCommand& c, ScriptHost& host) -> accel::Status {
-         if (auto st = load_scene2d(c.name); !st) return st;
-         settle_camera(host);
-         return {};
-       }},
-      {CommandKind::Add2d,
-       [this](const ScriptCommand& c, ScriptHost&) {
-         return add_triangle_2d({c.values[0], c.values[1], c.values[2], c.values[3], c.values[4], c.values[5]});
-       }},
-      {CommandKind::Ray2d,
-       [this](const ScriptCommand& c, ScriptHost&) {
-         return set_ray_2d(c.values[0], c.values[1], c.values[2], c.values[3]);
-       }},
-      {CommandKind::Save2d, [this](const ScriptCommand& c, ScriptHost&) { return save_scene2d(c.name); }},
-  };
-}
 
 accel::Status App::set_mode_2d(bool on) {
   if (on == mode_2d()) return {};

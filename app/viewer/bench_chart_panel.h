@@ -17,8 +17,9 @@ namespace viz {
 /// move it. Call between ImGui::NewFrame() and ImGui::Render().
 void bench_chart_window(BenchChartState& state, glm::vec2 pos, glm::vec2 size, bool apply_layout);
 
-/// The chart's script verbs (load-bench, show-chart) on `state`; `host` shows the panels.
-std::vector<VerbRun> bench_chart_script_verbs(BenchChartState& state, ToolHost& host);
+/// The chart's script verbs (load-bench, show-chart: bench_chart_verbs.h) on `state`, bound
+/// into `table`; `host` shows the panels.
+void add_bench_chart_verbs(VerbTable& table, BenchChartState& state, ToolHost& host);
 
 /// The main panel's section: a path field with Load (opens the window on success, shows
 /// the error otherwise) and a button that shows or hides the window.

@@ -3,7 +3,8 @@
 // tools: the few tools others move (the session's structure, the debug ray, the
 // construction), App's own state (script mode, layout, camera), and App's wiring between
 // tools (a new ray restarts an open comparison). App implements it; each tool's
-// key_bindings() and script_verbs() take it, as Scotty3D's modes take their manager.
+// key_bindings() and add_verbs() take it (its verbs' runs get it), as Scotty3D's modes take
+// their manager.
 #include <cstddef>
 #include <string>
 

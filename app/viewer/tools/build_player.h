@@ -72,10 +72,10 @@ class BuildPlayer {
   void update();
 
   /// Its keys (B records or leaves the mode; play, step, first / last, speed) and script
-  /// verbs (construct, construct-until, build-step, print-build-step, sah-plot); `host`
-  /// gives the structure.
+  /// verbs (construct, construct-until, build-step, print-build-step, sah-plot:
+  /// tools/build_player_verbs.h, bound into `table`); `host` gives the structure.
   KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The "Construction" panel (controls, counters, cost plot) at the ray panel's place.
   void control_panel(const PanelPlace& place, const std::shared_ptr<const accel::Scene>& scene,

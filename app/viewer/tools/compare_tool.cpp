@@ -9,6 +9,7 @@
 
 #include "panels.h"
 #include "params.h"
+#include "tools/compare_verbs.h"
 #include "tools/ray_debugger.h"
 #include "tools/ui_colors.h"
 
@@ -165,7 +166,7 @@ void CompareTool::builtin_lines() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: compare_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/compare_verbs.h)
 
 KeyGroup CompareTool::key_bindings(ToolHost& host) {
   return {"compare",
@@ -177,14 +178,9 @@ KeyGroup CompareTool::key_bindings(ToolHost& host) {
             }}}};
 }
 
-std::vector<VerbRun> CompareTool::script_verbs(ToolHost& host) {
-  return {{CommandKind::Compare, [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             if (auto st = host.ray().need_trace(); !st) return st;
-             host.start_compare();
-             set_open(true);
-             print_rows();
-             return {};
-           }}};
+void CompareTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<CompareTool> verbs(table, *this, host);
+  compare_verbs(verbs);
 }
 
 }  // namespace viz

@@ -55,9 +55,10 @@ class CompareTool {
   void wait() { job_.wait(); }
 
   /// Whether the window is shown.
-  /// Its key (C) and script verb (compare); `host` gives the debug ray and starts the run.
+  /// Its key (C) and script verb (compare: tools/compare_verbs.h, bound into `table`);
+  /// `host` gives the debug ray and starts the run.
   KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   bool open() const { return open_; }
   /// Shows or hides the window.

@@ -63,9 +63,10 @@ class HeatmapTool {
   glm::ivec2 computing_size() const { return running_.size; }
 
   /// Its key (M: cycle the metric) and script verbs (heatmap, heatmap-scale, heatmap-diff,
-  /// print-heatmap); `host` gives the view and the structure.
+  /// print-heatmap: tools/heatmap_verbs.h, bound into `table`); `host` gives the view and
+  /// the structure.
   KeyGroup key_bindings();
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The main panel's "Cost heat map" section.
   void section();

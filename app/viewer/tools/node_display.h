@@ -43,8 +43,9 @@ class NodeDisplay {
   /// The depth controls (for tests and the status line).
   const DepthSettings& depth_settings() const { return depth_; }
 
-  /// Its script verbs (show, mesh, empty-cells, nodes, opacity); `host` gives the structure.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  /// Its script verbs (show, mesh, empty-cells, nodes, opacity: tools/node_display_verbs.h),
+  /// bound into `table`; `host` gives the structure.
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The Display section; `built` is the structure shown. True when "empty cells" was
   /// toggled (then the session must list them in its next builds too).

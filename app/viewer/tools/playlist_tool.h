@@ -51,9 +51,10 @@ class PlaylistTool {
   std::string state_line() const { return viz::state_line(playlist_, cursor_.current()); }
 
   /// Its keys (PgDn / PgUp and down / up while a playlist is loaded: a presenter's clicker)
-  /// and script verbs (playlist, next, prev, print-state); `host` moves between states.
+  /// and script verbs (playlist, next, prev, print-state: tools/playlist_verbs.h, bound into
+  /// `table`); `host` moves between states.
   KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The title overlay, for a few seconds after a move (at the top centre of `view`, window
   /// coordinates x, y, w, h), and the last error until the next move.

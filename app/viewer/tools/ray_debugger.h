@@ -67,9 +67,14 @@ class RayDebugger {
   std::string ray_line() const;
 
   /// Its keys (play, step, jump to the hit, speed) and script verbs (the ray, stepping,
-  /// frames and the print-* of the ray); `host` gives the camera and the other tools.
+  /// frames and the print-* of the ray: tools/ray_debugger_verbs.h, bound into `table`);
+  /// `host` gives the camera and the other tools.
   KeyGroup key_bindings();
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void add_verbs(VerbTable& table, ToolHost& host);
+  /// `ray-at-pixel X Y`: shoots through pixel (x, y) from the top-left as a click does, once
+  /// the camera is the one drawn; an error when the pixel is outside the window or under a
+  /// panel.
+  accel::Status ray_at_pixel(ToolHost& host, float x, float y, ScriptHost& script);
 
   /// Remembers `view` as the saved viewpoint.
   void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }

@@ -11,6 +11,7 @@
 #include "browser.h"
 #include "paths.h"
 #include "screenshot.h"
+#include "tools/recorder_verbs.h"
 
 namespace viz {
 namespace {
@@ -154,26 +155,11 @@ std::string Recorder::notice() const {
 }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: recorder_verbs.cpp)
+// Script verbs (tools/recorder_verbs.h)
 
-std::vector<VerbRun> Recorder::script_verbs() {
-  return {{CommandKind::Record,
-           [this](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-             RecordOptions o;
-             o.fps = c.ints[0];
-             o.ui = c.on;
-             o.width = static_cast<int>(c.values[0]);
-             o.height = static_cast<int>(c.values[1]);
-             if (auto st = start(c.name, o); !st) return st;
-             h.render(1);  // the first frame: the animation as it stands
-             if (!recording()) return accel::make_error("record: " + notice());
-             return {};
-           }},
-          {CommandKind::RecordStop, [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             if (auto st = stop(); !st) return st;
-             print_script_line(notice());  // "wrote PATH (N frames)"
-             return {};
-           }}};
+void Recorder::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<Recorder> verbs(table, *this, host);
+  recorder_verbs(verbs);
 }
 
 }  // namespace viz

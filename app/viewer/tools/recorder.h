@@ -44,8 +44,8 @@ class Recorder {
   /// panels (`framebuffer` is the whole size). Records or saves what is due.
   void capture(bool with_ui, glm::ivec4 view, glm::ivec2 framebuffer);
 
-  /// Its script verbs (record, record stop).
-  std::vector<VerbRun> script_verbs();
+  /// Its script verb (record, record stop: tools/recorder_verbs.h), bound into `table`.
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The main panel's "Recording" section; true when Record / Stop was pressed (the
   /// caller starts or stops with the section's path and options).

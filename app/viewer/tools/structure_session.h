@@ -120,8 +120,9 @@ class StructureSession {
   std::string window_title() const;
 
   /// Its script verbs (scene, preset, structure, kernel, memory-limit, print-stats,
-  /// trace-rays); `host` syncs the other tools after a change.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  /// trace-rays: tools/structure_session_verbs.h), bound into `table`; `host` syncs the
+  /// other tools after a change.
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The Scene section; its camera buttons are returned (`has_saved_view` shows "Go to saved").
   SceneActions scene_section(bool has_saved_view);

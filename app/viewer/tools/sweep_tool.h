@@ -32,8 +32,9 @@ class SweepTool {
   /// The main panel's "Parameter sweep" section; true when "Run sweep" was pressed.
   bool section(const accel::StructureInfo& info);
   /// Whether the window is shown.
-  /// Its script verb (sweep); `host` gives the structure and starts the run.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  /// Its script verb (sweep: tools/sweep_verbs.h, bound into `table`); `host` gives the
+  /// structure and starts the run.
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   bool open() const { return open_; }
   /// Shows or hides the window.

@@ -48,8 +48,9 @@ class TrapTool {
   /// The step the steps list marks ("naive stop"), or nothing.
   std::optional<size_t> marked_step() const;
 
-  /// Its script verbs (trap, print-naive, print-trap); `host` loads the trap's scene and ray.
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  /// Its script verbs (trap, print-naive, print-trap: tools/trap_verbs.h), bound into
+  /// `table`; `host` loads the trap's scene and ray.
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
   std::string section() const;

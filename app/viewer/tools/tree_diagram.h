@@ -27,10 +27,11 @@ class TreeDiagram {
   void set_on(bool on) { on_ = on; }
   void toggle() { on_ = !on_; }
 
-  /// Its key (T) and script verbs (tree, tree-select); `host` lays the panels out and gives
-  /// the structure, the ray and the construction.
+  /// Its key (T) and script verbs (tree, tree-select: tools/tree_diagram_verbs.h, bound into
+  /// `table`); `host` lays the panels out and gives the structure, the ray and the
+  /// construction.
   KeyGroup key_bindings(ToolHost& host);
-  std::vector<VerbRun> script_verbs(ToolHost& host);
+  void add_verbs(VerbTable& table, ToolHost& host);
 
   /// Follows this frame's structure, debug ray and construction replay (nullptr: the
   /// construction mode is off). Cheap when nothing changed: the layout is remade when the
