@@ -32,6 +32,39 @@ struct FrameTimeArgs {
   int frames = 0;
 };
 
+/// `camera`'s words: eye and target, six finite numbers, and the vertical field of view in
+/// degrees if given.
+inline std::string parse_camera_words(const VerbArgs& a, CameraArgs& s) {
+  if (a.size() != 6 && a.size() != 7) return a.usage_error();
+  float v[7] = {};
+  if (auto e = a.finite_values(0, std::span<float>(v, a.size())); !e.empty()) return e;
+  if (a.size() == 7 && !(v[6] > 1.0f && v[6] < 170.0f))
+    return "camera: FOVY_DEG must be in (1, 170) degrees, got " + a[6];
+  if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) return "camera: eye and target are the same point";
+  s.eye = {v[0], v[1], v[2]};
+  s.target = {v[3], v[4], v[5]};
+  if (a.size() == 7) s.fovy_deg = v[6];
+  return "";
+}
+
+/// `panel`'s words: on|off for all of them, or a panel's name and on|off.
+inline std::string parse_panel_words(const VerbArgs& a, PanelArgs& s) {
+  if (a.size() == 1 && parse_on_off(a[0], &s.on)) {
+    s.panel = "all";
+    return "";
+  }
+  static const char* kPanels[] = {"all",   "scene",  "ray",  "steps", "code", "compare",
+                                  "sweep", "legend", "vars", "strip", "trap"};
+  if (a.size() != 2 || !parse_on_off(a[1], &s.on)) return a.usage_error();
+  for (const char* p : kPanels) {
+    if (a[0] == p) {
+      s.panel = a[0];
+      return "";
+    }
+  }
+  return a.usage_error();
+}
+
 template <class Verbs>
 void global_verbs(Verbs& verbs) {
   verbs.template add<SizeArgs>(
@@ -51,18 +84,7 @@ void global_verbs(Verbs& verbs) {
       });
   verbs.template add<CameraArgs>(
       "camera", "camera EX EY EZ TX TY TZ [FOVY_DEG]", "place the camera",
-      [](const VerbArgs& a, CameraArgs& s) -> std::string {
-        if (a.size() != 6 && a.size() != 7) return a.usage_error();
-        float v[7] = {};
-        if (auto e = a.finite_values(0, std::span<float>(v, a.size())); !e.empty()) return e;
-        if (a.size() == 7 && !(v[6] > 1.0f && v[6] < 170.0f))
-          return "camera: FOVY_DEG must be in (1, 170) degrees, got " + a[6];
-        if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) return "camera: eye and target are the same point";
-        s.eye = {v[0], v[1], v[2]};
-        s.target = {v[3], v[4], v[5]};
-        if (a.size() == 7) s.fovy_deg = v[6];
-        return "";
-      },
+      parse_camera_words,
       [](auto& app, auto&, const CameraArgs& s, ScriptHost&) -> accel::Status {
         const float fov = s.fovy_deg.value_or(app.camera_.pinhole().fovy_deg);
         app.camera_.look_at(s.eye, s.target, fov, app.session_.scene().bounds());
@@ -72,22 +94,7 @@ void global_verbs(Verbs& verbs) {
   verbs.template add<PanelArgs>(
       "panel", "panel on|off | panel scene|ray|steps|code|compare|sweep|legend|vars|strip|trap on|off",
       "all panels, or one of them (`strip`: the t-axis strip)",
-      [](const VerbArgs& a, PanelArgs& s) -> std::string {
-        if (a.size() == 1 && parse_on_off(a[0], &s.on)) {
-          s.panel = "all";
-          return "";
-        }
-        static const char* kPanels[] = {"all",   "scene",  "ray",  "steps", "code", "compare",
-                                        "sweep", "legend", "vars", "strip", "trap"};
-        if (a.size() != 2 || !parse_on_off(a[1], &s.on)) return a.usage_error();
-        for (const char* p : kPanels) {
-          if (a[0] == p) {
-            s.panel = a[0];
-            return "";
-          }
-        }
-        return a.usage_error();
-      },
+      parse_panel_words,
       [](auto& app, auto&, const PanelArgs& s, ScriptHost&) -> accel::Status {
         app.set_panel(s.panel, s.on);
         return {};
