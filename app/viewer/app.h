@@ -1,17 +1,17 @@
 #pragma once
 // App: the viewer's lifecycle, window layout, input dispatch and script dispatch. The
-// tools (app/viewer/tools/) own their state, panels and drawing, and declare their keys and
-// script verbs as rows (commands.h); App keeps the global ones, concatenates the rest and
-// dispatches, and passes each tool the little it needs from the others (ToolHost: the
-// current structure, the camera, the view rectangle). main.cpp owns the window and ImGui's
-// backends and calls, per frame, update() between ImGui::NewFrame() and ImGui::Render(),
-// then draw(). Scripts (--script) go through execute().
+// tools (app/viewer/tools/) own their state, panels and drawing, and declare their keys as
+// rows and their script verbs as registrations (commands.h); App keeps the global ones,
+// gathers the rest and dispatches, and passes each tool the little it needs from the
+// others (ToolHost: the current structure, the camera, the view rectangle). main.cpp owns
+// the window and ImGui's backends and calls, per frame, update() between ImGui::NewFrame()
+// and ImGui::Render(), then draw(). Scripts (--script) go through execute().
 //
 //   app.cpp         lifecycle, the rows, per-frame update, input and the global keys, drawing,
 //                   session events
 //   app_ui.cpp      the window layout, the main panel (its help made from the key rows), the
 //                   panels shown, the lecture mode
-//   app_script.cpp  script dispatch (by the verb rows' kind) and the global verbs
+//   app_script.cpp  script dispatch (by the verb's name; the global verbs: global_verbs.h)
 //   app_blackboard.cpp  the 2D mode (issue #32): a 2D scene seen from above, edited with the
 //                   mouse, and its verbs
 //   app_state.cpp   the state as a script (save-state, --restore)

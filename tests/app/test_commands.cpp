@@ -154,5 +154,11 @@ TEST(Commands, ARegistrationIsParsedByTheCatalogueAndRunByTheTool) {
   EXPECT_EQ(counter.count, 14);
 }
 
+TEST(CommandsDeathTest, AVerbIsDeclaredOnce) {
+  VerbTable table;
+  table.add({"count", "count N", "add N", {}, {}});
+  EXPECT_DEATH(table.add({"count", "count", "another count", {}, {}}), "internal check failed");
+}
+
 }  // namespace
 }  // namespace viz
