@@ -8,9 +8,11 @@
 #include <imgui.h>
 
 #include "check.h"
+#include "global_verbs.h"
 #include "registry.h"
 #include "script_verbs.h"
 #include "tools/bench_chart_tool.h"
+#include "tools/node_display.h"
 #include "tools/playlist_tool.h"
 #include "tools/recorder.h"
 #include "tools/structure_session.h"
@@ -38,15 +40,15 @@ App::App() : tools_(make_tools()) {
   key_groups_.push_back(global_keys());
   for (Tool* tool : tool_list_)
     if (std::vector<KeyBinding> rows = tool->keys(host); !rows.empty()) key_groups_.push_back({tool->name(), rows});
-  std::vector<std::vector<VerbRun>> modules{global_verbs()};
-  for (Tool* tool : tool_list_) modules.push_back(tool->script_verbs(host));
-  for (std::vector<VerbRun>& rows : modules) {
-    for (VerbRun& row : rows) {
-      ACCEL_CHECK(!runs_.count(row.kind));  // one tool runs each kind
-      runs_[row.kind] = std::move(row.run);
-    }
-  }
-  for (const ScriptVerb& verb : script_verbs()) ACCEL_CHECK(runs_.count(verb.kind));  // every verb runs
+  // Every verb bound to whoever runs it: App's own, then the tools'.
+  ToolVerbs<App> own_verbs(verbs_, *this, host);
+  global_verbs(own_verbs);
+  for (Tool* tool : tool_list_) tool->add_verbs(verbs_, host);
+  // Exactly the verbs the parser knows (script_verbs.h): none parses without a run, and the
+  // catalogue's order (the docs') need not be the tools'.
+  const VerbTable& catalogue = script_verbs();
+  ACCEL_CHECK(verbs_.size() == catalogue.size());
+  for (size_t i = 0; i < catalogue.size(); ++i) ACCEL_CHECK(verbs_.find(catalogue[i].name) != nullptr);
 }
 
 App::~App() { shutdown(); }

@@ -8,7 +8,7 @@
 //
 //   app.cpp         lifecycle, the per-frame loop over the tools, the keys, drawing
 //   app_ui.cpp      the main panel (the tools' sections; the keys' help made from their rows)
-//   app_script.cpp  script dispatch and App's own verbs (the window, camera, panels, colours)
+//   app_script.cpp  script dispatch (by the verb's name; App's own verbs: global_verbs.h)
 //   app_state.cpp   the state as a script (save-state, --restore)
 #include <functional>
 #include <map>
@@ -70,8 +70,8 @@ class App final : private ToolHost {
   /// The builds' memory budget in bytes (0: the default); rebuilds the current structure.
   void set_memory_limit(size_t bytes);
 
-  /// Runs one script command through the run row of its kind; rendering commands go
-  /// through `host`. Errors are the message only (the caller adds "SCRIPT:LINE: ").
+  /// Runs one script command through its verb's run; rendering commands go through `host`.
+  /// Errors are the message only (the caller adds "SCRIPT:LINE: ").
   accel::Status execute(const ScriptCommand& command, ScriptHost& host) override;
   /// The key rows, App's global ones first, in the order a press is offered to them: what
   /// the help and `accelviz --list keys` show. Needs no GL.
@@ -121,10 +121,10 @@ class App final : private ToolHost {
   void update_shortcuts();
   void update_timing(float dt);
 
-  // ---- app_script.cpp
-  /// App's own verbs: size, camera, panel, large, colors, screenshot, save-state,
-  /// print-frame-time.
-  std::vector<VerbRun> global_verbs();
+  // ---- The verbs whose runs set App's own state: global_verbs.h (size, camera, panel,
+  // large, colors, screenshot, save-state, print-frame-time)
+  template <class Verbs>
+  friend void global_verbs(Verbs& verbs);
   /// `panel NAME on|off`: one panel ("all": every one) shown or hidden.
   void set_panel(const std::string& name, bool on);
 
@@ -136,9 +136,9 @@ class App final : private ToolHost {
   std::vector<std::unique_ptr<Tool>> tools_;
   std::vector<Tool*> tool_list_;
 
-  // ---- The rows: keys in the order a press is offered, script runs by kind
+  // ---- The rows: keys in the order a press is offered, every verb with its run
   std::vector<KeyGroup> key_groups_;
-  std::map<CommandKind, std::function<accel::Status(const ScriptCommand&, ScriptHost&)>> runs_;
+  VerbTable verbs_;
 
   // ---- The 3D view, the window's layout, the frame
   mutable CameraControl camera_;   // the tools move it through ToolHost

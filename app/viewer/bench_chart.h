@@ -1,7 +1,7 @@
 #pragma once
 // The speed-against-error chart of `accelviz-cli bench --out-json` results, without a
 // window: loading and validating the JSON, the (scene, rays) groups, and every coordinate
-// and tick of the chart. bench_chart_panel.cpp only draws what this computes, so the
+// and tick of the chart. tools/bench_chart_tool.cpp only draws what this computes, so the
 // numbers a lecturer reads off the chart are unit-tested (tests/app/test_bench_chart.cpp).
 //
 // The chart: one point per bench row of the chosen group. y = Mrays/s (all threads, or one);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "check.h"
 #include "input.h"
 #include "rays_io.h"
 
@@ -64,11 +65,14 @@ bool dispatch_key(const std::vector<KeyGroup>& groups, const KeyPress& press) {
 // ---------------------------------------------------------------------------------------
 // The verbs' words
 
+const char* VerbArgs::verb() const { return verb_.name; }
+const char* VerbArgs::usage() const { return verb_.usage; }
+
 std::string VerbArgs::usage_error() const { return std::string("usage: ") + verb_.usage; }
 
-std::string VerbArgs::finite_values(size_t first, size_t count, ScriptCommand& command) const {
-  for (size_t i = 0; i < count; ++i) {
-    if (!parse_finite(words_[first + i], &command.values[i]))
+std::string VerbArgs::finite_values(size_t first, std::span<float> out) const {
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!parse_finite(words_[first + i], &out[i]))
       return "'" + words_[first + i] + "' is not a finite number (" + verb_.usage + ")";
   }
   return "";
@@ -94,7 +98,7 @@ bool parse_on_off(const std::string& word, bool* out) {
   return true;
 }
 
-std::string parse_no_words(const VerbArgs& args, ScriptCommand&) {
+std::string parse_no_words(const VerbArgs& args, NoArgs&) {
   if (args.size() == 0) return "";
   // Piece by piece: GCC 12 warns (-Wrestrict, wrongly) about "'" + std::string.
   std::string message = "'";
@@ -103,14 +107,14 @@ std::string parse_no_words(const VerbArgs& args, ScriptCommand&) {
   return message;
 }
 
-std::string parse_one_word(const VerbArgs& args, ScriptCommand& command) {
+std::string parse_one_word(const VerbArgs& args, Word& out) {
   if (args.size() != 1) return args.usage_error();
-  command.name = args[0];
+  out.word = args[0];
   return "";
 }
 
-std::string parse_on_off_word(const VerbArgs& args, ScriptCommand& command) {
-  if (args.size() != 1 || !parse_on_off(args[0], &command.on)) return args.usage_error();
+std::string parse_on_off_word(const VerbArgs& args, OnOff& out) {
+  if (args.size() != 1 || !parse_on_off(args[0], &out.on)) return args.usage_error();
   return "";
 }
 
@@ -119,19 +123,30 @@ void print_script_line(const std::string& line) {
   std::fflush(stdout);
 }
 
-std::string parse_step_words(const VerbArgs& args, ScriptCommand& command, bool hit) {
+void VerbTable::add(Verb verb) {
+  ACCEL_CHECK(!find(verb.name));  // one module declares each verb
+  verbs_.push_back(std::move(verb));
+}
+
+const Verb* VerbTable::find(std::string_view name) const {
+  for (const Verb& v : verbs_)
+    if (name == v.name) return &v;
+  return nullptr;
+}
+
+std::string parse_step_words(const VerbArgs& args, PlayerMove& out, bool hit) {
   const size_t n = args.size();
-  int& count = command.ints[0];
+  int& count = out.count;
   if (n == 1 && args[0] == "end")
-    command.step = StepMode::End;
+    out.mode = StepMode::End;
   else if (n == 1 && args[0] == "start")
-    command.step = StepMode::Start;
+    out.mode = StepMode::Start;
   else if (hit && n == 1 && args[0] == "hit")
-    command.step = StepMode::Hit;
+    out.mode = StepMode::Hit;
   else if (n == 1 && parse_script_int(args[0], &count) && count >= 0)
-    command.step = StepMode::Forward;
+    out.mode = StepMode::Forward;
   else if (n == 2 && args[0] == "back" && parse_script_int(args[1], &count) && count >= 0)
-    command.step = StepMode::Back;
+    out.mode = StepMode::Back;
   else
     return args.usage_error();
   return "";
@@ -177,9 +192,9 @@ std::string keys_summary_markdown(const std::vector<KeyGroup>& groups) {
   return table;
 }
 
-std::string verbs_markdown(const std::vector<ScriptVerb>& verbs) {
+std::string verbs_markdown(const VerbTable& verbs) {
   std::string table = "| command | what it does |\n|---|---|\n";
-  for (const ScriptVerb& v : verbs) {
+  for (const Verb& v : verbs) {
     // The forms of the usage, each as code: "step N | step end" -> `step N`, `step end`.
     std::string forms;
     const std::string usage = v.usage;

@@ -364,13 +364,11 @@ int main(int argc, char** argv) {
     script = std::move(parsed.value());
     // A leading `size` sets the window's size from the start (no resize round trip).
     for (const viz::ScriptCommand& c : script) {
-      if (c.kind == viz::CommandKind::Size) {
-        options.width = c.ints[0];
-        options.height = c.ints[1];
+      if (c.verb == "size") {
+        options.width = c.get<viz::SizeArgs>().width;
+        options.height = c.get<viz::SizeArgs>().height;
       }
-      if (c.kind != viz::CommandKind::Size && c.kind != viz::CommandKind::Scene && c.kind != viz::CommandKind::Structure &&
-          c.kind != viz::CommandKind::Kernel)
-        break;
+      if (c.verb != "size" && c.verb != "scene" && c.verb != "structure" && c.verb != "kernel") break;
     }
   }
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "commands.h"
 #include "input_files.h"
 
 namespace viz {
@@ -77,11 +78,12 @@ accel::Result<Playlist> load_playlist(const std::string& path) {
   const fs::path dir = fs::path(path).parent_path();
   for (PlaylistState& state : playlist.value().states)
     for (ScriptCommand& c : state.commands) {
-      const bool names_file = (c.kind == CommandKind::Scene && !c.name.starts_with("procedural:")) ||
-                              c.kind == CommandKind::Scene2d || c.kind == CommandKind::LoadBench ||
-                              (c.kind == CommandKind::TraceRays && !c.name.starts_with("random:") &&
-                               !c.name.starts_with("primary:"));
-      if (names_file && fs::path(c.name).is_relative()) c.name = (dir / c.name).lexically_normal().string();
+      if (c.verb != "scene" && c.verb != "scene2d" && c.verb != "load-bench" && c.verb != "trace-rays") continue;
+      std::string& name = c.get<Word>().word;  // these four take one word
+      const bool names_file = (c.verb == "scene" && !name.starts_with("procedural:")) ||
+                              c.verb == "scene2d" || c.verb == "load-bench" ||
+                              (c.verb == "trace-rays" && !name.starts_with("random:") && !name.starts_with("primary:"));
+      if (names_file && fs::path(name).is_relative()) name = (dir / name).lexically_normal().string();
     }
   return playlist;
 }

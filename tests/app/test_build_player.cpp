@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "pseudo_code.h"
+#include "commands.h"
 #include "script.h"
 #include "structures/bvh_builders.h"
 #include "tools/build_playback.h"
@@ -359,17 +360,17 @@ TEST(BuildScript, ParsesTheConstructionCommands) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 7u);
-  EXPECT_EQ(c[0].kind, CommandKind::Construct);
-  EXPECT_EQ(c[1].kind, CommandKind::BuildStep);
-  EXPECT_EQ(c[1].step, StepMode::Forward);
-  EXPECT_EQ(c[1].ints[0], 3);
-  EXPECT_EQ(c[2].step, StepMode::Back);
-  EXPECT_EQ(c[2].ints[0], 2);
-  EXPECT_EQ(c[3].step, StepMode::End);
-  EXPECT_EQ(c[4].step, StepMode::Start);
-  EXPECT_EQ(c[5].kind, CommandKind::PrintBuildStep);
-  EXPECT_EQ(c[6].kind, CommandKind::SahPlot);
-  EXPECT_FALSE(c[6].on);
+  EXPECT_EQ(c[0].verb, "construct");
+  EXPECT_EQ(c[1].verb, "build-step");
+  EXPECT_EQ(c[1].get<PlayerMove>().mode, StepMode::Forward);
+  EXPECT_EQ(c[1].get<PlayerMove>().count, 3);
+  EXPECT_EQ(c[2].get<PlayerMove>().mode, StepMode::Back);
+  EXPECT_EQ(c[2].get<PlayerMove>().count, 2);
+  EXPECT_EQ(c[3].get<PlayerMove>().mode, StepMode::End);
+  EXPECT_EQ(c[4].get<PlayerMove>().mode, StepMode::Start);
+  EXPECT_EQ(c[5].verb, "print-build-step");
+  EXPECT_EQ(c[6].verb, "sah-plot");
+  EXPECT_FALSE(c[6].get<OnOff>().on);
   const std::pair<const char*, const char*> errors[] = {
       {"build-step\n", "t.txt:1: usage: build-step N | build-step end"},
       {"build-step -1\n", "t.txt:1: usage: build-step N"},

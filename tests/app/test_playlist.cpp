@@ -25,11 +25,11 @@ TEST(Playlist, StatesHoldTheirCommandsWithFileLines) {
   EXPECT_EQ(a.title, "The grid");
   EXPECT_EQ(a.line, 3);
   ASSERT_EQ(a.commands.size(), 2u);
-  EXPECT_EQ(a.commands[0].kind, CommandKind::Scene);
+  EXPECT_EQ(a.commands[0].verb, "scene");
   EXPECT_EQ(a.commands[0].line, 4);
   EXPECT_EQ(a.commands[1].line, 5);
   ASSERT_EQ(p.value().states[1].commands.size(), 1u);
-  EXPECT_EQ(p.value().states[1].commands[0].kind, CommandKind::Step);
+  EXPECT_EQ(p.value().states[1].commands[0].verb, "step");
   EXPECT_EQ(p.value().states[1].commands[0].line, 8);
   EXPECT_TRUE(p.value().states[2].commands.empty());
   EXPECT_EQ(state_line(p.value(), 1), "state 2/3: Its walk");

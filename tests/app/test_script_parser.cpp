@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "script.h"
+#include "script_verbs.h"
 #include "viewer_test_support.h"
 
 namespace viz {
@@ -50,60 +51,61 @@ TEST(Script, ParsesEveryCommand) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 34u);
-  EXPECT_EQ(c[0].kind, CommandKind::Size);
+  EXPECT_EQ(c[0].verb, "size");
   EXPECT_EQ(c[0].line, 2);
-  EXPECT_EQ(c[0].ints[0], 800);
-  EXPECT_EQ(c[0].ints[1], 600);
-  EXPECT_EQ(c[1].kind, CommandKind::Scene);
-  EXPECT_EQ(c[1].name, "procedural:cornell");
+  EXPECT_EQ(c[0].get<SizeArgs>().width, 800);
+  EXPECT_EQ(c[0].get<SizeArgs>().height, 600);
+  EXPECT_EQ(c[1].verb, "scene");
+  EXPECT_EQ(c[1].get<Word>().word, "procedural:cornell");
   EXPECT_EQ(c[1].line, 4);
-  EXPECT_EQ(c[2].kind, CommandKind::Structure);
-  EXPECT_EQ(c[2].name, "bvh");
-  EXPECT_EQ(c[2].params, (std::vector<std::string>{"traversal=pqueue", "leaf_size=2"}));
-  EXPECT_EQ(c[3].kind, CommandKind::Kernel);
-  EXPECT_EQ(c[4].kind, CommandKind::Camera);
-  EXPECT_TRUE(c[4].has_fov);
-  EXPECT_EQ(c[4].values[6], 40.0f);
-  EXPECT_FALSE(c[5].has_fov);
-  EXPECT_EQ(c[6].kind, CommandKind::RayAtPixel);
-  EXPECT_EQ(c[6].values[0], 320.0f);
-  EXPECT_EQ(c[7].kind, CommandKind::Ray);
-  EXPECT_EQ(c[7].values[0], 0.25f);  // hex float
-  EXPECT_EQ(c[7].values[5], -1.0f);
-  EXPECT_EQ(c[8].step, StepMode::Forward);
-  EXPECT_EQ(c[8].ints[0], 3);
-  EXPECT_EQ(c[9].step, StepMode::End);
-  EXPECT_EQ(c[10].step, StepMode::Back);
-  EXPECT_EQ(c[10].ints[0], 2);
-  EXPECT_EQ(c[11].step, StepMode::Hit);
-  EXPECT_EQ(c[12].show, ShowMode::Depth);
-  EXPECT_EQ(c[12].ints[0], 2);
-  EXPECT_EQ(c[12].ints[1], 4);
-  EXPECT_EQ(c[13].ints[0], 3);
-  EXPECT_EQ(c[13].ints[1], 3);
-  EXPECT_EQ(c[14].show, ShowMode::Leaves);
-  EXPECT_EQ(c[15].show, ShowMode::All);
-  EXPECT_EQ(c[16].kind, CommandKind::Heatmap);
-  EXPECT_EQ(c[16].name, "prims");
-  EXPECT_EQ(c[17].name, "translucent");
-  EXPECT_TRUE(c[18].on);
-  EXPECT_EQ(c[19].kind, CommandKind::Nodes);
-  EXPECT_FALSE(c[19].on);
-  EXPECT_EQ(c[20].kind, CommandKind::Opacity);
-  EXPECT_EQ(c[20].values[0], 0.4f);
-  EXPECT_EQ(c[21].name, "all");
-  EXPECT_FALSE(c[21].on);
-  EXPECT_EQ(c[22].name, "code");
-  EXPECT_EQ(c[24].kind, CommandKind::Compare);
-  EXPECT_EQ(c[25].kind, CommandKind::Sweep);
-  EXPECT_EQ(c[25].name, "leaf_size");
-  EXPECT_EQ(c[25].ints[0], 8);
-  EXPECT_EQ(c[26].kind, CommandKind::Screenshot);
-  EXPECT_EQ(c[27].kind, CommandKind::Frames);
-  EXPECT_EQ(c[27].name, "out/f_");
-  EXPECT_EQ(c[31].kind, CommandKind::PrintStats);
-  EXPECT_EQ(c[32].ints[0], 10);
-  EXPECT_EQ(c[33].kind, CommandKind::Preset);
+  EXPECT_EQ(c[2].verb, "structure");
+  EXPECT_EQ(c[2].get<StructureArgs>().name, "bvh");
+  EXPECT_EQ(c[2].get<StructureArgs>().params, (std::vector<std::string>{"traversal=pqueue", "leaf_size=2"}));
+  EXPECT_EQ(c[3].verb, "kernel");
+  EXPECT_EQ(c[3].get<KernelArgs>().kernel, accel::Kernel::Moller);
+  EXPECT_EQ(c[4].verb, "camera");
+  EXPECT_EQ(c[4].get<CameraArgs>().fovy_deg, 40.0f);
+  EXPECT_EQ(c[4].get<CameraArgs>().eye.z, 5.0f);
+  EXPECT_FALSE(c[5].get<CameraArgs>().fovy_deg);
+  EXPECT_EQ(c[6].verb, "ray-at-pixel");
+  EXPECT_EQ(c[6].get<PixelArgs>().x, 320.0f);
+  EXPECT_EQ(c[7].verb, "ray");
+  EXPECT_EQ(c[7].get<RayArgs>().ray.org.x, 0.25f);  // hex float
+  EXPECT_EQ(c[7].get<RayArgs>().ray.dir.z, -1.0f);
+  EXPECT_EQ(c[8].get<PlayerMove>().mode, StepMode::Forward);
+  EXPECT_EQ(c[8].get<PlayerMove>().count, 3);
+  EXPECT_EQ(c[9].get<PlayerMove>().mode, StepMode::End);
+  EXPECT_EQ(c[10].get<PlayerMove>().mode, StepMode::Back);
+  EXPECT_EQ(c[10].get<PlayerMove>().count, 2);
+  EXPECT_EQ(c[11].get<PlayerMove>().mode, StepMode::Hit);
+  EXPECT_EQ(c[12].get<ShowArgs>().mode, ShowMode::Depth);
+  EXPECT_EQ(c[12].get<ShowArgs>().lo, 2);
+  EXPECT_EQ(c[12].get<ShowArgs>().hi, 4);
+  EXPECT_EQ(c[13].get<ShowArgs>().lo, 3);
+  EXPECT_EQ(c[13].get<ShowArgs>().hi, 3);
+  EXPECT_EQ(c[14].get<ShowArgs>().mode, ShowMode::Leaves);
+  EXPECT_EQ(c[15].get<ShowArgs>().mode, ShowMode::All);
+  EXPECT_EQ(c[16].verb, "heatmap");
+  EXPECT_EQ(c[16].get<HeatmapArgs>().metric, accel::CostMetric::PrimsTested);
+  EXPECT_EQ(c[17].get<Word>().word, "translucent");
+  EXPECT_TRUE(c[18].get<OnOff>().on);
+  EXPECT_EQ(c[19].verb, "nodes");
+  EXPECT_FALSE(c[19].get<OnOff>().on);
+  EXPECT_EQ(c[20].verb, "opacity");
+  EXPECT_EQ(c[20].get<OpacityArgs>().alpha, 0.4f);
+  EXPECT_EQ(c[21].get<PanelArgs>().panel, "all");
+  EXPECT_FALSE(c[21].get<PanelArgs>().on);
+  EXPECT_EQ(c[22].get<PanelArgs>().panel, "code");
+  EXPECT_EQ(c[24].verb, "compare");
+  EXPECT_EQ(c[25].verb, "sweep");
+  EXPECT_EQ(c[25].get<SweepArgs>().param, "leaf_size");
+  EXPECT_EQ(c[25].get<SweepArgs>().steps, 8);
+  EXPECT_EQ(c[26].verb, "screenshot");
+  EXPECT_EQ(c[27].verb, "frames");
+  EXPECT_EQ(c[27].get<Word>().word, "out/f_");
+  EXPECT_EQ(c[31].verb, "print-stats");
+  EXPECT_EQ(c[32].get<FrameTimeArgs>().frames, 10);
+  EXPECT_EQ(c[33].verb, "preset");
 }
 
 TEST(Script, ErrorsNameScriptAndLine) {
@@ -151,15 +153,15 @@ TEST(Script, TreeCommands) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const std::vector<ScriptCommand>& c = parsed.value();
   ASSERT_EQ(c.size(), 4u);
-  EXPECT_EQ(c[0].kind, CommandKind::Tree);
-  EXPECT_TRUE(c[0].on);
-  EXPECT_EQ(c[1].kind, CommandKind::Tree);
-  EXPECT_FALSE(c[1].on);
-  EXPECT_EQ(c[2].kind, CommandKind::TreeSelect);
-  EXPECT_EQ(c[2].ints[0], 12);
-  EXPECT_FALSE(c[2].on);  // not isolated
-  EXPECT_EQ(c[3].ints[0], 0);
-  EXPECT_TRUE(c[3].on);
+  EXPECT_EQ(c[0].verb, "tree");
+  EXPECT_TRUE(c[0].get<OnOff>().on);
+  EXPECT_EQ(c[1].verb, "tree");
+  EXPECT_FALSE(c[1].get<OnOff>().on);
+  EXPECT_EQ(c[2].verb, "tree-select");
+  EXPECT_EQ(c[2].get<TreeSelectArgs>().node, 12);
+  EXPECT_FALSE(c[2].get<TreeSelectArgs>().isolate);
+  EXPECT_EQ(c[3].get<TreeSelectArgs>().node, 0);
+  EXPECT_TRUE(c[3].get<TreeSelectArgs>().isolate);
   EXPECT_EQ(c[3].line, 4);
   struct Case {
     const char* text;
@@ -190,21 +192,23 @@ TEST(Script, LectureCommands) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 10u);
-  const CommandKind kinds[] = {CommandKind::PrintVars, CommandKind::Trap,  CommandKind::PrintNaive,
-                               CommandKind::Playlist,  CommandKind::Next,  CommandKind::Prev,
-                               CommandKind::PrintState, CommandKind::Record, CommandKind::Record,
-                               CommandKind::RecordStop};
-  for (size_t i = 0; i < c.size(); ++i) EXPECT_EQ(c[i].kind, kinds[i]) << i;
-  EXPECT_EQ(c[1].name, "kd");
-  EXPECT_EQ(c[3].name, "talk.playlist");
-  EXPECT_EQ(c[7].name, "a.gif");
-  EXPECT_EQ(c[7].ints[0], 4) << "default fps";
-  EXPECT_TRUE(c[7].on) << "default ui=on";
-  EXPECT_EQ(c[7].values[0], 0.0f) << "default size: as captured";
-  EXPECT_EQ(c[8].ints[0], 12);
-  EXPECT_FALSE(c[8].on);
-  EXPECT_EQ(c[8].values[0], 640.0f);
-  EXPECT_EQ(c[8].values[1], 360.0f);
+  const char* verbs[] = {"print-vars", "trap", "print-naive", "playlist", "next", "prev", "print-state", "record",
+                         "record", "record"};
+  for (size_t i = 0; i < c.size(); ++i) EXPECT_EQ(c[i].verb, verbs[i]) << i;
+  EXPECT_EQ(c[1].get<Word>().word, "kd");
+  EXPECT_EQ(c[3].get<Word>().word, "talk.playlist");
+  const RecordArgs& a = c[7].get<RecordArgs>();
+  EXPECT_FALSE(a.stop);
+  EXPECT_EQ(a.path, "a.gif");
+  EXPECT_EQ(a.options.fps, 4) << "default fps";
+  EXPECT_TRUE(a.options.ui) << "default ui=on";
+  EXPECT_EQ(a.options.width, 0) << "default size: as captured";
+  const RecordArgs& b = c[8].get<RecordArgs>();
+  EXPECT_EQ(b.options.fps, 12);
+  EXPECT_FALSE(b.options.ui);
+  EXPECT_EQ(b.options.width, 640);
+  EXPECT_EQ(b.options.height, 360);
+  EXPECT_TRUE(c[9].get<RecordArgs>().stop);
 
   const std::pair<const char*, const char*> errors[] = {
       {"trap nope\n", "t.txt:1: trap: unknown trap 'nope' (valid: pq, kd, grid)"},
@@ -234,19 +238,19 @@ TEST(Script, BlackboardCommands) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 6u);
-  EXPECT_EQ(c[5].kind, CommandKind::Save2d);
-  EXPECT_EQ(c[5].name, "b.scene2d");
-  EXPECT_EQ(c[0].kind, CommandKind::Mode);
-  EXPECT_TRUE(c[0].on);
-  EXPECT_EQ(c[1].kind, CommandKind::Scene2d);
-  EXPECT_EQ(c[1].name, "board.scene2d");
-  EXPECT_EQ(c[2].kind, CommandKind::Add2d);
-  EXPECT_EQ(c[2].values[4], 0.5f);
-  EXPECT_EQ(c[2].values[5], 1.0f);
-  EXPECT_EQ(c[3].kind, CommandKind::Ray2d);
-  EXPECT_EQ(c[3].values[0], -1.0f);
-  EXPECT_EQ(c[3].values[2], 1.0f);
-  EXPECT_FALSE(c[4].on);
+  EXPECT_EQ(c[5].verb, "save2d");
+  EXPECT_EQ(c[5].get<Word>().word, "b.scene2d");
+  EXPECT_EQ(c[0].verb, "mode");
+  EXPECT_TRUE(c[0].get<Mode2dArgs>().planar);
+  EXPECT_EQ(c[1].verb, "scene2d");
+  EXPECT_EQ(c[1].get<Word>().word, "board.scene2d");
+  EXPECT_EQ(c[2].verb, "add2d");
+  EXPECT_EQ(c[2].get<Triangle2dArgs>().xy[4], 0.5f);
+  EXPECT_EQ(c[2].get<Triangle2dArgs>().xy[5], 1.0f);
+  EXPECT_EQ(c[3].verb, "ray2d");
+  EXPECT_EQ(c[3].get<Ray2dArgs>().values[0], -1.0f);
+  EXPECT_EQ(c[3].get<Ray2dArgs>().values[2], 1.0f);
+  EXPECT_FALSE(c[4].get<Mode2dArgs>().planar);
   const std::pair<const char*, const char*> errors[] = {
       {"mode\n", "b.txt:1: usage: mode 2d|3d"},
       {"mode 4d\n", "usage: mode 2d|3d"},
@@ -271,13 +275,14 @@ TEST(Script, BenchChartCommands) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 3u);
-  EXPECT_EQ(c[0].kind, CommandKind::LoadBench);
-  EXPECT_EQ(c[0].name, "out/bench.json");
-  EXPECT_EQ(c[1].kind, CommandKind::ShowChart);
-  EXPECT_TRUE(c[1].on);
-  EXPECT_EQ(c[1].params, (std::vector<std::string>{"x=t-error", "speed=1t", "y=log", "labels=off", "group=2"}));
-  EXPECT_EQ(c[2].kind, CommandKind::ShowChart);
-  EXPECT_FALSE(c[2].on);
+  EXPECT_EQ(c[0].verb, "load-bench");
+  EXPECT_EQ(c[0].get<Word>().word, "out/bench.json");
+  EXPECT_EQ(c[1].verb, "show-chart");
+  EXPECT_TRUE(c[1].get<ShowChartArgs>().on);
+  EXPECT_EQ(c[1].get<ShowChartArgs>().settings,
+            (std::vector<std::string>{"x=t-error", "speed=1t", "y=log", "labels=off", "group=2"}));
+  EXPECT_EQ(c[2].verb, "show-chart");
+  EXPECT_FALSE(c[2].get<ShowChartArgs>().on);
 
   const std::pair<const char*, const char*> errors[] = {
       {"load-bench\n", "t.txt:1: usage: load-bench FILE"},
@@ -304,16 +309,16 @@ TEST(Script, StateCommands) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 4u);
-  EXPECT_EQ(c[0].kind, CommandKind::Ray);
-  EXPECT_EQ(c[0].values[0], 0.5f);
-  EXPECT_EQ(c[0].values[5], -1.0f);
-  EXPECT_EQ(c[0].values[6], 0.25f);
-  EXPECT_TRUE(std::isinf(c[0].values[7]));
-  EXPECT_EQ(c[1].values[7], 2.5f);
-  EXPECT_EQ(c[2].values[6], 0.0f);  // without them: [0, inf)
-  EXPECT_TRUE(std::isinf(c[2].values[7]));
-  EXPECT_EQ(c[3].kind, CommandKind::SaveState);
-  EXPECT_EQ(c[3].name, "s.state");
+  EXPECT_EQ(c[0].verb, "ray");
+  EXPECT_EQ(c[0].get<RayArgs>().ray.org.x, 0.5f);
+  EXPECT_EQ(c[0].get<RayArgs>().ray.dir.z, -1.0f);
+  EXPECT_EQ(c[0].get<RayArgs>().ray.tmin, 0.25f);
+  EXPECT_TRUE(std::isinf(c[0].get<RayArgs>().ray.tmax));
+  EXPECT_EQ(c[1].get<RayArgs>().ray.tmax, 2.5f);
+  EXPECT_EQ(c[2].get<RayArgs>().ray.tmin, 0.0f);  // without them: [0, inf)
+  EXPECT_TRUE(std::isinf(c[2].get<RayArgs>().ray.tmax));
+  EXPECT_EQ(c[3].verb, "save-state");
+  EXPECT_EQ(c[3].get<Word>().word, "s.state");
   const std::pair<const char*, const char*> errors[] = {
       {"ray 0 0 3 0 0 -1 0\n", "usage: ray OX OY OZ DX DY DZ [TMIN TMAX]"},
       {"ray 0 0 3 0 0 -1 2 1\n", "ray: TMIN is greater than TMAX"},
@@ -340,17 +345,18 @@ TEST(Script, FailedBuildReplay) {
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const auto& c = parsed.value();
   ASSERT_EQ(c.size(), 4u);
-  EXPECT_EQ(c[1].calls, 123456789012u);
-  EXPECT_EQ(c[2].kind, CommandKind::ConstructUntil);
-  EXPECT_EQ(c[2].calls, 123456789012u);
-  EXPECT_EQ(c[2].params, (std::vector<std::string>{"accelviz-cli check: s, hard/c: build threw: std::bad_alloc",
-                                                   "at node 3 (depth 1)"}));
-  EXPECT_EQ(c[3].calls, 0u);
+  EXPECT_EQ(c[1].get<StructureArgs>().calls, 123456789012u);
+  EXPECT_EQ(c[2].verb, "construct-until");
+  EXPECT_EQ(c[2].get<ConstructUntilArgs>().calls, 123456789012u);
+  EXPECT_EQ(c[2].get<ConstructUntilArgs>().header,
+            (std::vector<std::string>{"accelviz-cli check: s, hard/c: build threw: std::bad_alloc",
+                                      "at node 3 (depth 1)"}));
+  EXPECT_EQ(c[3].get<StructureArgs>().calls, 0u);
   // A script of its own: no structure line to bind, and its comments are not check's.
   parsed = parse_script("# my replay\nconstruct-until 5\n", "g.txt");
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
-  EXPECT_EQ(parsed.value()[0].calls, 5u);
-  EXPECT_TRUE(parsed.value()[0].params.empty());
+  EXPECT_EQ(parsed.value()[0].get<ConstructUntilArgs>().calls, 5u);
+  EXPECT_TRUE(parsed.value()[0].get<ConstructUntilArgs>().header.empty());
   for (const char* text : {"construct-until 0\n", "construct-until -3\n", "construct-until 1e3\n",
                            "construct-until\n", "construct-until 99999999999999999999999\n"}) {
     auto bad = parse_script(text, "h.txt");

@@ -8,10 +8,11 @@
     (issue #50: split where its steps are);
   * App is thin (issue #50): at most 20 data members and 800 lines over app/viewer/app.h and
     its app*.cpp files;
-  * the viewer's tools own their keys and script verbs (issue #42, app/viewer/commands.h):
-    every App file (app/viewer/app.h, app*.cpp) dispatches through the rows and holds no
-    switch over keys, no key a tool binds (a GLFW_KEY_ named in app/viewer/tools/), and no
-    verb or command kind a tool declares (the rows of the *_verbs.cpp files).
+  * the viewer's tools own their keys and script verbs (issues #42 and #50,
+    app/viewer/commands.h): every App file (app/viewer/app.h, app*.cpp) dispatches through
+    the rows and the verbs' table and holds no switch over keys, no key a tool binds (a
+    GLFW_KEY_ named in app/viewer/tools/), and no verb a tool registers (the
+    `add<Args>("verb", ...)` of the *_verbs.h headers; App's own, global_verbs.h, may be named).
 
     python3 tests/source/check_sources.py [REPO]
 
@@ -42,8 +43,9 @@ def app_files(repo):
     return ['app/viewer/app.h'] + sorted(f'app/viewer/{name}' for name in os.listdir(viewer)
                                          if name.startswith('app') and name.endswith('.cpp'))
 KEY = re.compile(r'\bGLFW_KEY_\w+')
-VERB_ROW = re.compile(r'\{\s*"([a-z0-9][a-z0-9-]*)",\s*CommandKind::(\w+)')
-KIND = re.compile(r'\bCommandKind::(\w+)')
+# A registration: verbs.template add<HeatmapScale>(\n "heatmap-scale", ...
+VERB_REGISTRATION = re.compile(r'\badd<[\w:]+>\(\s*"([a-z0-9][a-z0-9-]*)"')
+GLOBAL_VERBS = 'global_verbs.h'
 
 
 def code_of(line):
@@ -52,8 +54,8 @@ def code_of(line):
 
 
 def tool_rows(repo):
-    """The keys bound in app/viewer/tools/, and the verbs and command kinds of the tools' rows."""
-    keys, verbs, kinds = set(), set(), set()
+    """The keys bound in app/viewer/tools/, and the verbs the tools register."""
+    keys, verbs = set(), set()
     viewer = os.path.join(repo, 'app', 'viewer')
     for folder, _, files in os.walk(viewer):
         for name in files:
@@ -63,15 +65,14 @@ def tool_rows(repo):
             code = '\n'.join(code_of(line) for line in text.split('\n'))
             if os.path.basename(folder) == 'tools':
                 keys.update(KEY.findall(code))
-            if name.endswith('_verbs.cpp'):
-                verbs.update(verb for verb, _ in VERB_ROW.findall(code))
-                kinds.update(KIND.findall(code))
-    return keys, verbs, kinds
+            if name.endswith('_verbs.h') and name != GLOBAL_VERBS:
+                verbs.update(VERB_REGISTRATION.findall(code))
+    return keys, verbs
 
 
 def dispatch_problems(repo):
     """Per-tool keys and verbs in App's dispatchers."""
-    keys, verbs, kinds = tool_rows(repo)
+    keys, verbs = tool_rows(repo)
     if not keys or not verbs:
         return [f'{repo}/app/viewer: found no tool keys ({len(keys)}) or verbs ({len(verbs)}): the check reads nothing']
     # A verb as a row ({"tree", ...}) or compared (verb == "tree"); a word like "nodes" as a
@@ -90,10 +91,8 @@ def dispatch_problems(repo):
             for key in sorted(set(KEY.findall(code)) & keys):
                 problems.append(f'{rel}:{number}: {key} is a tool\'s key (its rows belong in the tool)')
             for verb in (a or b for a, b in verb_use.findall(code)):
-                problems.append(f'{rel}:{number}: "{verb}" is a tool\'s script verb (its rows belong in the tool)')
-            for kind in sorted(set(KIND.findall(code)) & kinds):
-                problems.append(f'{rel}:{number}: CommandKind::{kind} is a tool\'s command (its run row belongs in '
-                                'the tool)')
+                problems.append(f'{rel}:{number}: "{verb}" is a tool\'s script verb (its registration belongs in '
+                                'the tool\'s *_verbs.h)')
     return problems
 
 

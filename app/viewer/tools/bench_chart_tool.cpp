@@ -13,6 +13,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "bench_chart_verbs.h"
 #include "panels.h"
 #include "window_layout.h"
 
@@ -559,33 +560,13 @@ void bench_chart_section(BenchChartState& state) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: bench_chart_verbs.cpp)
+// Script verbs (bench_chart_verbs.h)
 
-std::vector<VerbRun> bench_chart_script_verbs(BenchChartState& state, ToolHost& host) {
-  return {
-      {CommandKind::LoadBench,
-       [&state](const ScriptCommand& c, ScriptHost&) { return load_bench_into(state, c.name); }},
-      {CommandKind::ShowChart, [&state, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         if (!c.on) {
-           state.open = false;
-           return {};
-         }
-         if (!state.data)
-           return accel::make_error("show-chart: no bench JSON loaded (load-bench FILE or --bench-json FILE first)");
-         ChartOptions options = state.options;
-         for (const std::string& setting : c.params) set_chart_option(options, setting);  // checked by the parser
-         if (options.group >= state.data->groups.size())
-           return accel::make_error("show-chart: group=" + std::to_string(options.group + 1) + ", but " +
-                                    state.data->path + " has " + std::to_string(state.data->groups.size()) +
-                                    " group(s) of scene and rays");
-         state.options = options;
-         state.open = true;
-         host.show_ui();
-         return {};
-       }}};
+void BenchChartTool::add_verbs(VerbTable& table, ToolHost& host) {
+  // The runs need only the chart's state (bench_chart.h), so they bind to it.
+  ToolVerbs<BenchChartState> verbs(table, state_, host);
+  bench_chart_verbs(verbs);
 }
-
-std::vector<VerbRun> BenchChartTool::script_verbs(ToolHost& host) { return bench_chart_script_verbs(state_, host); }
 
 void BenchChartTool::section(ToolHost&, PanelSection section) {
   if (section == PanelSection::Own && ImGui::CollapsingHeader("Speed vs error chart")) bench_chart_section(state_);

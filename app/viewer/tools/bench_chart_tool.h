@@ -1,7 +1,7 @@
 #pragma once
 // The speed-against-error chart as a tool (bench_chart.h computes it): the "Speed vs
 // error" window, the main panel's section that loads a file and opens it, and the chart's
-// script verbs (GL-free half in bench_chart_verbs.cpp).
+// script verbs (bench_chart_verbs.h).
 #include <glm/vec2.hpp>
 
 #include "bench_chart.h"
@@ -14,7 +14,7 @@ namespace viz {
 class BenchChartTool final : public Tool {
  public:
   const char* name() const override { return "speed vs error chart"; }
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void section(ToolHost& host, PanelSection section) override;
   void panels(ToolHost& host) override;
 
@@ -33,9 +33,6 @@ class BenchChartTool final : public Tool {
 /// `apply_layout` is set and the first time the window appears; otherwise the user may
 /// move it. Call between ImGui::NewFrame() and ImGui::Render().
 void bench_chart_window(BenchChartState& state, glm::vec2 pos, glm::vec2 size, bool apply_layout);
-
-/// The chart's script verbs (load-bench, show-chart) on `state`; `host` shows the panels.
-std::vector<VerbRun> bench_chart_script_verbs(BenchChartState& state, ToolHost& host);
 
 /// The main panel's section: a path field with Load (opens the window on success, shows
 /// the error otherwise) and a button that shows or hides the window.

@@ -12,6 +12,7 @@
 #include "planar_geometry.h"
 #include "scene2d.h"
 #include "tool_host.h"
+#include "tools/blackboard_verbs.h"
 #include "tools/structure_session.h"
 
 namespace viz {
@@ -38,30 +39,9 @@ std::vector<KeyBinding> BlackboardTool::keys(ToolHost& host) {
   };
 }
 
-std::vector<VerbRun> BlackboardTool::script_verbs(ToolHost& host) {
-  return {
-      {CommandKind::Mode,
-       [this, &host](const ScriptCommand& c, ScriptHost& script) -> accel::Status {
-         if (auto st = set_mode_2d(c.on, host); !st) return st;
-         host.settle_camera(script);
-         return {};
-       }},
-      {CommandKind::Scene2d,
-       [this, &host](const ScriptCommand& c, ScriptHost& script) -> accel::Status {
-         if (auto st = load_scene2d(c.name, host); !st) return st;
-         host.settle_camera(script);
-         return {};
-       }},
-      {CommandKind::Add2d,
-       [this, &host](const ScriptCommand& c, ScriptHost&) {
-         return add_triangle_2d({c.values[0], c.values[1], c.values[2], c.values[3], c.values[4], c.values[5]}, host);
-       }},
-      {CommandKind::Ray2d,
-       [this, &host](const ScriptCommand& c, ScriptHost&) {
-         return set_ray_2d(c.values[0], c.values[1], c.values[2], c.values[3], host);
-       }},
-      {CommandKind::Save2d, [this, &host](const ScriptCommand& c, ScriptHost&) { return save_scene2d(c.name, host); }},
-  };
+void BlackboardTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<BlackboardTool> verbs(table, *this, host);
+  blackboard_verbs(verbs);
 }
 
 void BlackboardTool::on_event(ToolEvent event, ToolHost& host) {

@@ -3,7 +3,7 @@
 // docs/hits.md) seen from above by the camera's top-down orthographic view, and built and
 // traversed by the very structures of the 3D mode. This tool switches the mode (D), edits
 // the scene with the mouse (BlackboardEditor: corners, moves, rays, deletes; Esc forgets the
-// corners) and its script verbs (GL-free half in blackboard_verbs.cpp), saves it, and draws
+// corners) and its script verbs (blackboard_verbs.h), saves it, and draws
 // the board's grid of world units and the corners placed.
 #include <array>
 #include <optional>
@@ -19,7 +19,7 @@ class BlackboardTool final : public Tool {
  public:
   const char* name() const override { return "blackboard"; }
   std::vector<KeyBinding> keys(ToolHost& host) override;
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override { lines_.emplace(GL_LINES); }
   void release_gl() override { lines_.reset(); }
   void on_event(ToolEvent event, ToolHost& host) override;

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "panels.h"
+#include "tools/build_player_verbs.h"
 #include "tools/structure_session.h"
 #include "tools/transport_controls.h"
 #include "tools/ui_colors.h"
@@ -371,7 +372,7 @@ void BuildPlayer::code_panel(const PanelPlace& where, ImFont* mono) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: build_player_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/build_player_verbs.h)
 
 std::vector<KeyBinding> BuildPlayer::keys(ToolHost& host) {
   std::vector<KeyBinding> rows = {
@@ -396,58 +397,9 @@ std::vector<KeyBinding> BuildPlayer::keys(ToolHost& host) {
   return rows;
 }
 
-std::vector<VerbRun> BuildPlayer::script_verbs(ToolHost& host) {
-  // The errors name the command: its message alone would not say which step failed.
-  auto need = [this](const char* verb) -> accel::Status {
-    if (auto st = need_trace(); !st) return accel::make_error(std::string(verb) + ": " + st.error().message);
-    return {};
-  };
-  return {
-      {CommandKind::Construct,
-       [&host, need](const ScriptCommand&, ScriptHost&) -> accel::Status {
-         if (auto st = host.session().need_structure(); !st) return st;
-         host.construct();  // synchronous in script mode; in the window the playlist waits for it
-         if (!host.synchronous()) return {};
-         return need("construct");
-       }},
-      {CommandKind::ConstructUntil,
-       [this, &host, need](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         // No need_structure(): a failed build's replay has none (its structure line's build
-         // stopped too); what it needs is a student's structure, whose build log is counted.
-         StructureSession& session = host.session();
-         const StructureRequest request = session.current_request();
-         auto info = accel::find_structure(request.name);
-         if (!info) return info.error();
-         if (!info.value()->student)
-           return accel::make_error("construct-until: " + request.name +
-                                    " is not a student's structure (only the kit counts build-log calls; use "
-                                    "construct)");
-         construct_until(session.scene_ptr(), request, c.calls, c.params, host.synchronous());
-         if (!host.synchronous()) return {};
-         return need("construct-until");
-       }},
-      {CommandKind::BuildStep,
-       [this, &host, need](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         if (auto st = need("build-step"); !st) return st;
-         player_.pause();
-         const size_t from = player_.step();
-         step_clock(player_, c.step, static_cast<size_t>(c.ints[0]));
-         set_active(true);
-         host.walk_recorded(player_, from, h);
-         return {};
-       }},
-      {CommandKind::PrintBuildStep,
-       [this, need](const ScriptCommand&, ScriptHost&) -> accel::Status {
-         if (auto st = need("print-build-step"); !st) return st;
-         print_script_line(step_line());
-         return {};
-       }},
-      {CommandKind::SahPlot,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         set_sah_plot(c.on);
-         return {};
-       }},
-  };
+void BuildPlayer::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<BuildPlayer> verbs(table, *this, host);
+  build_player_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -36,7 +36,7 @@ class BuildPlayer final : public Tool {
   std::vector<KeyBinding> keys(ToolHost& host) override;
   /// construct, construct-until, build-step, print-build-step, sah-plot; `host` gives the
   /// structure.
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override { gl_.create(); }
   void release_gl() override { gl_.release(); }
   /// A new scene or structure forgets the recording (it was of another one).

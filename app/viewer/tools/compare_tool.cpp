@@ -9,6 +9,7 @@
 
 #include "panels.h"
 #include "params.h"
+#include "tools/compare_verbs.h"
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
 #include "tools/ui_colors.h"
@@ -167,7 +168,7 @@ void CompareTool::builtin_lines() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: compare_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/compare_verbs.h)
 
 std::vector<KeyBinding> CompareTool::keys(ToolHost& host) {
   return {{GLFW_KEY_C, "C", "Compare: the same ray through every structure and traversal order",
@@ -178,14 +179,9 @@ std::vector<KeyBinding> CompareTool::keys(ToolHost& host) {
             }}};
 }
 
-std::vector<VerbRun> CompareTool::script_verbs(ToolHost& host) {
-  return {{CommandKind::Compare, [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             if (auto st = host.ray().need_trace(); !st) return st;
-             host.start_compare();
-             set_open(true);
-             print_rows();
-             return {};
-           }}};
+void CompareTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<CompareTool> verbs(table, *this, host);
+  compare_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -41,7 +41,7 @@ class CompareTool final : public Tool {
   const char* name() const override { return "compare"; }
   /// C: compare the debug ray; `host` gives the ray and starts the run.
   std::vector<KeyBinding> keys(ToolHost& host) override;
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void wait() override { job_.wait(); }
   /// A new scene forgets the rows; a new ray runs again while the window is open.
   void on_event(ToolEvent event, ToolHost& host) override;

@@ -10,6 +10,7 @@
 #include "panels.h"
 #include "registry.h"
 #include "structure_view.h"
+#include "tools/heatmap_verbs.h"
 #include "tools/structure_session.h"
 #include "tools/ui_colors.h"
 #include "window_layout.h"
@@ -266,7 +267,7 @@ void HeatmapTool::draw_image(Renderer& renderer, const HeatmapView& view) {
 void HeatmapTool::release_gl() { texture_.reset(); }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: heatmap_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/heatmap_verbs.h)
 
 std::vector<KeyBinding> HeatmapTool::keys(ToolHost&) {
   return {{GLFW_KEY_M, "M", "heat map: off, nodes visited, triangles tested, off", [this](const KeyPress&) {
@@ -275,53 +276,9 @@ std::vector<KeyBinding> HeatmapTool::keys(ToolHost&) {
            }}};
 }
 
-std::vector<VerbRun> HeatmapTool::script_verbs(ToolHost& host) {
-  // A change the image depends on: computed now in script mode, from the camera as drawn.
-  auto recompute = [this, &host](ScriptHost& h) -> accel::Status {
-    host.settle_camera(h);
-    if (auto st = host.session().need_structure(); !st) return st;
-    compute_now(host.heatmap_view());
-    return {};
-  };
-  return {
-      {CommandKind::Heatmap,
-       [this, recompute](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         set_on(c.name != "off");
-         if (!on()) return {};
-         accel::CostMetric metric = accel::CostMetric::NodesVisited;
-         accel::parse_cost_metric(c.name, &metric);  // checked by the parser
-         set_metric(metric);
-         return recompute(h);
-       }},
-      {CommandKind::HeatmapScale,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         HeatmapScale scale;
-         scale.fixed = c.on;
-         scale.lo = c.values[0];
-         scale.hi = c.values[1];
-         set_scale(scale);
-         return {};
-       }},
-      {CommandKind::HeatmapDiff,
-       [this, recompute](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         std::optional<StructureRequest> other;
-         if (c.on) {
-           other.emplace();
-           other->name = c.name;
-           other->params = c.params;
-         }
-         set_difference(other);
-         if (!on()) return {};
-         if (auto st = recompute(h); !st) return st;
-         if (!error().empty()) return accel::make_error(error());
-         return {};
-       }},
-      {CommandKind::PrintHeatmap,
-       [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
-         print_script_line(summary());
-         return {};
-       }},
-  };
+void HeatmapTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<HeatmapTool> verbs(table, *this, host);
+  heatmap_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -33,7 +33,7 @@ class HeatmapTool final : public Tool {
   const char* name() const override { return "heat map"; }
   /// M cycles the metric.
   std::vector<KeyBinding> keys(ToolHost& host) override;
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override;
   void release_gl() override;
   void wait() override { job_.wait(); }
@@ -81,9 +81,6 @@ class HeatmapTool final : public Tool {
   bool computing() const { return on_ && job_.busy(); }
   /// Size of the image being computed.
   glm::ivec2 computing_size() const { return running_.size; }
-
-  /// Its key (M: cycle the metric) and script verbs (heatmap, heatmap-scale, heatmap-diff,
-  /// print-heatmap); `host` gives the view and the structure.
 
   /// The main panel's "Cost heat map" section.
   void settings_section();

@@ -7,6 +7,7 @@
 #include "panels.h"
 #include "tools/build_player.h"
 #include "tools/ray_debugger.h"
+#include "tools/node_display_verbs.h"
 #include "tools/structure_session.h"
 #include "tools/tree_diagram.h"
 #include "window_layout.h"
@@ -212,50 +213,11 @@ void NodeDisplay::release_gl() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: node_display_verbs.cpp)
+// Script verbs (tools/node_display_verbs.h)
 
-std::vector<VerbRun> NodeDisplay::script_verbs(ToolHost& host) {
-  return {
-      {CommandKind::Show,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         switch (c.show) {
-           case ShowMode::All:
-             show_all();
-             break;
-           case ShowMode::Leaves:
-             show_leaves();
-             break;
-           case ShowMode::Depth:
-             show_depths(c.ints[0], c.ints[1]);
-             break;
-         }
-         return {};
-       }},
-      {CommandKind::Mesh,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         set_mesh_mode(c.name == "solid"         ? MeshStyle::Mode::Solid
-                       : c.name == "translucent" ? MeshStyle::Mode::Translucent
-                       : c.name == "wireframe"   ? MeshStyle::Mode::Wireframe
-                                                 : MeshStyle::Mode::Hidden);
-         return {};
-       }},
-      {CommandKind::EmptyCells,
-       [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         set_empty_cells(c.on, host.session().shown());
-         host.session().set_empty_cells(c.on);
-         return {};
-       }},
-      {CommandKind::Nodes,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         set_visible(c.on);
-         return {};
-       }},
-      {CommandKind::Opacity,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         set_opacity(c.values[0]);
-         return {};
-       }},
-  };
+void NodeDisplay::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<NodeDisplay> verbs(table, *this, host);
+  node_display_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -19,7 +19,7 @@ class NodeDisplay final : public Tool {
  public:
   // ---- The tool (tool.h)
   const char* name() const override { return "nodes"; }
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override;
   void release_gl() override;
   /// A new structure's nodes; the defaults again for a playlist going back.

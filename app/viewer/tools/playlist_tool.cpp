@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "tools/playlist_verbs.h"
 #include "tools/ui_colors.h"
 #include "tool_host.h"
 
@@ -95,7 +96,7 @@ std::optional<size_t> PlaylistTool::states_section() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: playlist_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/playlist_verbs.h)
 
 std::vector<KeyBinding> PlaylistTool::keys(ToolHost& host) {
   // A presenter's clicker sends PgDn / PgUp (some: the down and up arrows). Shift leaves
@@ -115,28 +116,9 @@ std::vector<KeyBinding> PlaylistTool::keys(ToolHost& host) {
           {GLFW_KEY_UP, keys, help, move(false, false)}};
 }
 
-std::vector<VerbRun> PlaylistTool::script_verbs(ToolHost& host) {
-  auto move = [this, &host](bool forward) {
-    return [this, &host, forward](const ScriptCommand&, ScriptHost& h) -> accel::Status {
-      if (!loaded()) return accel::make_error("no playlist loaded (use playlist FILE first)");
-      host.go_to_state(forward ? next_index() : prev_index());
-      host.run_playlist(&h);
-      return {};
-    };
-  };
-  return {{CommandKind::Playlist,
-           [&host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-             if (auto st = host.load_playlist(c.name); !st) return st;
-             host.run_playlist(&h);
-             return {};
-           }},
-          {CommandKind::Next, move(true)},
-          {CommandKind::Prev, move(false)},
-          {CommandKind::PrintState, [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             if (!loaded()) return accel::make_error("print-state: no playlist loaded");
-             print_script_line(state_line());
-             return {};
-           }}};
+void PlaylistTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<PlaylistTool> verbs(table, *this, host);
+  playlist_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

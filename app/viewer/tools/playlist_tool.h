@@ -25,7 +25,7 @@ class PlaylistTool final : public Tool {
   /// moves between states.
   std::vector<KeyBinding> keys(ToolHost& host) override;
   /// playlist, next, prev, print-state.
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   /// In the window: the queued commands of the state, one per frame.
   void update(ToolHost& host, float dt) override;
   /// Own: the "Playlist" section (open while one is loaded).

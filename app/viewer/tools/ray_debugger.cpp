@@ -13,6 +13,7 @@
 #include "tools/build_player.h"
 #include "tools/compare_tool.h"
 #include "tools/false_claims.h"
+#include "tools/ray_debugger_verbs.h"
 #include "tools/structure_session.h"
 #include "tools/transport_controls.h"
 #include "tools/traversal_numbers.h"
@@ -332,7 +333,7 @@ void RayDebugger::highlight_options() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: ray_debugger_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/ray_debugger_verbs.h)
 
 std::vector<KeyBinding> RayDebugger::keys(ToolHost&) {
   std::vector<KeyBinding> rows = transport_keys(
@@ -346,101 +347,31 @@ std::vector<KeyBinding> RayDebugger::keys(ToolHost&) {
   return rows;
 }
 
-std::vector<VerbRun> RayDebugger::script_verbs(ToolHost& host) {
-  // print-hit, print-step, print-ray: one line, once there is what it describes.
-  using Need = accel::Status (RayDebugger::*)() const;
-  using Line = std::string (RayDebugger::*)() const;
-  auto print = [this](Need need, Line line) {
-    return [this, need, line](const ScriptCommand&, ScriptHost&) -> accel::Status {
-      if (auto st = (this->*need)(); !st) return st;
-      print_script_line((this->*line)());
-      return {};
-    };
-  };
-  return {
-      {CommandKind::RayAtPixel,
-       [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         host.settle_camera(h);
-         const glm::ivec2 fb = host.framebuffer();
-         const glm::ivec4 view = host.view_area();
-         const float x = c.values[0], y = c.values[1];
-         if (x < 0.0f || y < 0.0f || x >= static_cast<float>(fb.x) || y >= static_cast<float>(fb.y)) {
-           char msg[128];
-           std::snprintf(msg, sizeof msg, "ray-at-pixel: (%g, %g) is outside the %dx%d window", static_cast<double>(x),
-                         static_cast<double>(y), fb.x, fb.y);
-           return accel::make_error(msg);
-         }
-         if (x < static_cast<float>(view.x) || x >= static_cast<float>(view.x + view.z)) {
-           char msg[160];
-           std::snprintf(msg, sizeof msg,
-                         "ray-at-pixel: x = %g is under a panel; the 3D view spans x = %d..%d (or: panel off)",
-                         static_cast<double>(x), view.x, view.x + view.z - 1);
-           return accel::make_error(msg);
-         }
-         // Pixel centres: "X Y" names the pixel, as a click into it does.
-         host.shoot_at_pixel(x + 0.5f, y + 0.5f, shoot_from_saved_);
-         return {};
-       }},
-      {CommandKind::Ray,
-       [&host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         accel::Ray r;
-         r.org = {c.values[0], c.values[1], c.values[2]};
-         r.dir = {c.values[3], c.values[4], c.values[5]};
-         r.tmin = c.values[6];
-         r.tmax = c.values[7];
-         host.set_ray(r, "script");
-         return {};
-       }},
-      {CommandKind::Step,
-       [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         if (auto st = need_trace(); !st) return st;
-         accel::TracePlayer& p = ray_.player;
-         p.pause();
-         host.build().set_active(false);  // stepping the ray: back to the traversal's panels
-         const size_t from = p.step();
-         if (c.step == StepMode::Hit)
-           p.jump_to_hit();
-         else
-           step_clock(p, c.step, static_cast<size_t>(c.ints[0]));
-         host.walk_recorded(p, from, h);
-         return {};
-       }},
-      {CommandKind::Frames,
-       [this](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         if (auto st = need_trace(); !st) return st;
-         constexpr size_t kMaxFrames = 5000;
-         accel::TracePlayer& p = ray_.player;
-         const size_t first = p.step(), last = p.size() - 1;
-         if (last - first + 1 > kMaxFrames)
-           return accel::make_error("frames: " + std::to_string(last - first + 1) + " steps remain; at most " +
-                                    std::to_string(kMaxFrames) + " frames (step closer to the end first)");
-         for (size_t s = first; s <= last; ++s) {
-           p.seek(s);
-           char path[4096];
-           std::snprintf(path, sizeof path, "%s%04zu.png", c.name.c_str(), s);
-           if (auto st = h.screenshot(path); !st) return st;
-         }
-         return {};
-       }},
-      {CommandKind::PrintHit, print(&RayDebugger::need_ray, &RayDebugger::hit_line)},
-      {CommandKind::PrintStep, print(&RayDebugger::need_trace, &RayDebugger::step_line)},
-      {CommandKind::PrintRay, print(&RayDebugger::need_ray, &RayDebugger::ray_line)},
-      {CommandKind::PrintClaims,
-       [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
-         if (auto st = need_trace(); !st) return accel::make_error("print-claims: " + st.error().message);
-         for (const std::string& line : claims_lines(ray_.audit)) print_script_line(line);
-         return {};
-       }},
-      {CommandKind::PrintVars,
-       [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
-         if (auto st = need_trace(); !st) return accel::make_error("print-vars: " + st.error().message);
-         const BuiltStructure* built = host.session().current();
-         const auto& events = ray_.player.events();
-         print_script_line(vars_line(ray_.vars, events, accel::trace_highlight(events, ray_.player.step()),
-                                     built ? built->kind : TraversalKind::Unknown));
-         return {};
-       }},
-  };
+void RayDebugger::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<RayDebugger> verbs(table, *this, host);
+  ray_debugger_verbs(verbs);
+}
+
+accel::Status RayDebugger::ray_at_pixel(ToolHost& host, float x, float y, ScriptHost& script) {
+  host.settle_camera(script);
+  const glm::ivec2 fb = host.framebuffer();
+  const glm::ivec4 view = host.view_area();
+  if (x < 0.0f || y < 0.0f || x >= static_cast<float>(fb.x) || y >= static_cast<float>(fb.y)) {
+    char msg[128];
+    std::snprintf(msg, sizeof msg, "ray-at-pixel: (%g, %g) is outside the %dx%d window", static_cast<double>(x),
+                  static_cast<double>(y), fb.x, fb.y);
+    return accel::make_error(msg);
+  }
+  if (x < static_cast<float>(view.x) || x >= static_cast<float>(view.x + view.z)) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg,
+                  "ray-at-pixel: x = %g is under a panel; the 3D view spans x = %d..%d (or: panel off)",
+                  static_cast<double>(x), view.x, view.x + view.z - 1);
+    return accel::make_error(msg);
+  }
+  // Pixel centres: "X Y" names the pixel, as a click into it does.
+  host.shoot_at_pixel(x + 0.5f, y + 0.5f, shoot_from_saved_);
+  return {};
 }
 
 // ---------------------------------------------------------------------------------------

@@ -31,7 +31,7 @@ class RayDebugger final : public Tool {
   std::vector<KeyBinding> keys(ToolHost& host) override;
   /// The ray, stepping, frames and the print-* of the ray; `host` gives the camera and the
   /// other tools.
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override { gl_.create(); }
   void release_gl() override { gl_.release(); }
   /// A new scene forgets the ray; a new structure replays it; new colours recolour it.
@@ -93,6 +93,11 @@ class RayDebugger final : public Tool {
   std::string step_line() const;
   /// The ray in hexadecimal floats, "ox oy oz dx dy dz" (print-ray).
   std::string ray_line() const;
+
+  /// `ray-at-pixel X Y`: shoots through pixel (x, y) from the top-left as a click does, once
+  /// the camera is the one drawn; an error when the pixel is outside the window or under a
+  /// panel.
+  accel::Status ray_at_pixel(ToolHost& host, float x, float y, ScriptHost& script);
 
   /// Remembers `view` as the saved viewpoint.
   void save_view(const accel::PinholeCamera& view) { saved_view_ = view; }

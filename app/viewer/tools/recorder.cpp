@@ -15,6 +15,7 @@
 #include "tool_host.h"
 #include "tools/build_player.h"
 #include "tools/ray_debugger.h"
+#include "tools/recorder_verbs.h"
 
 namespace viz {
 namespace {
@@ -158,26 +159,11 @@ std::string Recorder::notice() const {
 }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: recorder_verbs.cpp)
+// Script verbs (tools/recorder_verbs.h)
 
-std::vector<VerbRun> Recorder::script_verbs(ToolHost&) {
-  return {{CommandKind::Record,
-           [this](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-             RecordOptions o;
-             o.fps = c.ints[0];
-             o.ui = c.on;
-             o.width = static_cast<int>(c.values[0]);
-             o.height = static_cast<int>(c.values[1]);
-             if (auto st = start(c.name, o); !st) return st;
-             h.render(1);  // the first frame: the animation as it stands
-             if (!recording()) return accel::make_error("record: " + notice());
-             return {};
-           }},
-          {CommandKind::RecordStop, [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             if (auto st = stop(); !st) return st;
-             print_script_line(notice());  // "wrote PATH (N frames)"
-             return {};
-           }}};
+void Recorder::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<Recorder> verbs(table, *this, host);
+  recorder_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -31,7 +31,7 @@ class Recorder final : public Tool {
   /// R starts and stops a recording; F12 takes a screenshot.
   std::vector<KeyBinding> keys(ToolHost& host) override;
   /// record, record stop.
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   /// A new step of the animation (traversal or construction) is a new frame of a recording.
   void update(ToolHost& host, float dt) override;
   /// Own: the "Recording" section.

@@ -18,6 +18,7 @@
 #include "memory_budget.h"
 #include "ray_gen.h"
 #include "registry.h"
+#include "tools/structure_session_verbs.h"
 
 namespace viz {
 using ui::fmt;
@@ -372,79 +373,11 @@ void StructureSession::wait() { builds_.wait(); }
 void StructureSession::release_gl() { bounds_lines_.reset(); }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: structure_session_verbs.cpp)
+// Script verbs (tools/structure_session_verbs.h)
 
-std::vector<VerbRun> StructureSession::script_verbs(ToolHost& host) {
-  // A change of scene or structure: the other tools hear of it, and in script mode the
-  // structure must be there before the next command.
-  auto changed = [&host](accel::Status st) {
-    host.sync_session();
-    return st ? host.loaded() : st;
-  };
-  return {
-      {CommandKind::Scene,
-       [this, changed](const ScriptCommand& c, ScriptHost&) { return changed(load_scene(c.name)); }},
-      {CommandKind::Preset,
-       [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-         const Preset* p = find_preset(presets_, c.name);
-         if (!p) {
-           std::string names;
-           for (const Preset& q : presets_) names += (names.empty() ? "" : ", ") + q.name;
-           return accel::make_error("unknown preset '" + c.name + "' (valid: " + names + ")");
-         }
-         h.render(1);  // the current layout: the preset's centre ray goes through the 3D view's centre
-         if (auto st = host.apply_preset(*p); !st) return st;
-         return host.loaded();
-       }},
-      {CommandKind::Structure,
-       [this, &host, changed](const ScriptCommand& c, ScriptHost&) {
-         switch_structure(c.name, c.params, c.calls);
-         if (c.calls == 0) return changed({});
-         // A failed build's replay (construct-until follows): its build stopped, so there is
-         // no structure to wait for; the construct-until says how the replay went.
-         host.sync_session();
-         return accel::Status{};
-       }},
-      {CommandKind::Kernel,
-       [this, changed](const ScriptCommand& c, ScriptHost&) {
-         accel::Kernel k = accel::Kernel::Watertight;
-         accel::parse_kernel(c.name, &k);  // checked by the parser
-         set_kernel(k);
-         return changed({});
-       }},
-      {CommandKind::MemoryLimit,
-       [this, changed](const ScriptCommand& c, ScriptHost&) {
-         set_memory_limit(c.bytes);
-         return changed({});
-       }},
-      {CommandKind::PrintStats,
-       [this](const ScriptCommand&, ScriptHost&) -> accel::Status {
-         if (auto st = need_structure(); !st) return st;
-         const BuiltStructure& b = *current();
-         const accel::BuildStats& s = b.stats;
-         std::printf("stats %s %s nodes %zu leaves %zu depth %d memory %zu build_ms %.3f sah %.4g\n",
-                     b.request.name.c_str(), b.params_text.c_str(), s.nodes, s.leaves, s.max_depth, s.memory_bytes,
-                     s.build_ms, s.sah_cost);
-         std::fflush(stdout);
-         return {};
-       }},
-      {CommandKind::TraceRays,
-       [this](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-         if (auto st = need_structure(); !st) return st;
-         auto rays = accel::make_rays(c.name, scene());
-         if (!rays) return accel::make_error("trace-rays: " + rays.error().message);
-         // One thread: the same work natively and in the page, which has only one.
-         const auto start = std::chrono::steady_clock::now();
-         const std::vector<accel::Hit> hits = accel::trace_all(*current()->structure, rays.value(), 1);
-         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-         const size_t hit_count =
-             size_t(std::count_if(hits.begin(), hits.end(), [](const accel::Hit& h) { return h.valid(); }));
-         std::printf("trace-rays %s: %zu rays, %zu hits, %.1f ms (1 thread)\n", c.name.c_str(), hits.size(), hit_count,
-                     ms);
-         std::fflush(stdout);
-         return {};
-       }},
-  };
+void StructureSession::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<StructureSession> verbs(table, *this, host);
+  structure_session_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -42,7 +42,7 @@ class StructureSession final : public Tool {
  public:
   // ---- The tool (tool.h)
   const char* name() const override { return "structure"; }
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override;
   void release_gl() override;
   void wait() override;

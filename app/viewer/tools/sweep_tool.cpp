@@ -11,6 +11,7 @@
 #include "panels.h"
 #include "tools/compare_tool.h"
 #include "tools/structure_session.h"
+#include "tools/sweep_verbs.h"
 #include "tools/ui_colors.h"
 #include "window_layout.h"
 
@@ -205,16 +206,11 @@ void SweepTool::panel(const PanelPlace& where) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: sweep_verbs.cpp)
+// Script verbs (tools/sweep_verbs.h)
 
-std::vector<VerbRun> SweepTool::script_verbs(ToolHost& host) {
-  return {{CommandKind::Sweep, [this, &host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-             if (auto st = host.session().need_structure(); !st) return st;
-             if (auto st = configure(host.session().editor_info(), c.name, c.values[0], c.values[1], c.ints[0]); !st)
-               return st;
-             host.settle_camera(h);
-             return host.start_sweep();
-           }}};
+void SweepTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<SweepTool> verbs(table, *this, host);
+  sweep_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -23,7 +23,7 @@ class SweepTool final : public Tool {
   // ---- The tool (tool.h)
   const char* name() const override { return "sweep"; }
   /// `sweep`; `host` gives the structure and starts the run.
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void wait() override { job_.wait(); }
   void on_event(ToolEvent event, ToolHost& host) override;
   /// Own: the "Parameter sweep" section.

@@ -46,8 +46,9 @@ class Tool {
   // ---- Keys and verbs (commands.h): rows made once, when App is constructed
   /// The keys it answers, in the order a press is offered to them.
   virtual std::vector<KeyBinding> keys(ToolHost&) { return {}; }
-  /// Its script verbs' run halves.
-  virtual std::vector<VerbRun> script_verbs(ToolHost&) { return {}; }
+  /// Its script verbs, each one registration (commands.h: name, usage, help, typed
+  /// arguments, parse, run), bound to the tool and `host` into `table`.
+  virtual void add_verbs(VerbTable& /*table*/, ToolHost& /*host*/) {}
 
   // ---- GL: created once the window's context is current, released before it goes
   virtual void init_gl() {}

@@ -8,6 +8,7 @@
 #include "registry.h"
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
+#include "tools/trap_verbs.h"
 #include "tools/ui_colors.h"
 
 namespace viz {
@@ -122,23 +123,11 @@ void TrapTool::block(const DebugRay& ray, accel::TracePlayer& player) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Script verbs (their GL-free half: trap_verbs.cpp)
+// Script verbs (tools/trap_verbs.h)
 
-std::vector<VerbRun> TrapTool::script_verbs(ToolHost& host) {
-  return {{CommandKind::Trap,
-           [&host](const ScriptCommand& c, ScriptHost& h) -> accel::Status {
-             h.render(1);  // the current layout, so the scene is framed into the 3D view
-             return host.load_trap(c.name);
-           }},
-          {CommandKind::PrintNaive, [&host](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             if (auto st = host.ray().need_trace(); !st) return accel::make_error("print-naive: " + st.error().message);
-             print_script_line(accel::naive_line(accel::naive_first_leaf_hit(host.ray().ray().player.events())));
-             return {};
-           }},
-          {CommandKind::PrintTrap, [this, &host](const ScriptCommand&, ScriptHost&) -> accel::Status {
-             print_script_line(trap_line(host.session().current()));
-             return {};
-           }}};
+void TrapTool::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<TrapTool> verbs(table, *this, host);
+  trap_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

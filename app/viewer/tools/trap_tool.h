@@ -25,7 +25,7 @@ class TrapTool final : public Tool {
  public:
   // ---- The tool (tool.h)
   const char* name() const override { return "traps"; }
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void on_event(ToolEvent event, ToolHost& host) override;
   /// The naive answer on the current ray, and its step marked in the ray's steps list.
   void update(ToolHost& host, float dt) override;
@@ -58,8 +58,6 @@ class TrapTool final : public Tool {
   std::string trap_line(const BuiltStructure* built) const;
   /// The step the steps list marks ("naive stop"), or nothing.
   std::optional<size_t> marked_step() const;
-
-  /// Its script verbs (trap, print-naive, print-trap); `host` loads the trap's scene and ray.
 
   /// The "Lecture traps" buttons (main panel); returns the name of the one pressed, or "".
   std::string traps_section() const;

@@ -20,6 +20,7 @@
 #include "tools/build_player.h"
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
+#include "tools/tree_diagram_verbs.h"
 #include "tools/ui_colors.h"
 #include "tools/vars_panel.h"
 #include "window_layout.h"
@@ -652,7 +653,7 @@ void TreeDiagram::grid_table() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Keys and script verbs (their GL-free half: tree_diagram_verbs.cpp)
+// Keys and script verbs (the verbs registered in tools/tree_diagram_verbs.h)
 
 std::vector<KeyBinding> TreeDiagram::keys(ToolHost& host) {
   return {{GLFW_KEY_T, "T", "the tree diagram", [this, &host](const KeyPress&) {
@@ -662,23 +663,9 @@ std::vector<KeyBinding> TreeDiagram::keys(ToolHost& host) {
            }}};
 }
 
-std::vector<VerbRun> TreeDiagram::script_verbs(ToolHost& host) {
-  return {{CommandKind::Tree,
-           [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-             if (on() != c.on) host.relayout();
-             set_on(c.on);
-             if (c.on) host.show_ui();
-             return {};
-           }},
-          {CommandKind::TreeSelect, [this, &host](const ScriptCommand& c, ScriptHost&) -> accel::Status {
-             if (auto st = host.session().need_structure(); !st)
-               return accel::make_error("tree-select: " + st.error().message);
-             follow(host.session().current_ptr(), host.ray().ray(),
-                    host.build().active() ? host.build().replay() : nullptr);
-             if (auto st = select(static_cast<NodeId>(c.ints[0]), c.on); !st) return st;
-             host.show_ui();
-             return {};
-           }}};
+void TreeDiagram::add_verbs(VerbTable& table, ToolHost& host) {
+  ToolVerbs<TreeDiagram> verbs(table, *this, host);
+  tree_diagram_verbs(verbs);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -28,7 +28,7 @@ class TreeDiagram final : public Tool {
   /// T shows or hides the window; `host` lays the panels out again.
   std::vector<KeyBinding> keys(ToolHost& host) override;
   /// tree, tree-select; `host` gives the structure.
-  std::vector<VerbRun> script_verbs(ToolHost& host) override;
+  void add_verbs(VerbTable& table, ToolHost& host) override;
   void init_gl() override { gl_.create(); }
   void release_gl() override { gl_.release(); }
   void on_event(ToolEvent event, ToolHost& host) override;
