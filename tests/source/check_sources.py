@@ -8,6 +8,9 @@
     (issue #50: split where its steps are);
   * App is thin (issue #50): at most 20 data members and 800 lines over app/viewer/app.h and
     its app*.cpp files;
+  * no test names BVH builders by hand (issue #50): a braced list of two or more builder
+    names in tests/ is one the builders' table (bvh_builder_table()) should give; the docs'
+    builder lists are checked against the table by tests/docs/check_builder_lists.py;
   * the viewer's tools own their keys and script verbs (issues #42 and #50,
     app/viewer/commands.h): every App file (app/viewer/app.h, app*.cpp) dispatches through
     the rows and the verbs' table and holds no switch over keys, no key a tool binds (a
@@ -162,6 +165,37 @@ def long_functions(path, limit):
     return found
 
 
+def builder_names(repo):
+    """The BVH builders' names, read from the table's rows in core/structures/bvh_builders.cpp."""
+    text = open(os.path.join(repo, 'core', 'structures', 'bvh_builders.cpp'), encoding='utf-8').read()
+    return re.findall(r'\{BvhBuilderKind::\w+,\s*"([a-z_]+)"', text)
+
+
+def builder_list_problems(repo):
+    """Braced lists of builder names in the tests (`{"sah", "binned_sah"}`). "median" and "sah"
+    are also the kd-tree's split choices, so a list counts when it names another builder too."""
+    names = builder_names(repo)
+    if len(names) < 5:
+        return [f'core/structures/bvh_builders.cpp:1: found only {names} as BVH builders: the check reads nothing']
+    shared = {'median', 'sah'}
+    alternatives = '|'.join(map(re.escape, names))
+    named = re.compile(rf'"({alternatives})"')
+    problems = []
+    for folder, _, files in os.walk(os.path.join(repo, 'tests')):
+        for name in sorted(files):
+            if not SOURCE.search(name):
+                continue
+            path = os.path.join(folder, name)
+            text = open(path, encoding='utf-8').read()
+            for braces in re.finditer(r'\{[^{}]*\}', text):
+                found = set(named.findall(braces.group(0)))
+                if len(found) >= 2 and found - shared:
+                    line = text.count('\n', 0, braces.start()) + 1
+                    problems.append(f'{os.path.relpath(path, repo)}:{line}: names the builders {sorted(found)} by hand '
+                                    '(iterate bvh_builder_table())')
+    return problems
+
+
 def app_problems(repo):
     """App's data members and lines."""
     files = app_files(repo)
@@ -214,6 +248,7 @@ def main():
                             problems.append(f'{rel}:{number}: compares a structure name to a literal '
                                             '(take it from the registry entry)')
     problems += app_problems(repo)
+    problems += builder_list_problems(repo)
     problems += dispatch_problems(repo)
     for p in problems:
         print(p)
