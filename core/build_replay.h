@@ -74,6 +74,14 @@ class BuildReplay {
   void apply(const BuildEvent& e);
   uint32_t create(uint32_t id);
   void remove_subtree(uint32_t slot);
+  // apply()'s steps that change the tree or the grid, one per kind of event.
+  void apply_grid_resolution(const BuildEvent& e);
+  void apply_grid_insert(const BuildEvent& e);
+  void apply_node(const BuildEvent& e);
+  void apply_leaf(const BuildEvent& e, uint32_t s);
+  void apply_merge(const BuildEvent& e);
+  void apply_collapse(const BuildEvent& e, uint32_t s);
+  void apply_replace(const BuildEvent& e, uint32_t s);
 
   const BuildTrace* trace_;
   size_t applied_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <ostream>
 
@@ -358,9 +359,24 @@ void write_list(std::ostream& out, const char* key, const uint32_t* items, uint3
   out << ']';
 }
 
-}  // namespace
+/// `,"key":` and the number.
+void write_num_field(std::ostream& out, const char* key, double v) {
+  out << ",\"" << key << "\":";
+  write_num(out, v);
+}
 
-void write_build_trace_jsonl(const BuildTrace& trace, std::ostream& out) {
+/// `[a,b,...]` of numbers.
+void write_nums(std::ostream& out, std::initializer_list<double> values) {
+  out << '[';
+  for (auto v = values.begin(); v != values.end(); ++v) {
+    if (v != values.begin()) out << ',';
+    write_num(out, *v);
+  }
+  out << ']';
+}
+
+/// The first line: the trace's size and how much of the build it covers.
+void write_header(const BuildTrace& trace, std::ostream& out) {
   out << "{\"steps\":" << trace.events.size() << ",\"coverage\":\"" << trace.coverage() << "\",\"depth_limit\":";
   if (trace.depth_limit == std::numeric_limits<int>::max())
     out << "null";
@@ -368,110 +384,101 @@ void write_build_trace_jsonl(const BuildTrace& trace, std::ostream& out) {
     out << trace.depth_limit;
   out << ",\"max_depth\":" << trace.max_depth_seen << ",\"truncated\":" << (trace.truncated ? "true" : "false")
       << "}\n";
+}
+
+/// A Candidates step's planes: [pos, cost, left, right] each.
+void write_candidates(const BuildTrace& trace, const BuildEvent& e, std::ostream& out) {
+  out << ",\"axis\":" << int(e.axis) << ",\"planes\":[";
+  for (uint32_t i = 0; i < e.list_count; ++i) {
+    const SplitCandidate& c = trace.candidates_of(e)[i];
+    if (i) out << ',';
+    out << '[';
+    write_num(out, c.pos);
+    out << ',';
+    write_num(out, c.cost);
+    out << ',' << c.left << ',' << c.right << ']';
+  }
+  out << ']';
+}
+
+/// The fields of one step after its step, kind and node (docs/build-trace.md).
+void write_event_fields(const BuildTrace& trace, const BuildEvent& e, std::ostream& out) {
+  switch (e.kind) {
+    case BuildEventKind::SceneBox: write_box(out, "box", e.box); break;
+    case BuildEventKind::GridResolution:
+      write_box(out, "box", e.box);
+      write_num_field(out, "lambda", e.values[0]);
+      write_num_field(out, "n", e.values[1]);
+      write_num_field(out, "volume", e.values[2]);
+      write_num_field(out, "cube_root", e.values[3]);
+      out << ",\"cells\":[" << e.a << ',' << e.b << ',' << e.count << ']';
+      break;
+    case BuildEventKind::GridInsert:
+      out << ",\"prim\":" << e.prim << ",\"bbox_cells\":[" << e.lo[0] << ',' << e.lo[1] << ',' << e.lo[2] << ','
+          << e.hi[0] << ',' << e.hi[1] << ',' << e.hi[2] << ']';
+      write_list(out, "cells", trace.list(e), e.list_count);
+      break;
+    case BuildEventKind::Node:
+    case BuildEventKind::Unrecorded:
+      out << ",\"depth\":" << e.depth;
+      if (e.parent != kNoBuildNode) out << ",\"parent\":" << e.parent;
+      write_box(out, "box", e.box);
+      write_box(out, "centroids", e.centroids);
+      out << ",\"count\":" << e.count;
+      if (e.kind == BuildEventKind::Node) write_list(out, "prims", trace.list(e), e.list_count);
+      break;
+    case BuildEventKind::Axis:
+      out << ",\"axis\":" << int(e.axis);
+      if (e.axis == 3) {
+        out << ",\"dir\":";
+        write_nums(out, {e.dir.x, e.dir.y, e.dir.z});
+      }
+      break;
+    case BuildEventKind::Candidates: write_candidates(trace, e, out); break;
+    case BuildEventKind::Split:
+      out << ",\"axis\":" << int(e.axis);
+      write_num_field(out, "pos", e.pos);
+      write_num_field(out, "cost", e.cost);
+      write_num_field(out, "leaf_cost", e.values[0]);
+      out << ",\"left\":" << e.a << ",\"right\":" << e.b << ",\"both\":" << e.count;
+      if (e.values[1] == 1.0f) out << ",\"spatial\":true";
+      break;
+    case BuildEventKind::Leaf:
+      out << ",\"reason\":\"" << leaf_reason_name(e.reason) << '"';
+      write_list(out, "prims", trace.list(e), e.list_count);
+      break;
+    case BuildEventKind::Subdivide: write_list(out, "children", trace.list(e), e.list_count); break;
+    case BuildEventKind::Merge:
+      out << ",\"a\":" << e.a << ",\"b\":" << e.b;
+      write_box(out, "box", e.box);
+      break;
+    case BuildEventKind::InsertStep:
+      out << ",\"prim\":" << e.prim << ",\"depth\":" << e.depth << ",\"costs\":";
+      write_nums(out, {e.values[0], e.values[1], e.values[2]});
+      out << ",\"choice\":" << e.a;
+      break;
+    case BuildEventKind::Collapse: out << ",\"child\":" << e.a; break;
+    case BuildEventKind::Replace: out << ",\"replaces\":" << e.a; break;
+    case BuildEventKind::Fit:
+      write_box(out, "box", e.box);
+      if (e.sphere.radius >= 0.0f) {
+        out << ",\"sphere\":";
+        write_nums(out, {e.sphere.center.x, e.sphere.center.y, e.sphere.center.z, e.sphere.radius});
+      }
+      break;
+    case BuildEventKind::Done: out << ",\"nodes\":" << e.count; break;
+  }
+}
+
+}  // namespace
+
+void write_build_trace_jsonl(const BuildTrace& trace, std::ostream& out) {
+  write_header(trace, out);
   for (size_t k = 0; k < trace.events.size(); ++k) {
     const BuildEvent& e = trace.events[k];
     out << "{\"step\":" << k << ",\"kind\":\"" << build_event_kind_name(e.kind) << '"';
     if (e.node != kNoBuildNode) out << ",\"node\":" << e.node;
-    switch (e.kind) {
-      case BuildEventKind::SceneBox: write_box(out, "box", e.box); break;
-      case BuildEventKind::GridResolution:
-        write_box(out, "box", e.box);
-        out << ",\"lambda\":";
-        write_num(out, e.values[0]);
-        out << ",\"n\":";
-        write_num(out, e.values[1]);
-        out << ",\"volume\":";
-        write_num(out, e.values[2]);
-        out << ",\"cube_root\":";
-        write_num(out, e.values[3]);
-        out << ",\"cells\":[" << e.a << ',' << e.b << ',' << e.count << ']';
-        break;
-      case BuildEventKind::GridInsert:
-        out << ",\"prim\":" << e.prim << ",\"bbox_cells\":[" << e.lo[0] << ',' << e.lo[1] << ',' << e.lo[2] << ','
-            << e.hi[0] << ',' << e.hi[1] << ',' << e.hi[2] << ']';
-        write_list(out, "cells", trace.list(e), e.list_count);
-        break;
-      case BuildEventKind::Node:
-      case BuildEventKind::Unrecorded:
-        out << ",\"depth\":" << e.depth;
-        if (e.parent != kNoBuildNode) out << ",\"parent\":" << e.parent;
-        write_box(out, "box", e.box);
-        write_box(out, "centroids", e.centroids);
-        out << ",\"count\":" << e.count;
-        if (e.kind == BuildEventKind::Node) write_list(out, "prims", trace.list(e), e.list_count);
-        break;
-      case BuildEventKind::Axis:
-        out << ",\"axis\":" << int(e.axis);
-        if (e.axis == 3) {
-          out << ",\"dir\":[";
-          write_num(out, e.dir.x);
-          out << ',';
-          write_num(out, e.dir.y);
-          out << ',';
-          write_num(out, e.dir.z);
-          out << ']';
-        }
-        break;
-      case BuildEventKind::Candidates: {
-        out << ",\"axis\":" << int(e.axis) << ",\"planes\":[";
-        for (uint32_t i = 0; i < e.list_count; ++i) {
-          const SplitCandidate& c = trace.candidates_of(e)[i];
-          if (i) out << ',';
-          out << '[';
-          write_num(out, c.pos);
-          out << ',';
-          write_num(out, c.cost);
-          out << ',' << c.left << ',' << c.right << ']';
-        }
-        out << ']';
-        break;
-      }
-      case BuildEventKind::Split:
-        out << ",\"axis\":" << int(e.axis) << ",\"pos\":";
-        write_num(out, e.pos);
-        out << ",\"cost\":";
-        write_num(out, e.cost);
-        out << ",\"leaf_cost\":";
-        write_num(out, e.values[0]);
-        out << ",\"left\":" << e.a << ",\"right\":" << e.b << ",\"both\":" << e.count;
-        if (e.values[1] == 1.0f) out << ",\"spatial\":true";
-        break;
-      case BuildEventKind::Leaf:
-        out << ",\"reason\":\"" << leaf_reason_name(e.reason) << '"';
-        write_list(out, "prims", trace.list(e), e.list_count);
-        break;
-      case BuildEventKind::Subdivide: write_list(out, "children", trace.list(e), e.list_count); break;
-      case BuildEventKind::Merge:
-        out << ",\"a\":" << e.a << ",\"b\":" << e.b;
-        write_box(out, "box", e.box);
-        break;
-      case BuildEventKind::InsertStep:
-        out << ",\"prim\":" << e.prim << ",\"depth\":" << e.depth << ",\"costs\":[";
-        write_num(out, e.values[0]);
-        out << ',';
-        write_num(out, e.values[1]);
-        out << ',';
-        write_num(out, e.values[2]);
-        out << "],\"choice\":" << e.a;
-        break;
-      case BuildEventKind::Collapse: out << ",\"child\":" << e.a; break;
-      case BuildEventKind::Replace: out << ",\"replaces\":" << e.a; break;
-      case BuildEventKind::Fit:
-        write_box(out, "box", e.box);
-        if (e.sphere.radius >= 0.0f) {
-          out << ",\"sphere\":[";
-          write_num(out, e.sphere.center.x);
-          out << ',';
-          write_num(out, e.sphere.center.y);
-          out << ',';
-          write_num(out, e.sphere.center.z);
-          out << ',';
-          write_num(out, e.sphere.radius);
-          out << ']';
-        }
-        break;
-      case BuildEventKind::Done: out << ",\"nodes\":" << e.count; break;
-    }
+    write_event_fields(trace, e, out);
     out << "}\n";
   }
 }

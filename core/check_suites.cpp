@@ -110,6 +110,94 @@ HardCase cube_diagonals() {
   return {"cube_diagonals", std::move(cube), std::move(rays)};
 }
 
+/// Flat scene: a 20x20 grid of quads in z = 0 (zero-thickness box), shared edges.
+HardCase flat_scene() {
+  std::vector<Vec3> p;
+  std::vector<UVec3> t;
+  for (int y = 0; y <= 20; ++y)
+    for (int x = 0; x <= 20; ++x) p.emplace_back(float(x) / 20.0f, float(y) / 20.0f, 0.0f);
+  for (uint32_t y = 0; y < 20; ++y)
+    for (uint32_t x = 0; x < 20; ++x) {
+      const uint32_t i = y * 21 + x;
+      t.emplace_back(i, i + 1, i + 22);
+      t.emplace_back(i, i + 22, i + 21);
+    }
+  Scene flat(std::move(p), std::move(t), "flat");
+  std::vector<Ray> rays;
+  for (int y = 0; y <= 40; ++y)
+    for (int x = 0; x <= 40; ++x) {  // straight down through vertices, edges and diagonals
+      Ray r;
+      r.org = Vec3(float(x) / 40.0f, float(y) / 40.0f, 1.0f);
+      r.dir = Vec3(0, 0, -1);
+      rays.push_back(r);
+      r.dir = Vec3(0.001f * float(x - 20), 0.0f, -1.0f);
+      rays.push_back(r);
+      Ray in_plane;  // inside the plane: never a hit
+      in_plane.org = Vec3(-1.0f, float(y) / 40.0f, 0.0f);
+      in_plane.dir = Vec3(1, 0, 0);
+      rays.push_back(in_plane);
+    }
+  return {"flat_scene", std::move(flat), std::move(rays)};
+}
+
+/// Slivers, zero-area and duplicate triangles.
+HardCase slivers_zero_area_duplicates() {
+  std::vector<Vec3> p;
+  std::vector<UVec3> t;
+  Rng rng(5);
+  for (uint32_t i = 0; i < 2000; ++i) {
+    const Vec3 a(rng.uniform(), rng.uniform(), rng.uniform());
+    const Vec3 d = glm::normalize(Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)) + 1e-3f);
+    const Vec3 side = glm::normalize(glm::cross(d, Vec3(0.3f, 0.5f, 0.7f)));
+    const uint32_t base = uint32_t(p.size());
+    p.push_back(a);
+    p.push_back(a + 0.3f * d);
+    p.push_back(a + 0.15f * d + 1e-5f * side);  // a sliver 30000x longer than wide
+    t.emplace_back(base, base + 1, base + 2);
+    if (i % 10 == 0) t.emplace_back(base, base + 1, base + 1);  // zero area
+    if (i % 7 == 0) t.emplace_back(base, base + 1, base + 2);   // duplicate
+  }
+  Scene slivers(std::move(p), std::move(t), "slivers");
+  auto rays = random_rays(slivers.bounds(), 20000, 6);
+  return {"slivers_zero_area_duplicates", std::move(slivers), std::move(rays)};
+}
+
+/// Thousands of coplanar, overlapping triangles: every hit is a tie.
+HardCase coplanar_overlapping() {
+  std::vector<Vec3> p;
+  std::vector<UVec3> t;
+  Rng rng(8);
+  for (uint32_t i = 0; i < 3000; ++i) {
+    const Vec3 c(rng.uniform(), rng.uniform(), 0.25f);
+    p.push_back(c + Vec3(-0.3f, -0.3f, 0.0f));
+    p.push_back(c + Vec3(0.3f, -0.2f, 0.0f));
+    p.push_back(c + Vec3(0.0f, 0.3f, 0.0f));
+    t.emplace_back(3 * i, 3 * i + 1, 3 * i + 2);
+  }
+  Scene coplanar(std::move(p), std::move(t), "coplanar_overlapping");
+  auto rays = random_rays(coplanar.bounds(), 10000, 9);
+  return {"coplanar_overlapping", std::move(coplanar), std::move(rays)};
+}
+
+/// Hits exactly at tmin / tmax: the floor of cornell (y = 0) seen straight down from y = 3,
+/// t = 3 exactly; one ulp beyond either bound must miss.
+HardCase hits_at_tmin_tmax() {
+  std::vector<Ray> rays;
+  for (int i = 0; i < 50; ++i) {
+    Ray r;
+    r.org = Vec3(-0.9f + 0.036f * float(i), 3.0f, 0.9f);
+    r.dir = Vec3(0, -1, 0);
+    for (auto [lo, hi] : {std::pair{0.0f, 3.0f}, std::pair{3.0f, kInf}, std::pair{0.0f, std::nextafter(3.0f, 0.0f)},
+                          std::pair{std::nextafter(3.0f, 4.0f), kInf}, std::pair{3.0f, 3.0f}}) {
+      r.tmin = lo;
+      r.tmax = hi;
+      rays.push_back(r);
+    }
+  }
+  Scene floor_only({{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, {{0, 1, 2}, {0, 2, 3}}, "floor");
+  return {"hits_at_tmin_tmax", std::move(floor_only), std::move(rays)};
+}
+
 }  // namespace
 
 std::vector<HardCase> hard_cases() {
@@ -132,87 +220,12 @@ std::vector<HardCase> hard_cases() {
     rays.insert(rays.end(), more.begin(), more.end());
     cases.push_back({name, s, rays});
   }
-  {  // Flat scene: a 20x20 grid of quads in z = 0 (zero-thickness box), shared edges.
-    std::vector<Vec3> p;
-    std::vector<UVec3> t;
-    for (int y = 0; y <= 20; ++y)
-      for (int x = 0; x <= 20; ++x) p.emplace_back(float(x) / 20.0f, float(y) / 20.0f, 0.0f);
-    for (uint32_t y = 0; y < 20; ++y)
-      for (uint32_t x = 0; x < 20; ++x) {
-        const uint32_t i = y * 21 + x;
-        t.emplace_back(i, i + 1, i + 22);
-        t.emplace_back(i, i + 22, i + 21);
-      }
-    Scene flat(std::move(p), std::move(t), "flat");
-    std::vector<Ray> rays;
-    for (int y = 0; y <= 40; ++y)
-      for (int x = 0; x <= 40; ++x) {  // straight down through vertices, edges and diagonals
-        Ray r;
-        r.org = Vec3(float(x) / 40.0f, float(y) / 40.0f, 1.0f);
-        r.dir = Vec3(0, 0, -1);
-        rays.push_back(r);
-        r.dir = Vec3(0.001f * float(x - 20), 0.0f, -1.0f);
-        rays.push_back(r);
-        Ray in_plane;  // inside the plane: never a hit
-        in_plane.org = Vec3(-1.0f, float(y) / 40.0f, 0.0f);
-        in_plane.dir = Vec3(1, 0, 0);
-        rays.push_back(in_plane);
-      }
-    cases.push_back({"flat_scene", flat, rays});
-  }
-  {  // Slivers, zero-area and duplicate triangles.
-    std::vector<Vec3> p;
-    std::vector<UVec3> t;
-    Rng rng(5);
-    for (uint32_t i = 0; i < 2000; ++i) {
-      const Vec3 a(rng.uniform(), rng.uniform(), rng.uniform());
-      const Vec3 d = glm::normalize(Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)) + 1e-3f);
-      const Vec3 side = glm::normalize(glm::cross(d, Vec3(0.3f, 0.5f, 0.7f)));
-      const uint32_t base = uint32_t(p.size());
-      p.push_back(a);
-      p.push_back(a + 0.3f * d);
-      p.push_back(a + 0.15f * d + 1e-5f * side);  // a sliver 30000x longer than wide
-      t.emplace_back(base, base + 1, base + 2);
-      if (i % 10 == 0) t.emplace_back(base, base + 1, base + 1);  // zero area
-      if (i % 7 == 0) t.emplace_back(base, base + 1, base + 2);   // duplicate
-    }
-    Scene slivers(std::move(p), std::move(t), "slivers");
-    cases.push_back({"slivers_zero_area_duplicates", slivers, random_rays(slivers.bounds(), 20000, 6)});
-  }
+  cases.push_back(flat_scene());
+  cases.push_back(slivers_zero_area_duplicates());
   cases.push_back({"teapot_in_stadium", make_procedural_scene("stadium").value(),
                    random_rays(Aabb{Vec3(-1.0f), Vec3(1.0f)}, 10000, 7)});
-  {  // Thousands of coplanar, overlapping triangles: every hit is a tie.
-    std::vector<Vec3> p;
-    std::vector<UVec3> t;
-    Rng rng(8);
-    for (uint32_t i = 0; i < 3000; ++i) {
-      const Vec3 c(rng.uniform(), rng.uniform(), 0.25f);
-      p.push_back(c + Vec3(-0.3f, -0.3f, 0.0f));
-      p.push_back(c + Vec3(0.3f, -0.2f, 0.0f));
-      p.push_back(c + Vec3(0.0f, 0.3f, 0.0f));
-      t.emplace_back(3 * i, 3 * i + 1, 3 * i + 2);
-    }
-    Scene coplanar(std::move(p), std::move(t), "coplanar_overlapping");
-    auto rays = random_rays(coplanar.bounds(), 10000, 9);
-    cases.push_back({"coplanar_overlapping", coplanar, rays});
-  }
-  {  // Hits exactly at tmin / tmax: the floor of cornell (y = 0) seen straight down from y = 3,
-     // t = 3 exactly; one ulp beyond either bound must miss.
-    std::vector<Ray> rays;
-    for (int i = 0; i < 50; ++i) {
-      Ray r;
-      r.org = Vec3(-0.9f + 0.036f * float(i), 3.0f, 0.9f);
-      r.dir = Vec3(0, -1, 0);
-      for (auto [lo, hi] : {std::pair{0.0f, 3.0f}, std::pair{3.0f, kInf}, std::pair{0.0f, std::nextafter(3.0f, 0.0f)},
-                            std::pair{std::nextafter(3.0f, 4.0f), kInf}, std::pair{3.0f, 3.0f}}) {
-        r.tmin = lo;
-        r.tmax = hi;
-        rays.push_back(r);
-      }
-    }
-    Scene floor_only({{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, {{0, 1, 2}, {0, 2, 3}}, "floor");
-    cases.push_back({"hits_at_tmin_tmax", floor_only, rays});
-  }
+  cases.push_back(coplanar_overlapping());
+  cases.push_back(hits_at_tmin_tmax());
   cases.push_back(cube_diagonals());
   return cases;
 }

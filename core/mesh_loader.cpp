@@ -169,82 +169,92 @@ Status check_ply_header(const std::string& path, uintmax_t file_size, PlyLayout&
   return make_error(path + ": PLY header: no 'end_header' line within the first 1000 lines");
 }
 
-/// The PLY body's list lengths, checked before Assimp sees them: Assimp 5.2 reserves what a
-/// face's count says, so an ASCII face "88888888883 0 3 2" in a 430-byte file asked for
-/// 7.6 GB (fuzz_mesh found it). The body is walked as the header lays it out; a list longer
-/// than its count type can say or than the rest of the file can hold is a one-line error.
-/// Where the body ends early or holds something that is no number, the walk stops and
-/// Assimp gives its own error.
-Status check_ply_lists(const std::string& path, const PlyLayout& layout) {
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(static_cast<std::streamoff>(layout.body_offset));
-  std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+/// An error in a PLY body's list, in instance `index` of element `e`: at `path`, and in an
+/// ASCII body at file line `line` (0 in a binary body, which has no lines).
+Error ply_list_error(const std::string& path, int line, const PlyLayout::Element& e, uintmax_t index,
+                     const std::string& what) {
+  const std::string where = line > 0 ? path + ":" + std::to_string(line) : path;
+  return make_error(where + ": PLY " + e.name + " " + std::to_string(index) + ": " + what);
+}
+
+/// "a list of COUNT entries", COUNT too large to read said so.
+std::string list_entries_text(uintmax_t count) {
+  return "a list of " + (count == UINTMAX_MAX ? std::string("more than 10^19") : std::to_string(count)) + " entries";
+}
+
+/// The ASCII line `text` of instance `index` of element `e`, whose tokens are read up to its
+/// last list (property `lists_end` - 1); `after` bytes of the body follow the line, and it
+/// is the file's line `line`.
+Status check_ascii_ply_line(const std::string& path, int line, const PlyLayout::Element& e, uintmax_t index,
+                            size_t lists_end, std::string_view text, size_t after) {
+  size_t at = 0;
+  const auto token = [&](std::string_view& out) {
+    while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+    const size_t begin = at;
+    while (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+    out = text.substr(begin, at - begin);
+    return !out.empty();
+  };
+  for (size_t k = 0; k < lists_end; ++k) {
+    const PlyLayout::Property& p = e.properties[k];
+    std::string_view t;
+    if (!token(t)) break;
+    if (!p.list) continue;
+    if (t[0] == '-' && t.size() > 1 && std::isdigit(static_cast<unsigned char>(t[1])))
+      return ply_list_error(path, line, e, index, "a list of negative length");
+    const size_t digits = std::min(t.find_first_not_of("0123456789"), t.size());
+    const uintmax_t count = digits > 19 ? UINTMAX_MAX : digits == 0 ? 0 : std::stoull(std::string(t.substr(0, digits)));
+    const uintmax_t max_count = p.count_size >= 4 ? uintmax_t(0xFFFFFFFFu) : (uintmax_t(1) << (8 * p.count_size)) - 1;
+    if (count > max_count)
+      return ply_list_error(path, line, e, index,
+                            list_entries_text(count) + ", more than its " + std::to_string(p.count_size) +
+                                "-byte count type can say");
+    // Each entry takes a character and a blank at least.
+    const size_t rest = (text.size() - at) + after;
+    if (count > rest / 2 + 1)
+      return ply_list_error(path, line, e, index, list_entries_text(count) + ", more than the rest of the file holds");
+    if (k + 1 < lists_end)  // another list follows on this line: step over the entries
+      for (uintmax_t n = 0; n < count && token(t); ++n) {
+      }
+  }
+  return {};
+}
+
+/// An ASCII body, line by line as Assimp reads it: one element instance per line, the
+/// list's count read as the digits its token starts with.
+Status check_ascii_ply_lists(const std::string& path, const PlyLayout& layout, const std::string& body) {
   size_t pos = 0;
   int line = 0;  // the body's lines read so far; the header's lines are added in messages
-  const auto list_error = [&](const PlyLayout::Element& e, uintmax_t index, const std::string& what) {
-    const std::string where = layout.format == PlyLayout::Format::Ascii
-                                  ? path + ":" + std::to_string(layout.header_lines + line)
-                                  : path;
-    return make_error(where + ": PLY " + e.name + " " + std::to_string(index) + ": " + what);
-  };
-  const auto entries = [](uintmax_t count) {
-    return "a list of " + (count == UINTMAX_MAX ? std::string("more than 10^19") : std::to_string(count)) + " entries";
-  };
-  const auto max_count = [](int count_size) {
-    return count_size >= 4 ? uintmax_t(0xFFFFFFFFu) : (uintmax_t(1) << (8 * count_size)) - 1;
-  };
-  if (layout.format == PlyLayout::Format::Ascii) {
-    // Line by line, as Assimp reads it: one element instance per line, the list's count
-    // read as the digits its token starts with.
-    for (const PlyLayout::Element& e : layout.elements) {
-      // Tokens up to the last list; an element without one is only skipped, line by line.
-      size_t lists_end = 0;
-      for (size_t k = 0; k < e.properties.size(); ++k)
-        if (e.properties[k].list) lists_end = k + 1;
-      for (uintmax_t i = 0; i < e.count; ++i) {
-        if (pos >= body.size()) return {};
-        size_t end = body.find('\n', pos);
-        if (lists_end == 0) {
-          pos = end == std::string::npos ? body.size() : end + 1;
-          ++line;
-          continue;
-        }
-        if (end == std::string::npos) end = body.size();
-        const std::string_view text(body.data() + pos, end - pos);
-        pos = end + 1;
+  for (const PlyLayout::Element& e : layout.elements) {
+    // Tokens up to the last list; an element without one is only skipped, line by line.
+    size_t lists_end = 0;
+    for (size_t k = 0; k < e.properties.size(); ++k)
+      if (e.properties[k].list) lists_end = k + 1;
+    for (uintmax_t i = 0; i < e.count; ++i) {
+      if (pos >= body.size()) return {};
+      size_t end = body.find('\n', pos);
+      if (lists_end == 0) {
+        pos = end == std::string::npos ? body.size() : end + 1;
         ++line;
-        size_t at = 0;
-        const auto token = [&](std::string_view& out) {
-          while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
-          const size_t begin = at;
-          while (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) ++at;
-          out = text.substr(begin, at - begin);
-          return !out.empty();
-        };
-        for (size_t k = 0; k < lists_end; ++k) {
-          const PlyLayout::Property& p = e.properties[k];
-          std::string_view t;
-          if (!token(t)) break;
-          if (!p.list) continue;
-          if (t[0] == '-' && t.size() > 1 && std::isdigit(static_cast<unsigned char>(t[1])))
-            return list_error(e, i, "a list of negative length");
-          const size_t digits = std::min(t.find_first_not_of("0123456789"), t.size());
-          const uintmax_t count = digits > 19 ? UINTMAX_MAX : digits == 0 ? 0 : std::stoull(std::string(t.substr(0, digits)));
-          if (count > max_count(p.count_size))
-            return list_error(e, i, entries(count) + ", more than its " + std::to_string(p.count_size) +
-                                        "-byte count type can say");
-          // Each entry takes a character and a blank at least.
-          const size_t rest = (text.size() - at) + (pos < body.size() ? body.size() - pos : 0);
-          if (count > rest / 2 + 1) return list_error(e, i, entries(count) + ", more than the rest of the file holds");
-          if (k + 1 < lists_end)  // another list follows on this line: step over the entries
-            for (uintmax_t n = 0; n < count && token(t); ++n) {
-            }
-        }
+        continue;
       }
+      if (end == std::string::npos) end = body.size();
+      const std::string_view text(body.data() + pos, end - pos);
+      pos = end + 1;
+      ++line;
+      const size_t after = pos < body.size() ? body.size() - pos : 0;
+      if (Status st = check_ascii_ply_line(path, layout.header_lines + line, e, i, lists_end, text, after); !st)
+        return st;
     }
-    return {};
   }
+  return {};
+}
+
+/// A binary body, walked as the header lays it out: each list's count in its count type's
+/// bytes, then its entries.
+Status check_binary_ply_lists(const std::string& path, const PlyLayout& layout, const std::string& body) {
   const bool big = layout.format == PlyLayout::Format::BinaryBig;
+  size_t pos = 0;
   for (const PlyLayout::Element& e : layout.elements) {
     size_t row = 0;  // bytes of one instance when it holds no list
     bool has_list = false;
@@ -272,12 +282,26 @@ Status check_ply_lists(const std::string& path, const PlyLayout& layout) {
         }
         pos += size_t(p.count_size);
         if (count > (body.size() - pos) / size_t(p.value_size))
-          return list_error(e, i, entries(count) + ", more than the rest of the file holds");
+          return ply_list_error(path, 0, e, i, list_entries_text(count) + ", more than the rest of the file holds");
         pos += size_t(count) * size_t(p.value_size);
       }
     }
   }
   return {};
+}
+
+/// The PLY body's list lengths, checked before Assimp sees them: Assimp 5.2 reserves what a
+/// face's count says, so an ASCII face "88888888883 0 3 2" in a 430-byte file asked for
+/// 7.6 GB (fuzz_mesh found it). The body is walked as the header lays it out; a list longer
+/// than its count type can say or than the rest of the file can hold is a one-line error.
+/// Where the body ends early or holds something that is no number, the walk stops and
+/// Assimp gives its own error.
+Status check_ply_lists(const std::string& path, const PlyLayout& layout) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(layout.body_offset));
+  std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (layout.format == PlyLayout::Format::Ascii) return check_ascii_ply_lists(path, layout, body);
+  return check_binary_ply_lists(path, layout, body);
 }
 
 /// True when the file begins with the binary glTF magic "glTF".

@@ -331,218 +331,287 @@ void progress(size_t done, size_t total, const std::string& what) {
   std::fflush(stderr);
 }
 
-}  // namespace
-
-int run_bench(const BenchOptions& o) {
-  // Validate everything before the first (slow) scene load.
+/// What the options ask for, checked before the first (slow) scene load.
+struct BenchPlan {
   std::vector<const accel::StructureInfo*> structures;
+  std::vector<accel::Kernel> kernels;
+  std::vector<accel::ParamSet> param_sets;  ///< by structure
+  accel::BuildControl limits;  ///< carries the budget only; each build gets its own control
+  int threads = 0;
+  bool with_embree = false, with_tinybvh = false;
+};
+
+/// Validates every option (structures, kernels, parameters, output paths, limits) into
+/// `plan`, and decides which peers run.
+accel::Status plan_bench(const BenchOptions& o, BenchPlan& plan) {
   if (o.structures == "all") {
     for (const auto& info : accel::structure_registry())
-      if (!info.reference) structures.push_back(&info);
+      if (!info.reference) plan.structures.push_back(&info);
   } else {
     for (const std::string& name : split_list(o.structures)) {
       auto info = accel::find_structure(name);
-      if (!info) return fail("--structures: " + info.error().message);
-      structures.push_back(info.value());
+      if (!info) return accel::make_error("--structures: " + info.error().message);
+      plan.structures.push_back(info.value());
     }
   }
-  if (structures.empty()) return fail("--structures: empty list");
-  std::vector<accel::Kernel> kernels;
+  if (plan.structures.empty()) return accel::make_error("--structures: empty list");
   for (const std::string& k : split_list(o.kernels)) {
     accel::Kernel kernel;
-    if (!accel::parse_kernel(k, &kernel)) return fail("--kernel '" + k + "' is invalid (valid: " + accel::kernel_names_text() + ")");
-    kernels.push_back(kernel);
+    if (!accel::parse_kernel(k, &kernel))
+      return accel::make_error("--kernel '" + k + "' is invalid (valid: " + accel::kernel_names_text() + ")");
+    plan.kernels.push_back(kernel);
   }
-  if (kernels.empty()) return fail("--kernel: empty list");
-  std::vector<accel::ParamSet> param_sets;
-  for (const auto* info : structures) {
+  if (plan.kernels.empty()) return accel::make_error("--kernel: empty list");
+  for (const auto* info : plan.structures) {
     auto set = accel::ParamSet::parse(info->params, params_for(*info, o.params), info->name);
-    if (!set) return fail(set.error().message);
-    param_sets.push_back(set.value());
+    if (!set) return set.error();
+    plan.param_sets.push_back(set.value());
   }
   for (const std::string& p : o.params) {  // every --param must be used by some structure
     bool used = false;
-    for (const auto* info : structures)
+    for (const auto* info : plan.structures)
       for (const std::string& q : params_for(*info, {p})) used |= !q.empty();
-    if (!used) return fail("--param '" + p + "' matches no parameter of the benchmarked structures");
+    if (!used) return accel::make_error("--param '" + p + "' matches no parameter of the benchmarked structures");
   }
   for (const std::string* path : {&o.out_md, &o.out_csv, &o.out_json})  // before minutes of work, not after
     if (!path->empty())
-      if (auto writable = accel::check_writable(*path); !writable) return fail(writable.error().message);
-  accel::BuildControl limits;  // carries the budget only; each build gets its own control
-  if (auto ok = apply_build_limits(o.memory_limit, o.time_limit, &limits); !ok) return fail(ok.error().message);
-  const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  const bool with_embree = o.embree && embree_available();
+      if (auto writable = accel::check_writable(*path); !writable) return writable.error();
+  if (auto ok = apply_build_limits(o.memory_limit, o.time_limit, &plan.limits); !ok) return ok.error();
+  plan.threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  plan.with_embree = o.embree && embree_available();
   // tinybvh's unit is AVX2 code throughout (BVH4_CPU included): never call it without AVX2.
-  const bool with_tinybvh = o.tinybvh && tinybvh_available() && tinybvh_cpu_supported();
-  if (o.tinybvh && tinybvh_available() && !with_tinybvh)
+  plan.with_tinybvh = o.tinybvh && tinybvh_available() && tinybvh_cpu_supported();
+  if (o.tinybvh && tinybvh_available() && !plan.with_tinybvh)
     std::fprintf(stderr, "accelviz-cli: note: this CPU lacks AVX2/FMA; the tinybvh rows are skipped\n");
+  return {};
+}
 
+/// One scene's benchmark: its rays, their reference answers, the progress, and the rows
+/// measured so far with the peers' best rates that later rows are compared with.
+struct SceneBench {
+  const BenchOptions& o;
+  const BenchPlan& plan;
+  const std::string& spec;
+  const accel::Scene& scene;
+  const std::vector<accel::Ray>& rays;
+  const std::vector<accel::ReferenceHit>& ref;
+  size_t& step;
+  size_t total_steps;
+  std::optional<double> embree_mt, embree_1t, embree_medium_build_ms;
   std::vector<Row> rows;
-  const size_t steps_per_scene = structures.size() * kernels.size() + (with_embree ? 2 : 0) +
-                                 (with_tinybvh ? std::size(kTinyBvhRows) : 0) + 1;
+
+  /// A row of this scene, its build already timed: the rest of what every row reports.
+  Row make_row(const std::string& structure, const std::string& params, const std::string& kernel,
+               double build_ms) const {
+    Row row = cli::make_row(spec, structure, params, kernel, o.rays, rays.size());
+    row.build_ms = build_ms;
+    row.embree_build_ratio = build_ratio(embree_medium_build_ms, build_ms);
+    row.threads = plan.threads;
+    return row;
+  }
+  /// Scores the hits, adds the ratios to Embree's best (when there is one) and keeps the row.
+  void keep(Row& row, const std::vector<accel::Hit>& hits) {
+    score(row, scene, rays, hits, ref);
+    if (!row.is_embree) {
+      if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
+      if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
+    }
+    rows.push_back(row);
+    ++step;
+  }
+};
+
+/// The best of kBuildReps builds of a peer (`build()` makes one; one in memory at a time):
+/// the last one built and the best build time. Null after a signal.
+template <class Built, class Build>
+std::unique_ptr<Built> best_peer_build(double* best_build_ms, Build&& build) {
+  std::unique_ptr<Built> built;
+  *best_build_ms = std::numeric_limits<double>::infinity();
+  for (int rep = 0; rep < kBuildReps; ++rep) {
+    built.reset();
+    built = build();
+    *best_build_ms = std::min(*best_build_ms, built->build_ms());
+    if (interrupted()) return nullptr;
+  }
+  return built;
+}
+
+/// The Embree rows, medium quality first: it is the build baseline, and the high row gets
+/// its ratio too. Returns false after a signal.
+bool embree_rows(SceneBench& b) {
+  for (const char* quality : {"medium", "high"}) {
+    progress(b.step, b.total_steps, b.spec + ": embree-" + quality);
+    double best_build_ms = 0.0;
+    const auto built = best_peer_build<EmbreeScene>(
+        &best_build_ms, [&] { return std::make_unique<EmbreeScene>(b.scene, quality, b.plan.threads); });
+    if (!built) return false;
+    const EmbreeScene& embree = *built;
+    if (std::string(quality) == "medium") b.embree_medium_build_ms = best_build_ms;
+    Row row = b.make_row(std::string("embree-") + quality, "", "embree", best_build_ms);
+    row.is_embree = true;
+    row.is_peer = true;
+    row.memory_bytes = embree.memory_bytes();
+    row.mrays_1t = measure_mrays(b.rays.size(), b.o.min_time, [&] {
+      run_serial(b.rays, [&](const accel::Ray& r) { return embree.intersect(r); });
+    });
+    std::vector<accel::Hit> hits;
+    row.mrays_mt = measure_mrays(b.rays.size(), b.o.min_time, [&] {
+      hits = run_parallel(b.rays.size(), b.plan.threads, [&](size_t i) { return embree.intersect(b.rays[i]); });
+    });
+    if (interrupted()) return false;
+    b.keep(row, hits);
+    b.embree_mt = std::max(b.embree_mt.value_or(0.0), row.mrays_mt);
+    b.embree_1t = std::max(b.embree_1t.value_or(0.0), row.mrays_1t);
+  }
+  return true;
+}
+
+/// The tinybvh rows (kTinyBvhRows), over a copy of the triangles. tinybvh has no tmin: a
+/// ray with tmin > 0 is traced from t = 0 and its answer scored as it comes (a hit before
+/// tmin counts as an error). Said once per scene on stderr. Returns false after a signal.
+bool tinybvh_rows(SceneBench& b) {
+  const accel::Scene& s = b.scene;
+  const size_t with_tmin =
+      size_t(std::count_if(b.rays.begin(), b.rays.end(), [](const accel::Ray& r) { return r.tmin > 0.0f; }));
+  if (with_tmin > 0)
+    std::fprintf(stderr, "accelviz-cli: note: %s: %zu rays have tmin > 0; tinybvh has no tmin, so they are traced "
+                 "from t = 0 and scored as they come\n", b.spec.c_str(), with_tmin);
+  std::vector<float> triangles;
+  triangles.reserve(9 * s.triangle_count());
+  for (const auto& tri : s.triangles())
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) triangles.push_back(s.positions()[tri[k]][c]);
+  for (const auto& [name, layout] : kTinyBvhRows) {
+    progress(b.step, b.total_steps, b.spec + ": " + name);
+    double best_build_ms = 0.0;
+    const auto built = best_peer_build<TinyBvhScene>(&best_build_ms, [&, layout = layout] {
+      return std::make_unique<TinyBvhScene>(triangles.data(), s.triangle_count(), layout);
+    });
+    if (!built) return false;
+    const TinyBvhScene& bvh = *built;
+    auto query = [&bvh](const accel::Ray& r) {
+      const TinyBvhHit h = bvh.intersect(&r.org.x, &r.dir.x, r.tmax);
+      return h.prim < 0 ? accel::Hit{} : accel::Hit{h.prim, h.t, h.u, h.v};
+    };
+    Row row = b.make_row(name, "", "tinybvh", best_build_ms);
+    row.is_peer = true;
+    row.memory_bytes = bvh.memory_bytes();
+    row.mrays_1t = measure_mrays(b.rays.size(), b.o.min_time, [&] { run_serial(b.rays, query); });
+    std::vector<accel::Hit> hits;
+    row.mrays_mt = measure_mrays(b.rays.size(), b.o.min_time, [&] {
+      hits = run_parallel(b.rays.size(), b.plan.threads, [&](size_t i) { return query(b.rays[i]); });
+    });
+    if (interrupted()) return false;
+    b.keep(row, hits);
+  }
+  return true;
+}
+
+/// The best of kBuildReps builds of structure `k` (one in memory at a time: the terrain's
+/// are large), the last one kept: the kernel only changes the queries. Built in an arena of
+/// `threads` so a parallel builder uses what Embree used. Its stats carry the best time.
+accel::Result<std::unique_ptr<accel::Structure>> best_structure_build(const SceneBench& b, size_t k,
+                                                                      accel::BuildStats* stats) {
+  const std::string name = b.plan.structures[k]->name;
+  std::unique_ptr<accel::Structure> structure;
+  double best_build_ms = std::numeric_limits<double>::infinity();
+  tbb::task_arena build_arena(b.plan.threads);
+  for (int rep = 0; rep < kBuildReps; ++rep) {
+    structure.reset();
+    accel::BuildControl control;
+    control.set_memory_limit(b.plan.limits.memory_limit());
+    control.set_time_limit(b.o.time_limit);
+    control.set_cancel_flag(interrupt_flag());
+    auto built = build_arena.execute([&] {
+      return accel::build_structure(*b.plan.structures[k], b.scene, b.plan.param_sets[k], accel::Kernel::Watertight,
+                                    &control);
+    });
+    if (interrupted()) return accel::cancelled_error();
+    if (!built) return build_error(built.error(), name, control);
+    structure = std::move(built.value());
+    best_build_ms = std::min(best_build_ms, structure->build_stats().build_ms);
+  }
+  *stats = structure->build_stats();
+  stats->build_ms = best_build_ms;
+  return structure;
+}
+
+/// Structure `k`'s rows, one per kernel, each compared with Embree's and the fastest peer's
+/// rates (`peer_mt`, `peer_1t`). Returns an exit code when the benchmark must stop.
+std::optional<int> structure_rows(SceneBench& b, size_t k, std::optional<double> peer_mt,
+                                  std::optional<double> peer_1t) {
+  const std::string name = b.plan.structures[k]->name;
+  progress(b.step, b.total_steps, b.spec + ": " + name + " build");
+  accel::BuildStats stats;
+  auto built = best_structure_build(b, k, &stats);
+  if (interrupted()) return interrupted_exit();
+  if (!built) return fail(built.error().message);
+  accel::Structure& structure = *built.value();
+  for (accel::Kernel requested : b.plan.kernels) {
+    // A 2D scene has one hit rule, whatever --kernel says (build_structure() set it).
+    const accel::Kernel kernel = b.scene.planar() ? accel::Kernel::Planar : requested;
+    progress(b.step, b.total_steps, b.spec + ": " + name + " " + std::string(accel::kernel_name(kernel)));
+    structure.set_kernel(kernel);
+    Row row = b.make_row(name, b.plan.param_sets[k].to_string(), std::string(accel::kernel_name(kernel)), stats.build_ms);
+    if (std::isfinite(stats.sah_cost)) row.sah_cost = stats.sah_cost;
+    row.memory_bytes = stats.memory_bytes;
+    row.mrays_1t = measure_mrays(b.rays.size(), b.o.min_time, [&] {
+      if (accel::answered_in_batches(structure))
+        accel::trace_all(structure, b.rays, 1, nullptr, interrupt_flag());
+      else
+        run_serial(b.rays, [&](const accel::Ray& r) { return structure.intersect(r); });
+    });
+    std::vector<accel::Hit> hits;
+    row.mrays_mt = measure_mrays(b.rays.size(), b.o.min_time, [&] {
+      hits = accel::trace_all(structure, b.rays, b.plan.threads, nullptr, interrupt_flag());
+    });
+    if (interrupted()) return interrupted_exit();
+    if (peer_mt && *peer_mt > 0.0) row.peer_ratio_mt = row.mrays_mt / *peer_mt;
+    if (peer_1t && *peer_1t > 0.0) row.peer_ratio_1t = row.mrays_1t / *peer_1t;
+    b.keep(row, hits);
+  }
+  return std::nullopt;
+}
+
+/// Every row of one scene: the reference answers, the peers, then each structure. Returns
+/// an exit code when the benchmark must stop.
+std::optional<int> bench_scene(const BenchOptions& o, const BenchPlan& plan, const std::string& spec, size_t& step,
+                               size_t total_steps, std::vector<Row>& rows) {
+  auto input = load_input(spec, o.rays);
+  if (!input) return fail(input.error().message);
+  const std::vector<accel::Ray>& rays = input.value().rays;
+  const accel::Scene& s = input.value().scene;
+  progress(step, total_steps, spec + ": reference (double kernel)");
+  const auto ref = reference_hits(s, rays, plan.threads, plan.limits);
+  if (interrupted()) return interrupted_exit();
+  if (!ref) return fail(ref.error().message);
+  ++step;
+  SceneBench b{o, plan, spec, s, rays, ref.value(), step, total_steps, {}, {}, {}, {}};
+  if (plan.with_embree && !embree_rows(b)) return interrupted_exit();
+  if (plan.with_tinybvh && !tinybvh_rows(b)) return interrupted_exit();
+  std::optional<double> peer_mt, peer_1t;  // the fastest peer row's, each measure on its own
+  for (const Row& r : b.rows) {
+    peer_mt = std::max(peer_mt.value_or(0.0), r.mrays_mt);
+    peer_1t = std::max(peer_1t.value_or(0.0), r.mrays_1t);
+  }
+  for (size_t k = 0; k < plan.structures.size(); ++k)
+    if (auto stop = structure_rows(b, k, peer_mt, peer_1t)) return stop;
+  rows.insert(rows.end(), b.rows.begin(), b.rows.end());
+  return std::nullopt;
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& o) {
+  BenchPlan p;
+  if (auto planned = plan_bench(o, p); !planned) return fail(planned.error().message);
+  std::vector<Row> rows;
+  const size_t steps_per_scene = p.structures.size() * p.kernels.size() + (p.with_embree ? 2 : 0) +
+                                 (p.with_tinybvh ? std::size(kTinyBvhRows) : 0) + 1;
   const size_t total_steps = o.scenes.size() * steps_per_scene;
   size_t step = 0;
-  for (const std::string& scene_spec : o.scenes) {
-    auto input = load_input(scene_spec, o.rays);
-    if (!input) return fail(input.error().message);
-    const std::vector<accel::Ray>& rays = input.value().rays;
-    const accel::Scene& s = input.value().scene;
-    progress(step, total_steps, scene_spec + ": reference (double kernel)");
-    const auto ref_or = reference_hits(s, rays, threads, limits);
-    if (interrupted()) return interrupted_exit();
-    if (!ref_or) return fail(ref_or.error().message);
-    const std::vector<accel::ReferenceHit>& ref = ref_or.value();
-    ++step;
-
-    std::optional<double> embree_mt, embree_1t, embree_medium_build_ms;
-    std::vector<Row> scene_rows;
-    if (with_embree) {
-      for (const char* quality : {"medium", "high"}) {
-        progress(step, total_steps, scene_spec + ": embree-" + quality);
-        // Medium first: it is the build baseline, and the high row gets its ratio too.
-        std::unique_ptr<EmbreeScene> built;
-        double best_build_ms = std::numeric_limits<double>::infinity();
-        for (int rep = 0; rep < kBuildReps; ++rep) {
-          built.reset();  // one scene in memory at a time
-          built = std::make_unique<EmbreeScene>(s, quality, threads);
-          best_build_ms = std::min(best_build_ms, built->build_ms());
-          if (interrupted()) return interrupted_exit();
-        }
-        const EmbreeScene& embree = *built;
-        if (std::string(quality) == "medium") embree_medium_build_ms = best_build_ms;
-        Row row = make_row(scene_spec, std::string("embree-") + quality, "", "embree", o.rays, rays.size());
-        row.is_embree = true;
-        row.is_peer = true;
-        row.build_ms = best_build_ms;
-        row.embree_build_ratio = build_ratio(embree_medium_build_ms, best_build_ms);
-        row.memory_bytes = embree.memory_bytes();
-        row.threads = threads;
-        row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          run_serial(rays, [&](const accel::Ray& r) { return embree.intersect(r); });
-        });
-        std::vector<accel::Hit> hits;
-        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
-          hits = run_parallel(rays.size(), threads, [&](size_t i) { return embree.intersect(rays[i]); });
-        });
-        if (interrupted()) return interrupted_exit();
-        score(row, s, rays, hits, ref);
-        embree_mt = std::max(embree_mt.value_or(0.0), row.mrays_mt);
-        embree_1t = std::max(embree_1t.value_or(0.0), row.mrays_1t);
-        scene_rows.push_back(row);
-        ++step;
-      }
-    }
-    if (with_tinybvh) {
-      // tinybvh has no tmin: a ray with tmin > 0 is traced from t = 0 and its answer scored
-      // as it comes (a hit before tmin counts as an error). Said once per scene on stderr.
-      const size_t with_tmin = size_t(std::count_if(rays.begin(), rays.end(), [](const accel::Ray& r) { return r.tmin > 0.0f; }));
-      if (with_tmin > 0)
-        std::fprintf(stderr, "accelviz-cli: note: %s: %zu rays have tmin > 0; tinybvh has no tmin, so they are traced "
-                     "from t = 0 and scored as they come\n", scene_spec.c_str(), with_tmin);
-      std::vector<float> triangles;
-      triangles.reserve(9 * s.triangle_count());
-      for (const auto& tri : s.triangles())
-        for (int k = 0; k < 3; ++k)
-          for (int c = 0; c < 3; ++c) triangles.push_back(s.positions()[tri[k]][c]);
-      for (const auto& [name, layout] : kTinyBvhRows) {
-        progress(step, total_steps, scene_spec + ": " + name);
-        std::unique_ptr<TinyBvhScene> built;
-        double best_build_ms = std::numeric_limits<double>::infinity();
-        for (int rep = 0; rep < kBuildReps; ++rep) {
-          built.reset();
-          built = std::make_unique<TinyBvhScene>(triangles.data(), s.triangle_count(), layout);
-          best_build_ms = std::min(best_build_ms, built->build_ms());
-          if (interrupted()) return interrupted_exit();
-        }
-        const TinyBvhScene& bvh = *built;
-        auto query = [&bvh](const accel::Ray& r) {
-          const TinyBvhHit h = bvh.intersect(&r.org.x, &r.dir.x, r.tmax);
-          return h.prim < 0 ? accel::Hit{} : accel::Hit{h.prim, h.t, h.u, h.v};
-        };
-        Row row = make_row(scene_spec, name, "", "tinybvh", o.rays, rays.size());
-        row.is_peer = true;
-        row.build_ms = best_build_ms;
-        row.embree_build_ratio = build_ratio(embree_medium_build_ms, best_build_ms);
-        row.memory_bytes = bvh.memory_bytes();
-        row.threads = threads;
-        row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          run_serial(rays, query);
-        });
-        std::vector<accel::Hit> hits;
-        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
-          hits = run_parallel(rays.size(), threads, [&](size_t i) { return query(rays[i]); });
-        });
-        if (interrupted()) return interrupted_exit();
-        score(row, s, rays, hits, ref);
-        if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
-        if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
-        scene_rows.push_back(row);
-        ++step;
-      }
-    }
-    std::optional<double> peer_mt, peer_1t;  // the fastest peer row's, each measure on its own
-    for (const Row& r : scene_rows) {
-      peer_mt = std::max(peer_mt.value_or(0.0), r.mrays_mt);
-      peer_1t = std::max(peer_1t.value_or(0.0), r.mrays_1t);
-    }
-    for (size_t k = 0; k < structures.size(); ++k) {
-      // kBuildReps builds per structure, the last one kept: the kernel only changes the
-      // queries. Built in an arena of `threads` so a parallel builder uses what Embree used.
-      const std::string name = structures[k]->name;
-      progress(step, total_steps, scene_spec + ": " + name + " build");
-      std::unique_ptr<accel::Structure> structure;
-      double best_build_ms = std::numeric_limits<double>::infinity();
-      tbb::task_arena build_arena(threads);
-      for (int rep = 0; rep < kBuildReps; ++rep) {
-        structure.reset();  // one structure in memory at a time: the terrain's are large
-        accel::BuildControl control;
-        control.set_memory_limit(limits.memory_limit());
-        control.set_time_limit(o.time_limit);
-        control.set_cancel_flag(interrupt_flag());
-        auto built = build_arena.execute(
-            [&] { return accel::build_structure(*structures[k], s, param_sets[k], accel::Kernel::Watertight, &control); });
-        if (interrupted()) return interrupted_exit();
-        if (!built) return fail(build_error(built.error(), name, control).message);
-        structure = std::move(built.value());
-        best_build_ms = std::min(best_build_ms, structure->build_stats().build_ms);
-      }
-      accel::BuildStats stats = structure->build_stats();
-      stats.build_ms = best_build_ms;
-      for (accel::Kernel requested : kernels) {
-        // A 2D scene has one hit rule, whatever --kernel says (build_structure() set it).
-        const accel::Kernel kernel = s.planar() ? accel::Kernel::Planar : requested;
-        progress(step, total_steps, scene_spec + ": " + name + " " + std::string(accel::kernel_name(kernel)));
-        structure->set_kernel(kernel);
-        Row row = make_row(scene_spec, name, param_sets[k].to_string(), std::string(accel::kernel_name(kernel)), o.rays,
-                           rays.size());
-        row.build_ms = stats.build_ms;
-        row.embree_build_ratio = build_ratio(embree_medium_build_ms, stats.build_ms);
-        if (std::isfinite(stats.sah_cost)) row.sah_cost = stats.sah_cost;
-        row.memory_bytes = stats.memory_bytes;
-        row.threads = threads;
-        row.mrays_1t = measure_mrays(rays.size(), o.min_time, [&] {
-          if (accel::answered_in_batches(*structure))
-            accel::trace_all(*structure, rays, 1, nullptr, interrupt_flag());
-          else
-            run_serial(rays, [&](const accel::Ray& r) { return structure->intersect(r); });
-        });
-        std::vector<accel::Hit> hits;
-        row.mrays_mt = measure_mrays(rays.size(), o.min_time, [&] {
-          hits = accel::trace_all(*structure, rays, threads, nullptr, interrupt_flag());
-        });
-        if (interrupted()) return interrupted_exit();
-        score(row, s, rays, hits, ref);
-        if (embree_mt) row.embree_ratio_mt = row.mrays_mt / *embree_mt;
-        if (embree_1t) row.embree_ratio_1t = row.mrays_1t / *embree_1t;
-        if (peer_mt && *peer_mt > 0.0) row.peer_ratio_mt = row.mrays_mt / *peer_mt;
-        if (peer_1t && *peer_1t > 0.0) row.peer_ratio_1t = row.mrays_1t / *peer_1t;
-        scene_rows.push_back(row);
-        ++step;
-      }
-    }
-    rows.insert(rows.end(), scene_rows.begin(), scene_rows.end());
-  }
+  for (const std::string& scene_spec : o.scenes)
+    if (auto stop = bench_scene(o, p, scene_spec, step, total_steps, rows)) return *stop;
   progress(total_steps, total_steps, "done");
 
   const std::string md = markdown(rows);

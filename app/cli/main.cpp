@@ -99,6 +99,102 @@ int check_stdout(int code) {
   return cli::kExitBadInput;
 }
 
+/// trace: the closest hit of every ray, as a hits CSV.
+CLI::App* add_trace_command(CLI::App& app, cli::TraceOptions* o) {
+  CLI::App* cmd = app.add_subcommand("trace", "closest hit for every ray of a rays file (docs/hits.md CSV out)");
+  add_structure_options(cmd, &o->build);
+  cmd->add_option("--rays", o->rays, "rays file (docs/hits.md), or primary:W:H, or random:N:SEED")->required();
+  cmd->add_option("--out", o->out, "hits CSV to write")->required();
+  cmd->add_option("--threads", o->threads, "worker threads (0 = all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  return cmd;
+}
+
+/// stats: a structure's statistics, and optionally its rays' counters and its recorded build.
+CLI::App* add_stats_command(CLI::App& app, cli::StatsOptions* o) {
+  CLI::App* cmd = app.add_subcommand("stats", "build a structure and print its statistics");
+  add_structure_options(cmd, &o->build);
+  cmd->add_flag("--json", o->json, "print JSON instead of text");
+  cmd->add_option("--rays", o->rays,
+                  "also trace these rays (file, primary:W:H or random:N:SEED) and report nodes visited and "
+                  "triangles tested per ray, and the time with the counters off (trace_fast_ms) and on");
+  cmd->add_option("--threads", o->threads, "worker threads for --rays (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
+  cmd->add_option("--build-trace", o->build_trace,
+                  "also record the construction step by step and write it as JSON lines (docs/build-trace.md)");
+  cmd->add_option("--build-trace-budget", o->build_trace_budget_mb,
+                  "MB of recorded steps; a bigger build is recorded to the depth that fits")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  return cmd;
+}
+
+/// bench: speed against error of every structure and the peers.
+CLI::App* add_bench_command(CLI::App& app, cli::BenchOptions* o) {
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "speed against error: build ms, MB, Mrays/s (1 and all threads), errors vs the double reference");
+  cmd->add_option("--scene", o->scenes, "mesh file (OBJ, PLY, STL, glTF, GLB) or procedural:NAME (repeatable)")->required();
+  cmd->add_option("--structures", o->structures, "comma list, or all (every structure except brute)")
+      ->capture_default_str();
+  cmd->add_option("--param", o->params,
+                  "key=value for every structure that has the key, or STRUCTURE:key=value (repeatable)");
+  cmd->add_option("--rays", o->rays, "primary:W:H, random:N:SEED or a rays file")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "threads of the multi-threaded run (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
+  cmd->add_option("--kernel", o->kernels, "comma list of " + accel::kernel_names_text())->capture_default_str();
+  cmd->add_option("--min-time", o->min_time, "seconds each of the 3 timing samples lasts at least")
+      ->check(CLI::Range(0.001, 60.0))
+      ->capture_default_str();
+  add_limit_options(cmd, &o->memory_limit, &o->time_limit);
+  cmd->add_option("--out-md", o->out_md, "write the table as Markdown");
+  cmd->add_option("--out-csv", o->out_csv, "write the rows as CSV");
+  cmd->add_option("--out-json", o->out_json, "write the rows as a JSON array");
+  cmd->add_flag("!--no-embree", o->embree, "skip the Embree baseline rows");
+  cmd->add_flag("!--no-tinybvh", o->tinybvh,
+                cli::tinybvh_available() ? "skip the tinybvh peer rows (tinybvh-bvh8, tinybvh-bvh4, tinybvh-bvh8-hq)"
+                                         : "skip the tinybvh peer rows (this binary has no tinybvh)");
+  return cmd;
+}
+
+/// check: the assignment kit's grader over one or every student structure.
+CLI::App* add_check_command(CLI::App& app, cli::CheckOptions* o) {
+  o->shared = ACCEL_DEFAULT_SHARED_SCENES;
+  o->memory_bytes = std::min<size_t>(size_t(4) << 30, accel::default_memory_limit());
+  CLI::App* cmd = app.add_subcommand(
+      "check", "grade student structures (docs/student.md): answers against the reference, the lecture's traps, "
+               "invariants of the logs, speed against the built-in structure; exit 0 only when all is correct "
+               "(1: not, 2: bad use, 3: no sandbox here)");
+  add_judge_options(cmd, o);
+  cmd->add_option("--structure", o->structure, "one student structure (default: every one the worker holds)");
+  cmd->add_flag("--json", o->json, "print the report as JSON (the same as --format json)");
+  cmd->add_option("--format", o->format, "text, json, gradescope or prairielearn (their results.json)")
+      ->check(CLI::IsMember({"text", "json", "gradescope", "prairielearn"}))
+      ->capture_default_str();
+  cmd->add_option("--out-dir", o->out_dir, "folder for the wrong rays' viewer state files")->capture_default_str();
+  cmd->add_option("--worker", o->worker, "the student's worker program (default: accelviz-worker beside accelviz-cli)");
+  cmd->add_option("--submission", o->submission,
+                  "a folder of .cpp files: compiled in the sandbox into a worker, then checked");
+  return cmd;
+}
+
+/// grade-class: check's options (from `check`'s defaults, a shorter timeout) over a class.
+CLI::App* add_grade_class_command(CLI::App& app, const cli::CheckOptions& check, cli::GradeClassOptions* o) {
+  o->check = check;
+  o->check.timeout = 120.0;
+  CLI::App* cmd = app.add_subcommand(
+      "grade-class", "grade every submission of a class (one subfolder each) in the sandbox: per student a JSON "
+                     "report and a CSV row, and one HTML class report (docs/student.md)");
+  cmd->add_option("SUBMISSIONS", o->submissions, "folder of submissions, one subfolder per student")->required();
+  cmd->add_option("--out", o->out, "folder for the reports (not inside SUBMISSIONS)")->required();
+  cmd->add_option("--jobs", o->jobs, "submissions graded at once (0 = one per core)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  cmd->add_flag("--force", o->force, "grade again even the submissions unchanged since their report");
+  add_judge_options(cmd, &o->check);
+  return cmd;
+}
+
 }  // namespace
 
 /// trace, stats, bench and params see a student's structures through their worker (nothing
@@ -136,92 +232,17 @@ int main(int argc, char** argv) {
   accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
   CLI::App app{"accelviz-cli: batch ray queries, statistics and benchmarks of acceleration structures"};
   app.require_subcommand(1);
-
   cli::TraceOptions trace;
-  CLI::App* trace_cmd = app.add_subcommand("trace", "closest hit for every ray of a rays file (docs/hits.md CSV out)");
-  add_structure_options(trace_cmd, &trace.build);
-  trace_cmd->add_option("--rays", trace.rays, "rays file (docs/hits.md), or primary:W:H, or random:N:SEED")->required();
-  trace_cmd->add_option("--out", trace.out, "hits CSV to write")->required();
-  trace_cmd->add_option("--threads", trace.threads, "worker threads (0 = all cores)")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
-
+  CLI::App* trace_cmd = add_trace_command(app, &trace);
   cli::StatsOptions stats;
-  CLI::App* stats_cmd = app.add_subcommand("stats", "build a structure and print its statistics");
-  add_structure_options(stats_cmd, &stats.build);
-  stats_cmd->add_flag("--json", stats.json, "print JSON instead of text");
-  stats_cmd->add_option("--rays", stats.rays,
-                        "also trace these rays (file, primary:W:H or random:N:SEED) and report nodes visited and "
-                        "triangles tested per ray, and the time with the counters off (trace_fast_ms) and on");
-  stats_cmd->add_option("--threads", stats.threads, "worker threads for --rays (0 = all cores)")
-      ->check(CLI::Range(0, 1024));
-  stats_cmd->add_option("--build-trace", stats.build_trace,
-                        "also record the construction step by step and write it as JSON lines (docs/build-trace.md)");
-  stats_cmd->add_option("--build-trace-budget", stats.build_trace_budget_mb,
-                        "MB of recorded steps; a bigger build is recorded to the depth that fits")
-      ->check(CLI::Range(1, 65536))
-      ->capture_default_str();
-
+  CLI::App* stats_cmd = add_stats_command(app, &stats);
   cli::BenchOptions bench;
-  CLI::App* bench_cmd = app.add_subcommand(
-      "bench", "speed against error: build ms, MB, Mrays/s (1 and all threads), errors vs the double reference");
-  bench_cmd->add_option("--scene", bench.scenes, "mesh file (OBJ, PLY, STL, glTF, GLB) or procedural:NAME (repeatable)")->required();
-  bench_cmd->add_option("--structures", bench.structures, "comma list, or all (every structure except brute)")
-      ->capture_default_str();
-  bench_cmd->add_option("--param", bench.params,
-                        "key=value for every structure that has the key, or STRUCTURE:key=value (repeatable)");
-  bench_cmd->add_option("--rays", bench.rays, "primary:W:H, random:N:SEED or a rays file")->capture_default_str();
-  bench_cmd->add_option("--threads", bench.threads, "threads of the multi-threaded run (0 = all cores)")
-      ->check(CLI::Range(0, 1024));
-  bench_cmd->add_option("--kernel", bench.kernels, "comma list of " + accel::kernel_names_text())->capture_default_str();
-  bench_cmd->add_option("--min-time", bench.min_time, "seconds each of the 3 timing samples lasts at least")
-      ->check(CLI::Range(0.001, 60.0))
-      ->capture_default_str();
-  add_limit_options(bench_cmd, &bench.memory_limit, &bench.time_limit);
-  bench_cmd->add_option("--out-md", bench.out_md, "write the table as Markdown");
-  bench_cmd->add_option("--out-csv", bench.out_csv, "write the rows as CSV");
-  bench_cmd->add_option("--out-json", bench.out_json, "write the rows as a JSON array");
-  bench_cmd->add_flag("!--no-embree", bench.embree, "skip the Embree baseline rows");
-  bench_cmd->add_flag("!--no-tinybvh", bench.tinybvh,
-                      cli::tinybvh_available() ? "skip the tinybvh peer rows (tinybvh-bvh8, tinybvh-bvh4, tinybvh-bvh8-hq)"
-                                               : "skip the tinybvh peer rows (this binary has no tinybvh)");
-
+  CLI::App* bench_cmd = add_bench_command(app, &bench);
   CLI::App* params_cmd = app.add_subcommand("params", "list the structures and their parameters");
-
   cli::CheckOptions check;
-  check.shared = ACCEL_DEFAULT_SHARED_SCENES;
-  check.memory_bytes = std::min<size_t>(size_t(4) << 30, accel::default_memory_limit());
-  CLI::App* check_cmd = app.add_subcommand(
-      "check", "grade student structures (docs/student.md): answers against the reference, the lecture's traps, "
-               "invariants of the logs, speed against the built-in structure; exit 0 only when all is correct "
-               "(1: not, 2: bad use, 3: no sandbox here)");
-  add_judge_options(check_cmd, &check);
-  check_cmd->add_option("--structure", check.structure, "one student structure (default: every one the worker holds)");
-  check_cmd->add_flag("--json", check.json, "print the report as JSON (the same as --format json)");
-  check_cmd->add_option("--format", check.format, "text, json, gradescope or prairielearn (their results.json)")
-      ->check(CLI::IsMember({"text", "json", "gradescope", "prairielearn"}))
-      ->capture_default_str();
-  check_cmd->add_option("--out-dir", check.out_dir, "folder for the wrong rays' viewer state files")
-      ->capture_default_str();
-  check_cmd->add_option("--worker", check.worker,
-                        "the student's worker program (default: accelviz-worker beside accelviz-cli)");
-  check_cmd->add_option("--submission", check.submission,
-                        "a folder of .cpp files: compiled in the sandbox into a worker, then checked");
-
+  CLI::App* check_cmd = add_check_command(app, &check);
   cli::GradeClassOptions grade;
-  grade.check = check;
-  grade.check.timeout = 120.0;
-  CLI::App* grade_cmd = app.add_subcommand(
-      "grade-class", "grade every submission of a class (one subfolder each) in the sandbox: per student a JSON "
-                     "report and a CSV row, and one HTML class report (docs/student.md)");
-  grade_cmd->add_option("SUBMISSIONS", grade.submissions, "folder of submissions, one subfolder per student")
-      ->required();
-  grade_cmd->add_option("--out", grade.out, "folder for the reports (not inside SUBMISSIONS)")->required();
-  grade_cmd->add_option("--jobs", grade.jobs, "submissions graded at once (0 = one per core)")
-      ->check(CLI::Range(0, 256))
-      ->capture_default_str();
-  grade_cmd->add_flag("--force", grade.force, "grade again even the submissions unchanged since their report");
-  add_judge_options(grade_cmd, &grade.check);
+  CLI::App* grade_cmd = add_grade_class_command(app, check, &grade);
 
   try {
     app.parse(argc, argv);

@@ -379,6 +379,19 @@ class OctreeBuilder {
     return exact;
   }
 
+  /// A node being split into its 8 children: what building them needs.
+  struct NodeSplit {
+    uint32_t self;  // the node's id in its part
+    const Aabb& box;
+    int depth;
+    size_t n;      // the node's triangles
+    double share;  // its share of the progress
+    size_t sizes[8] = {}, starts[8] = {}, refs = 0;  // the children's lists in `lists`
+    const uint32_t* lists = nullptr;
+    bool poor = false;  // references at least doubled
+    Aabb bounds = {};   // of the node's triangles, only when a child keeps them all
+  };
+
   /// Fills the node `self` of `part` (OctreePart::kPartRoot: the part's root; box `box`, at
   /// `depth`, `share` of the progress) with the `count` triangles at `prims`: a leaf, or an
   /// inner node whose 8 children are built recursively (depth <= 40, so recursion is
@@ -396,9 +409,33 @@ class OctreeBuilder {
       if (mid[axis] <= box.min[axis] || mid[axis] >= box.max[axis])
         return leaf(part, self, LeafReason::TooThin, prims, n, &why.tiny_box, share, out);
     }
-
     // The children's lists, in the node's order, one after the other in this depth's buffer.
     std::vector<uint8_t>& masks = scratch.masks[depth];
+    assign_octants(prims, n, box, mid, masks);
+    NodeSplit split{.self = self, .box = box, .depth = depth, .n = n, .share = share};
+    for (size_t k = 0; k < n; ++k)
+      for (unsigned m = masks[k]; m; m &= m - 1) ++split.sizes[std::countr_zero(m)];
+    for (unsigned octant = 0; octant < 8; ++octant)
+      split.starts[octant] = split.refs, split.refs += split.sizes[octant];
+    // No gain: each child has a quarter of the node's surface area (in 2D half its
+    // perimeter), so a ray through the node passes 2 children on average and would test
+    // refs/4 (refs/2) triangles instead of n, after visiting the node and those two children.
+    if (3.0 * options_.ct + double(split.refs) * (planar_ ? 0.5 : 0.25) >= double(n))
+      return leaf(part, self, LeafReason::NoGain, prims, n, &why.no_gain, share, out);
+    std::vector<uint32_t>& lists = scratch.refs[depth];
+    lists.resize(split.refs);
+    size_t fill[8];
+    std::copy(split.starts, split.starts + 8, fill);
+    for (size_t k = 0; k < n; ++k)
+      for (unsigned m = masks[k]; m; m &= m - 1) lists[fill[std::countr_zero(m)]++] = prims[k];
+    split.lists = lists.data();
+    if (!subdivide(part, self, depth, out)) return false;
+    find_inseparable(split, prims);
+    return build_children(part, split, out->first, scratch);
+  }
+
+  /// The octants each of the `n` triangles at `prims` goes to (child_mask()), into `masks`.
+  void assign_octants(const uint32_t* prims, size_t n, const Aabb& box, const Vec3& mid, std::vector<uint8_t>& masks) {
     masks.resize(n);
     if (parallel_ && n >= kParallelMasks) {
       par::parallel_for(par::blocked_range<size_t>(0, n, 1024), [&](const par::blocked_range<size_t>& r) {
@@ -412,25 +449,11 @@ class OctreeBuilder {
         masks[k] = uint8_t(child_mask(prims[k], box, mid));
       }
     }
-    size_t sizes[8] = {};
-    for (size_t k = 0; k < n; ++k)
-      for (unsigned m = masks[k]; m; m &= m - 1) ++sizes[std::countr_zero(m)];
-    size_t starts[8], refs = 0;
-    for (unsigned octant = 0; octant < 8; ++octant) starts[octant] = refs, refs += sizes[octant];
-    // No gain: each child has a quarter of the node's surface area (in 2D half its
-    // perimeter), so a ray through the node passes 2 children on average and would test
-    // refs/4 (refs/2) triangles instead of n, after visiting the node and those two children.
-    if (3.0 * options_.ct + double(refs) * (planar_ ? 0.5 : 0.25) >= double(n))
-      return leaf(part, self, LeafReason::NoGain, prims, n, &why.no_gain, share, out);
-    std::vector<uint32_t>& lists = scratch.refs[depth];
-    lists.resize(refs);
-    {
-      size_t fill[8];
-      std::copy(starts, starts + 8, fill);
-      for (size_t k = 0; k < n; ++k)
-        for (unsigned m = masks[k]; m; m &= m - 1) lists[fill[std::countr_zero(m)]++] = prims[k];
-    }
+  }
 
+  /// Appends the 8 children of node `self` (within the node limit and the memory budget),
+  /// makes it inner (*out) and records the step.
+  bool subdivide(OctreePart& part, uint32_t self, int depth, OctreeNode* out) {
     if (nodes_total_.fetch_add(8, std::memory_order_relaxed) + 8 > options_.node_limit) return fail(Failure::Nodes);
     if (over_memory()) return fail(Failure::Memory);
     const uint32_t first = uint32_t(part.nodes.size());
@@ -441,41 +464,50 @@ class OctreeBuilder {
       for (uint32_t k = 0; k < 8; ++k) children[k] = first + k;
       sink_.subdivide(self, children, planar_ ? 4u : 8u);  // a quadtree's four (octree_child_count)
     }
-    // A child that keeps all n triangles is split again only while that can still separate
-    // them: not after a poor split (references at least doubled: the triangles spread over
-    // the children, as around a shared vertex or edge), and not when the triangles' bounds
-    // cover the whole child (they all pass through it, e.g. meet at a point inside it).
-    // A compact cluster in a big cell (the teapot in the stadium) is neither: it is
-    // refined until the cells are small enough to separate its triangles.
-    const bool poor = refs >= 2 * n;
-    Aabb bounds;  // of the node's triangles, needed only when a child keeps them all
+    return true;
+  }
+
+  /// A child that keeps all n triangles is split again only while that can still separate
+  /// them: not after a poor split (references at least doubled: the triangles spread over
+  /// the children, as around a shared vertex or edge), and not when the triangles' bounds
+  /// cover the whole child (they all pass through it, e.g. meet at a point inside it).
+  /// A compact cluster in a big cell (the teapot in the stadium) is neither: it is
+  /// refined until the cells are small enough to separate its triangles.
+  void find_inseparable(NodeSplit& split, const uint32_t* prims) const {
+    split.poor = split.refs >= 2 * split.n;
     for (unsigned octant = 0; octant < 8; ++octant) {
-      if (sizes[octant] == n && !poor) {
-        for (size_t k = 0; k < n; ++k) bounds.extend(prims_[prims[k]].bounds);
+      if (split.sizes[octant] == split.n && !split.poor) {
+        for (size_t k = 0; k < split.n; ++k) split.bounds.extend(prims_[prims[k]].bounds);
         break;
       }
     }
-    // Child `octant` into `into`, whose node `id` it is; its value to *value.
-    const auto build_child = [&](unsigned octant, OctreePart& into, uint32_t id, OctreeScratch& scr,
-                                 OctreeNode* value) {
-      const uint32_t* child = lists.data() + starts[octant];
-      const size_t size = sizes[octant];
-      const Aabb child_box = octree_child_box(box, octant);
-      const bool stuck = size == n && (poor || bounds.contains(child_box));
-      // No child took a triangle (exact insertion over triangles that touch no child's box
-      // interior, clang's UBSan caught the 0/0): the eight share the node's part evenly.
-      const double child_share = refs > 0 ? share * double(size) / double(refs) : share / 8.0;
-      // A quadtree's upper-z octants hold nothing and are no part of the lecture's figure:
-      // empty leaves as the build would make them, without construction steps.
-      if (planar_ && octant >= 4) return make_leaf(into, child, 0, &into.reasons.few_prims, child_share, value);
-      record_node(id, self, depth + 1, child_box, child, size);
-      return stuck ? leaf(into, id, LeafReason::NoProgress, child, size, &into.reasons.inseparable, child_share, value)
-                   : build_node(into, id, child_box, depth + 1, child, size, child_share, scr, value);
-    };
-    if (!parallel_ || n < kParallelChildren) {
+  }
+
+  /// Child `octant` of the split node into `into`, whose node `id` it is; its value to *value.
+  bool build_child(const NodeSplit& split, unsigned octant, OctreePart& into, uint32_t id, OctreeScratch& scratch,
+                   OctreeNode* value) {
+    const uint32_t* child = split.lists + split.starts[octant];
+    const size_t size = split.sizes[octant];
+    const Aabb child_box = octree_child_box(split.box, octant);
+    const bool stuck = size == split.n && (split.poor || split.bounds.contains(child_box));
+    // No child took a triangle (exact insertion over triangles that touch no child's box
+    // interior, clang's UBSan caught the 0/0): the eight share the node's part evenly.
+    const double child_share = split.refs > 0 ? split.share * double(size) / double(split.refs) : split.share / 8.0;
+    // A quadtree's upper-z octants hold nothing and are no part of the lecture's figure:
+    // empty leaves as the build would make them, without construction steps.
+    if (planar_ && octant >= 4) return make_leaf(into, child, 0, &into.reasons.few_prims, child_share, value);
+    record_node(id, split.self, split.depth + 1, child_box, child, size);
+    return stuck ? leaf(into, id, LeafReason::NoProgress, child, size, &into.reasons.inseparable, child_share, value)
+                 : build_node(into, id, child_box, split.depth + 1, child, size, child_share, scratch, value);
+  }
+
+  /// The 8 children (nodes first..first + 7 of `part`) in octant order; for a node of many
+  /// triangles as 8 tasks, each into its own part, spliced in octant order.
+  bool build_children(OctreePart& part, const NodeSplit& split, uint32_t first, OctreeScratch& scratch) {
+    if (!parallel_ || split.n < kParallelChildren) {
       for (unsigned octant = 0; octant < 8; ++octant) {
         OctreeNode value;
-        if (!build_child(octant, part, first + octant, scratch, &value)) return false;
+        if (!build_child(split, octant, part, first + octant, scratch, &value)) return false;
         part.nodes[first + octant] = value;
       }
       return true;
@@ -485,7 +517,7 @@ class OctreeBuilder {
     std::atomic<bool> ok{true};
     par::parallel_for(0u, 8u, [&](unsigned octant) {
       OctreeScratch own;  // the lists of this depth belong to the waiting parent
-      if (!build_child(octant, parts[octant], OctreePart::kPartRoot, own, &values[octant]))
+      if (!build_child(split, octant, parts[octant], OctreePart::kPartRoot, own, &values[octant]))
         ok.store(false, std::memory_order_relaxed);
     });
     if (!ok.load(std::memory_order_relaxed)) return false;

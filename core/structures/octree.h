@@ -239,6 +239,33 @@ class Octree final : public StructureWithTraversal<Octree> {
   // BoxTester's widening of far distances (Ize 2013: 1 + 2*gamma(3)).
   static constexpr float kWiden = 1.0f + 2.0f * gamma_bound(3);
 
+  /// A node waiting on the traversal's stack: its id, its depth and the ray's interval in it.
+  struct StackEntry {
+    NodeId node;
+    int depth;
+    float t_enter, t_exit;
+  };
+  /// The box of a node on the traversal's current path.
+  struct PathBox {
+    Vec3 min, max;  // glm's defaulted constructor leaves these uninitialised: no per-ray fill
+  };
+  /// A node's children's slabs along the ray: per axis and half (0 lower, 1 upper), the
+  /// distance to the near plane and to the (widened) far plane.
+  struct ChildSlabs {
+    float near_t[3][2], far_t[3][2];
+  };
+
+  /// The children's visiting order: octant i ^ mask is tested i-th.
+  ACCEL_FORCE_INLINE unsigned visiting_mask(const Ray& ray) const;
+  static ACCEL_FORCE_INLINE ChildSlabs child_slabs(const PathBox& box, const BoxTester& boxes);
+  /// Tests the children of inner node `node` (entry `e`) in visiting order: the ones the ray
+  /// enters before the closest hit go to `hit_children`, in that order; returns how many.
+  /// The others are culled, and a recording sink gets the order (OctreeOrderVars).
+  template <TraversalSink Sink>
+  ACCEL_FORCE_INLINE int test_children(const Ray& ray, const StackEntry& e, const OctreeNode& node,
+                                       const ChildSlabs& slabs, unsigned mask, float closest_t,
+                                       StackEntry hit_children[8], Sink& sink) const;
+
   const Scene* scene_ = nullptr;
   OctreeData data_;
   OctreeOrder order_ = OctreeOrder::Sorted;
@@ -250,127 +277,136 @@ Hit Octree::traverse(const Ray& ray, Sink& sink) const {
   const TriangleTester tester(ray, kernel_);
   Hit closest = no_hit(ray);
   const std::vector<OctreeNode>& nodes = data_.nodes;
-  if (scene_ && !nodes.empty() && nodes[0].count != 0) {  // an empty root holds nothing to find
-    const BoxTester boxes(ray);
-    float t0 = 0.0f, t1 = 0.0f;
-    if (!boxes.intersect(data_.root_box, ray.tmin, ray.tmax, &t0, &t1)) {
-      sink.cull(0, 0, CullReason::MissedBounds, 0.0f);
-    } else {
-      struct Entry {
-        NodeId node;
-        int depth;
-        float t_enter, t_exit;
-      };
-      // Box of the node currently visited at each depth of the path. A popped child's
-      // parent is still path[depth - 1]: since the child was pushed, only nodes of the
-      // parent's subtree (all deeper) were visited.
-      struct PathBox {
-        Vec3 min, max;  // glm's defaulted constructor leaves these uninitialised: no per-ray fill
-      };
-      PathBox path[kOctreeMaxDepth + 1];
-      path[0] = {data_.root_box.min, data_.root_box.max};
-      Entry stack[kStackSize];
-      int top = 0;
-      stack[top++] = {0, 0, t0, t1};
-      sink.push(0, 0, t0);
-      // Sorted: visiting octants i ^ mask for i = 0..7, where mask has a bit set for each
-      // axis the ray travels down, orders the children the ray passes as it passes them:
-      // along the ray each axis' half can only change from the near to the far one, so the
-      // octants it passes have increasing i (Revelles et al. 2000's first-node idea).
-      // A quadtree (2D scene) ignores z: its four quadrants are then the first four tested.
-      const unsigned mask = order_ == OctreeOrder::Fixed
-                                ? 0u
-                                : unsigned(std::signbit(ray.dir.x)) | unsigned(std::signbit(ray.dir.y)) << 1 |
-                                      unsigned(std::signbit(ray.dir.z) && !data_.planar) << 2;
-      while (top > 0) {
-        const Entry e = stack[--top];
-        sink.pop(e.node, e.depth, e.t_enter);
-        if (e.t_enter > closest.t) {
-          sink.cull(e.node, e.depth, CullReason::BeyondClosestHit, e.t_enter);
-          continue;
-        }
-        if (e.depth > 0) {
-          Aabb parent;
-          parent.min = path[e.depth - 1].min;
-          parent.max = path[e.depth - 1].max;
-          const Aabb box = octree_child_box(parent, (e.node - 1u) & 7u);
-          path[e.depth] = {box.min, box.max};
-        }
-        sink.visit(e.node, e.depth, e.t_enter, e.t_exit);
-        const OctreeNode node = nodes[e.node];
-        if (node.leaf()) {
-          for (uint32_t k = node.first; k < node.first + node.count; ++k)
-            test_triangle(*scene_, tester, data_.prim_ids[k], closest, sink);
-          continue;
-        }
-        // The children's ray intervals from the node's 9 planes (Revelles et al. 2000's
-        // parametric idea): per axis and half, the distance to the near plane and to the far
-        // plane, the latter widened -- the very values BoxTester::intersect would compute for
-        // each child box, combined in its order, so every interval is bit-identical to it
-        // (conservative after Ize 2013, NaN-safe for zero direction components) without
-        // 8 separate box tests. (0.5f * x is exact, so the split point is the same float
-        // here and in octree_child_box() even if the compiler fuses multiply and add.)
-        const PathBox& box = path[e.depth];
-        float near_t[3][2], far_t[3][2];
-        for (int axis = 0; axis < 3; ++axis) {
-          const float mid = 0.5f * box.min[axis] + 0.5f * box.max[axis];
-          const float inv = boxes.inv_dir[axis], org = boxes.org[axis];
-          const float t_min = (box.min[axis] - org) * inv, t_mid = (mid - org) * inv;
-          const float t_max = (box.max[axis] - org) * inv;
-          const bool negative = std::signbit(inv);
-          near_t[axis][0] = negative ? t_mid : t_min;  // lower half [min, mid]
-          far_t[axis][0] = (negative ? t_min : t_mid) * kWiden;
-          near_t[axis][1] = negative ? t_max : t_mid;  // upper half [mid, max]
-          far_t[axis][1] = (negative ? t_mid : t_max) * kWiden;
-        }
-        Entry hit_children[8];
-        int hits = 0;
-        // The child order, for a recording sink only: an empty struct otherwise, so the fast
-        // path keeps no dead stores.
-        struct NoOrder {};
-        [[maybe_unused]] std::conditional_t<Sink::kRecords, OctreeOrderVars, NoOrder> order;
-        for (unsigned i = 0; i < 8; ++i) {
-          const unsigned octant = i ^ mask;
-          const NodeId child = node.first + octant;
-          if constexpr (Sink::kRecords) order.children[i] = {child, uint8_t(octant), OctreeOrderVars::Fate::Empty, 0, 0};
-          if (nodes[child].count == 0) continue;  // empty leaf
-          float c0 = ray.tmin, c1 = ray.tmax;
-          for (int axis = 0; axis < 3; ++axis) {
-            const unsigned upper = (octant >> axis) & 1u;
-            const float n = near_t[axis][upper], f = far_t[axis][upper];
-            c0 = n > c0 ? n : c0;  // as in BoxTester: a NaN distance leaves the interval as is
-            c1 = f < c1 ? f : c1;
-          }
-          if constexpr (Sink::kRecords) {
-            order.children[i].t_enter = c0;
-            order.children[i].t_exit = c1;
-            order.children[i].fate = c0 > c1             ? OctreeOrderVars::Fate::Missed
-                                     : c0 > closest.t ? OctreeOrderVars::Fate::BeyondClosestHit
-                                                      : OctreeOrderVars::Fate::Pushed;
-          }
-          if (c0 > c1) {
-            sink.cull(child, e.depth + 1, CullReason::MissedBounds, 0.0f);
-          } else if (c0 > closest.t) {
-            sink.cull(child, e.depth + 1, CullReason::BeyondClosestHit, c0);
-          } else {
-            hit_children[hits++] = {child, e.depth + 1, c0, c1};
-          }
-        }
-        if constexpr (Sink::kRecords) {
-          order.mask = mask;
-          order.count = int(octree_child_count(data_));  // a quadtree's upper-z octants hold nothing
-          sink.vars(order);
-        }
-        while (hits > 0) {
-          const Entry& c = hit_children[--hits];
-          ACCEL_DCHECK(top < kStackSize);
-          stack[top++] = c;
-          sink.push(c.node, c.depth, c.t_enter);
-        }
-      }
+  // An empty root holds nothing to find.
+  if (!scene_ || nodes.empty() || nodes[0].count == 0) return finish_query(closest, sink);
+  const BoxTester boxes(ray);
+  float t0 = 0.0f, t1 = 0.0f;
+  if (!boxes.intersect(data_.root_box, ray.tmin, ray.tmax, &t0, &t1)) {
+    sink.cull(0, 0, CullReason::MissedBounds, 0.0f);
+    return finish_query(closest, sink);
+  }
+  // Box of the node currently visited at each depth of the path. A popped child's parent is
+  // still path[depth - 1]: since the child was pushed, only nodes of the parent's subtree
+  // (all deeper) were visited.
+  PathBox path[kOctreeMaxDepth + 1];
+  path[0] = {data_.root_box.min, data_.root_box.max};
+  StackEntry stack[kStackSize];
+  int top = 0;
+  stack[top++] = {0, 0, t0, t1};
+  sink.push(0, 0, t0);
+  const unsigned mask = visiting_mask(ray);
+  while (top > 0) {
+    const StackEntry e = stack[--top];
+    sink.pop(e.node, e.depth, e.t_enter);
+    if (e.t_enter > closest.t) {
+      sink.cull(e.node, e.depth, CullReason::BeyondClosestHit, e.t_enter);
+      continue;
+    }
+    // The node's box, from its parent's. Written here, not in a helper returning a PathBox:
+    // that one cost the fast path ~10% (1 thread, bunny; GCC allocated the loop's registers
+    // differently) for the same instructions.
+    if (e.depth > 0) {
+      Aabb parent;
+      parent.min = path[e.depth - 1].min;
+      parent.max = path[e.depth - 1].max;
+      const Aabb box = octree_child_box(parent, (e.node - 1u) & 7u);
+      path[e.depth] = {box.min, box.max};
+    }
+    sink.visit(e.node, e.depth, e.t_enter, e.t_exit);
+    const OctreeNode node = nodes[e.node];
+    if (node.leaf()) {
+      for (uint32_t k = node.first; k < node.first + node.count; ++k)
+        test_triangle(*scene_, tester, data_.prim_ids[k], closest, sink);
+      continue;
+    }
+    StackEntry hit_children[8];
+    int hits = test_children(ray, e, node, child_slabs(path[e.depth], boxes), mask, closest.t, hit_children, sink);
+    while (hits > 0) {
+      const StackEntry& c = hit_children[--hits];
+      ACCEL_DCHECK(top < kStackSize);
+      stack[top++] = c;
+      sink.push(c.node, c.depth, c.t_enter);
     }
   }
   return finish_query(closest, sink);
+}
+
+// Sorted: visiting octants i ^ mask for i = 0..7, where mask has a bit set for each axis the
+// ray travels down, orders the children the ray passes as it passes them: along the ray each
+// axis' half can only change from the near to the far one, so the octants it passes have
+// increasing i (Revelles et al. 2000's first-node idea). A quadtree (2D scene) ignores z:
+// its four quadrants are then the first four tested.
+ACCEL_FORCE_INLINE unsigned Octree::visiting_mask(const Ray& ray) const {
+  return order_ == OctreeOrder::Fixed ? 0u
+                                      : unsigned(std::signbit(ray.dir.x)) | unsigned(std::signbit(ray.dir.y)) << 1 |
+                                            unsigned(std::signbit(ray.dir.z) && !data_.planar) << 2;
+}
+
+// The children's ray intervals from the node's 9 planes (Revelles et al. 2000's parametric
+// idea): per axis and half, the distance to the near plane and to the far plane, the latter
+// widened -- the very values BoxTester::intersect would compute for each child box, combined
+// in its order, so every interval is bit-identical to it (conservative after Ize 2013,
+// NaN-safe for zero direction components) without 8 separate box tests. (0.5f * x is exact,
+// so the split point is the same float here and in octree_child_box() even if the compiler
+// fuses multiply and add.)
+ACCEL_FORCE_INLINE Octree::ChildSlabs Octree::child_slabs(const PathBox& box, const BoxTester& boxes) {
+  ChildSlabs slabs;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float mid = 0.5f * box.min[axis] + 0.5f * box.max[axis];
+    const float inv = boxes.inv_dir[axis], org = boxes.org[axis];
+    const float t_min = (box.min[axis] - org) * inv, t_mid = (mid - org) * inv;
+    const float t_max = (box.max[axis] - org) * inv;
+    const bool negative = std::signbit(inv);
+    slabs.near_t[axis][0] = negative ? t_mid : t_min;  // lower half [min, mid]
+    slabs.far_t[axis][0] = (negative ? t_min : t_mid) * kWiden;
+    slabs.near_t[axis][1] = negative ? t_max : t_mid;  // upper half [mid, max]
+    slabs.far_t[axis][1] = (negative ? t_mid : t_max) * kWiden;
+  }
+  return slabs;
+}
+
+template <TraversalSink Sink>
+ACCEL_FORCE_INLINE int Octree::test_children(const Ray& ray, const StackEntry& e, const OctreeNode& node,
+                                             const ChildSlabs& slabs, unsigned mask, float closest_t,
+                                             StackEntry hit_children[8], Sink& sink) const {
+  int hits = 0;
+  // The child order, for a recording sink only: an empty struct otherwise, so the fast path
+  // keeps no dead stores.
+  struct NoOrder {};
+  [[maybe_unused]] std::conditional_t<Sink::kRecords, OctreeOrderVars, NoOrder> order;
+  for (unsigned i = 0; i < 8; ++i) {
+    const unsigned octant = i ^ mask;
+    const NodeId child = node.first + octant;
+    if constexpr (Sink::kRecords) order.children[i] = {child, uint8_t(octant), OctreeOrderVars::Fate::Empty, 0, 0};
+    if (data_.nodes[child].count == 0) continue;  // empty leaf
+    float c0 = ray.tmin, c1 = ray.tmax;
+    for (int axis = 0; axis < 3; ++axis) {
+      const unsigned upper = (octant >> axis) & 1u;
+      const float n = slabs.near_t[axis][upper], f = slabs.far_t[axis][upper];
+      c0 = n > c0 ? n : c0;  // as in BoxTester: a NaN distance leaves the interval as is
+      c1 = f < c1 ? f : c1;
+    }
+    if constexpr (Sink::kRecords) {
+      order.children[i].t_enter = c0;
+      order.children[i].t_exit = c1;
+      order.children[i].fate = c0 > c1          ? OctreeOrderVars::Fate::Missed
+                               : c0 > closest_t ? OctreeOrderVars::Fate::BeyondClosestHit
+                                                : OctreeOrderVars::Fate::Pushed;
+    }
+    if (c0 > c1) {
+      sink.cull(child, e.depth + 1, CullReason::MissedBounds, 0.0f);
+    } else if (c0 > closest_t) {
+      sink.cull(child, e.depth + 1, CullReason::BeyondClosestHit, c0);
+    } else {
+      hit_children[hits++] = {child, e.depth + 1, c0, c1};
+    }
+  }
+  if constexpr (Sink::kRecords) {
+    order.mask = mask;
+    order.count = int(octree_child_count(data_));  // a quadtree's upper-z octants hold nothing
+    sink.vars(order);
+  }
+  return hits;
 }
 
 }  // namespace accel

@@ -349,6 +349,187 @@ std::array<double, 4> resolution_terms(const GridConfig& config, const DVec3& ex
   return v;
 }
 
+/// The resolution the parameters ask for over the box g.bounds (shrunk to the memory budget
+/// where a rule asks for too much), and the pad of the exact test: 2^-28 of the largest
+/// coordinate, far above the rounding of the cell bounds.
+Status set_resolution(GridData& g, const Scene& scene, const GridConfig& config) {
+  auto res = grid_resolution(scene, g.bounds, config);
+  if (!res) return res.error();
+  g.res = res.value().res;
+  g.clamped_to_budget = res.value().clamped_to_budget;
+  const double m = std::max({std::abs(double(g.bounds.min.x)), std::abs(double(g.bounds.min.y)),
+                             std::abs(double(g.bounds.min.z)), std::abs(double(g.bounds.max.x)),
+                             std::abs(double(g.bounds.max.y)), std::abs(double(g.bounds.max.z))});
+  g.pad = std::ldexp(m, -28);
+  return {};
+}
+
+/// Each valid triangle's cell range at g's resolution (into `ranges`); returns their cells
+/// summed: the candidates of the insertion.
+uint64_t compute_cell_ranges(const GridData& g, const Scene& scene, std::vector<CellRange>& ranges) {
+  const std::vector<uint32_t>& valid = scene.valid_prims();
+  ranges.resize(valid.size());
+  return par::parallel_reduce(
+      par::blocked_range<size_t>(0, valid.size(), 16384), uint64_t(0),
+      [&](const par::blocked_range<size_t>& r, uint64_t sum) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          ranges[k] = cell_range(g, scene.triangle_bounds(valid[k]));
+          sum += ranges[k].cells();
+        }
+        return sum;
+      },
+      std::plus<>());
+}
+
+/// Why a grid that cannot shrink (an explicit res, or one cell) is refused: its references
+/// over the limit, or its `bytes` over the memory budget.
+Error references_error(const GridData& g, const GridConfig& config, size_t triangles, uint64_t candidates,
+                       double bytes, bool over_memory) {
+  const std::string refs = "would create " + std::to_string(candidates) + " triangle references in " +
+                           res_text(g.res) + " cells";
+  if (over_memory && !config.explicit_res)  // one cell: the scene alone is over the budget
+    return make_error("grid: " + std::to_string(triangles) + " triangles in one cell " +
+                      over_budget_text(bytes, config.memory_limit) + "; raise the memory limit");
+  if (over_memory)
+    return make_error(driving_param_text(config) + ": " + refs + " and " +
+                      over_budget_text(bytes, config.memory_limit) + "; lower it");
+  return make_error(driving_param_text(config) + ": " + refs + " (limit " + std::to_string(config.max_references) +
+                    "); lower it");
+}
+
+/// Shrinks a rule's resolution towards what the reference limit and the memory budget leave
+/// room for. References shrink at least as fast as the cell count's cube root: one or two
+/// rounds. The memory's share of references is what the budget leaves after the cells.
+void shrink_resolution(GridData& g, const GridConfig& config, size_t triangles, uint64_t candidates) {
+  const double room = (double(config.memory_limit) - grid_build_bytes(config, triangles, double(g.cell_count()), 0.0)) /
+                      (config.insertion == GridInsertion::Exact ? 4.125 : 4.0);
+  const double fit = std::max(1.0, std::min(double(config.max_references), room));
+  const double f = std::min(0.9, std::cbrt(fit / double(candidates)));
+  for (int& n : g.res) n = std::max(1, int(double(n) * f));
+  g.clamped_to_budget = true;
+}
+
+/// Bounds the work and memory before doing it: the box ranges give an upper bound on the
+/// references of either insertion (and on the overlap tests of insert=exact). A rule's
+/// resolution shrinks until it fits; an explicit res is refused. Sets g.cell_size; returns
+/// the triangles' cell ranges at the final resolution.
+Result<std::vector<CellRange>> fit_references(GridData& g, const Scene& scene, const GridConfig& config) {
+  const size_t triangles = scene.valid_prims().size();
+  const DVec3 extent = DVec3(g.bounds.extent());
+  std::vector<CellRange> ranges;
+  for (;;) {
+    for (int a = 0; a < 3; ++a) g.cell_size[a] = extent[a] / double(g.res[a]);
+    const uint64_t candidates = compute_cell_ranges(g, scene, ranges);
+    const double bytes = grid_build_bytes(config, triangles, double(g.cell_count()), double(candidates));
+    const bool over_memory = bytes > double(config.memory_limit);
+    if (candidates <= config.max_references && !over_memory) return ranges;
+    if (config.explicit_res || g.cell_count() == 1)
+      return references_error(g, config, triangles, candidates, bytes, over_memory);
+    shrink_resolution(g, config, triangles, candidates);
+  }
+}
+
+/// Puts triangles into cells by the chosen insertion, and counts (bump) or fills the cells'
+/// lists. The exact test's answers are kept, one bit per candidate cell, each triangle's
+/// bits in words of its own (no two tasks write a word): the filling pass reads them.
+class CellInserter {
+ public:
+  CellInserter(GridData& g, const Scene& scene, const std::vector<CellRange>& ranges, bool exact)
+      : g_(g), scene_(scene), valid_(scene.valid_prims()), ranges_(ranges), exact_(exact) {
+    memo_start_.resize(exact ? valid_.size() + 1 : 0);
+    for (size_t k = 0; exact && k < valid_.size(); ++k)
+      memo_start_[k + 1] = memo_start_[k] + (ranges[k].cells() + 63) / 64;
+    memo_.resize(exact ? memo_start_.back() : 0);
+  }
+
+  /// fn(cell) for every cell triangle `k` (of valid_prims()) goes into, in increasing
+  /// linear index (x fastest); the second pass reads the first one's memo.
+  template <class Fn>
+  void for_each_cell(size_t k, bool second_pass, Fn&& fn) {
+    if (exact_)
+      insert_exact(g_, scene_, valid_[k], ranges_[k], memo_.data() + memo_start_[k], second_pass, fn);
+    else
+      insert_bbox(g_, ranges_[k], fn);
+  }
+  /// One more triangle in cell c: its slot (in the counting pass, the count so far).
+  uint32_t bump(size_t c) { return par::fetch_add(g_.cell_start[c + 1], uint32_t(1)); }
+
+ private:
+  GridData& g_;
+  const Scene& scene_;
+  const std::vector<uint32_t>& valid_;
+  const std::vector<CellRange>& ranges_;
+  const bool exact_;
+  std::vector<size_t> memo_start_;
+  std::vector<uint64_t> memo_;
+};
+
+/// The counting pass: cell_start[c + 1] = the triangles of cell c. Recorded: serially in
+/// triangle order, one step per triangle, the cells of its box range it is counted into.
+/// False when cancelled.
+template <class Sink>
+bool count_cells(CellInserter& inserter, const Scene& scene, const std::vector<CellRange>& ranges,
+                 BuildControl* control, Sink& sink) {
+  const std::vector<uint32_t>& valid = scene.valid_prims();
+  const auto bump = [&](size_t c) { return inserter.bump(c); };
+  ProgressSpan counting(control, 0.1, 0.55);
+  if constexpr (Sink::kRecords) {
+    std::vector<uint32_t> stored;
+    for (size_t k = 0; k < valid.size(); ++k) {
+      if (k % 4096 == 0 && !counting.advance(double(k) / double(valid.size()))) return false;
+      if (!sink.records(0)) {
+        inserter.for_each_cell(k, false, bump);
+        continue;
+      }
+      stored.clear();
+      inserter.for_each_cell(k, false, [&](size_t c) {
+        bump(c);
+        stored.push_back(uint32_t(c));
+      });
+      const int lo[3] = {ranges[k].lo[0], ranges[k].lo[1], ranges[k].lo[2]};
+      const int hi[3] = {ranges[k].hi[0], ranges[k].hi[1], ranges[k].hi[2]};
+      sink.grid_insert(valid[k], lo, hi, stored.data(), stored.size());
+    }
+    if (counting.cancelled()) return false;
+  } else {
+    if (!for_each_prim_batch(valid.size(), counting, [&](size_t k) { inserter.for_each_cell(k, false, bump); }))
+      return false;
+  }
+  counting.finish();
+  return true;
+}
+
+/// Turns the counts into starts (cell_start[c + 1] = the start of c); returns the total.
+uint32_t starts_from_counts(GridData& g) {
+  uint32_t run = 0;
+  for (size_t c = 0; c < g.cell_count(); ++c) {
+    const uint32_t count = g.cell_start[c + 1];
+    g.cell_start[c + 1] = run;
+    run += count;
+  }
+  return run;
+}
+
+/// The filling pass: each triangle into its cells' lists, after which cell_start[c + 1] is
+/// the end of c. The order within a cell depends on the threads: sorting each cell restores
+/// the serial fill's (valid_prims() ascends). False when cancelled.
+bool fill_cells(CellInserter& inserter, GridData& g, const Scene& scene, BuildControl* control) {
+  const std::vector<uint32_t>& valid = scene.valid_prims();
+  ProgressSpan filling(control, 0.55, 1.0);
+  if (!for_each_prim_batch(valid.size(), filling, [&](size_t k) {
+        inserter.for_each_cell(k, true, [&](size_t c) { g.prim_ids[inserter.bump(c)] = valid[k]; });
+      }))
+    return false;
+  par::parallel_for(par::blocked_range<size_t>(0, g.cell_count(), 4096), [&](const par::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c < r.end(); ++c) {
+      const auto begin = g.prim_ids.begin() + g.cell_start[c], end = g.prim_ids.begin() + g.cell_start[c + 1];
+      if (!std::is_sorted(begin, end)) std::sort(begin, end);
+    }
+  });
+  filling.finish();
+  return true;
+}
+
 /// build_grid() for one sink: NullBuildSink (the normal, parallel build) or BuildRecorder
 /// (the same grid, the insertion pass serial in triangle order so the steps come in order).
 template <class Sink>
@@ -364,130 +545,28 @@ Result<GridData> build_grid_with(const Scene& scene, const GridConfig& config, B
   }
   for (uint32_t prim : valid) g.bounds.extend(scene.triangle_bounds(prim));
   sink.scene_box(g.bounds);
-  auto res = grid_resolution(scene, g.bounds, config);
-  if (!res) return res.error();
-  g.res = res.value().res;
-  g.clamped_to_budget = res.value().clamped_to_budget;
-  const DVec3 extent = DVec3(g.bounds.extent());
-  const double m = std::max({std::abs(double(g.bounds.min.x)), std::abs(double(g.bounds.min.y)),
-                             std::abs(double(g.bounds.min.z)), std::abs(double(g.bounds.max.x)),
-                             std::abs(double(g.bounds.max.y)), std::abs(double(g.bounds.max.z))});
-  g.pad = std::ldexp(m, -28);
-
-  // Bound the work and memory before doing it: the box ranges give an upper bound on the
-  // references of either insertion (and on the overlap tests of insert=exact). A rule's
-  // resolution shrinks until it fits; an explicit res is refused.
-  std::vector<CellRange> ranges;
-  for (;;) {
-    for (int a = 0; a < 3; ++a) g.cell_size[a] = extent[a] / double(g.res[a]);
-    ranges.resize(valid.size());
-    const uint64_t candidates = par::parallel_reduce(
-        par::blocked_range<size_t>(0, valid.size(), 16384), uint64_t(0),
-        [&](const par::blocked_range<size_t>& r, uint64_t sum) {
-          for (size_t k = r.begin(); k < r.end(); ++k) {
-            ranges[k] = cell_range(g, scene.triangle_bounds(valid[k]));
-            sum += ranges[k].cells();
-          }
-          return sum;
-        },
-        std::plus<>());
-    const double bytes = grid_build_bytes(config, valid.size(), double(g.cell_count()), double(candidates));
-    const bool over_memory = bytes > double(config.memory_limit);
-    if (candidates <= config.max_references && !over_memory) break;
-    if (config.explicit_res || g.cell_count() == 1) {
-      const std::string refs = "would create " + std::to_string(candidates) + " triangle references in " +
-                               res_text(g.res) + " cells";
-      if (over_memory && !config.explicit_res)  // one cell: the scene alone is over the budget
-        return make_error("grid: " + std::to_string(valid.size()) + " triangles in one cell " +
-                          over_budget_text(bytes, config.memory_limit) + "; raise the memory limit");
-      if (over_memory)
-        return make_error(driving_param_text(config) + ": " + refs + " and " +
-                          over_budget_text(bytes, config.memory_limit) + "; lower it");
-      return make_error(driving_param_text(config) + ": " + refs + " (limit " +
-                        std::to_string(config.max_references) + "); lower it");
-    }
-    // References shrink at least as fast as the cell count's cube root: one or two rounds.
-    // The memory's share of references is what the budget leaves after the cells.
-    const double room = (double(config.memory_limit) - grid_build_bytes(config, valid.size(), double(g.cell_count()), 0.0)) /
-                        (config.insertion == GridInsertion::Exact ? 4.125 : 4.0);
-    const double fit = std::max(1.0, std::min(double(config.max_references), room));
-    const double f = std::min(0.9, std::cbrt(fit / double(candidates)));
-    for (int& n : g.res) n = std::max(1, int(double(n) * f));
-    g.clamped_to_budget = true;
-  }
+  if (Status set = set_resolution(g, scene, config); !set) return set.error();
+  auto ranges = fit_references(g, scene, config);
+  if (!ranges) return ranges.error();
   if constexpr (Sink::kRecords) {
-    const std::array<double, 4> values = resolution_terms(config, extent, valid.size(), scene.planar() ? 2 : 3);
+    const std::array<double, 4> values =
+        resolution_terms(config, DVec3(g.bounds.extent()), valid.size(), scene.planar() ? 2 : 3);
     sink.grid_resolution(g.bounds, values.data(), g.res.data());
   }
 
   // Counting sort into CSR: cell_start[c + 1] counts, then holds the start of c, then
   // (after the fill) the end of c = the start of c + 1. Both passes run over the triangles
   // in parallel with atomic cell counters: the counts do not depend on the order, and the
-  // fill's order within a cell, which does, is restored by sorting each cell afterwards
-  // (valid_prims() ascends, so ascending ids are exactly the serial fill's order).
+  // fill's order within a cell, which does, is restored by sorting each cell afterwards.
   const size_t cells = g.cell_count();
   g.cell_start.assign(cells + 1, 0);
-  const bool exact = config.insertion == GridInsertion::Exact;
-  // The exact test's answers, one bit per candidate cell, each triangle's bits in words of
-  // its own (no two tasks write a word).
-  std::vector<size_t> memo_start(exact ? valid.size() + 1 : 0);
-  for (size_t k = 0; exact && k < valid.size(); ++k) memo_start[k + 1] = memo_start[k] + (ranges[k].cells() + 63) / 64;
-  std::vector<uint64_t> memo(exact ? memo_start.back() : 0);
-  auto for_each_cell = [&](size_t k, bool second_pass, auto&& fn) {
-    if (exact)
-      insert_exact(g, scene, valid[k], ranges[k], memo.data() + memo_start[k], second_pass, fn);
-    else
-      insert_bbox(g, ranges[k], fn);
-  };
-  const auto bump = [&](size_t c) {
-    return par::fetch_add(g.cell_start[c + 1], uint32_t(1));
-  };
+  CellInserter inserter(g, scene, ranges.value(), config.insertion == GridInsertion::Exact);
   report_progress(control, 0.1);
   if (build_cancelled(control)) return cancelled_error();
-  ProgressSpan counting(control, 0.1, 0.55);
-  if constexpr (Sink::kRecords) {
-    // Serially in triangle order, one step per triangle: the cells of its box range it is
-    // counted into (for_each_cell visits them in increasing linear index, x fastest).
-    std::vector<uint32_t> stored;
-    for (size_t k = 0; k < valid.size(); ++k) {
-      if (k % 4096 == 0 && !counting.advance(double(k) / double(valid.size()))) return cancelled_error();
-      if (!sink.records(0)) {
-        for_each_cell(k, false, bump);
-        continue;
-      }
-      stored.clear();
-      for_each_cell(k, false, [&](size_t c) {
-        bump(c);
-        stored.push_back(uint32_t(c));
-      });
-      const int lo[3] = {ranges[k].lo[0], ranges[k].lo[1], ranges[k].lo[2]};
-      const int hi[3] = {ranges[k].hi[0], ranges[k].hi[1], ranges[k].hi[2]};
-      sink.grid_insert(valid[k], lo, hi, stored.data(), stored.size());
-    }
-    if (counting.cancelled()) return cancelled_error();
-  } else {
-    if (!for_each_prim_batch(valid.size(), counting, [&](size_t k) { for_each_cell(k, false, bump); }))
-      return cancelled_error();
-  }
-  counting.finish();
-  uint32_t run = 0;
-  for (size_t c = 0; c < cells; ++c) {
-    const uint32_t count = g.cell_start[c + 1];
-    g.cell_start[c + 1] = run;
-    run += count;
-  }
+  if (!count_cells(inserter, scene, ranges.value(), control, sink)) return cancelled_error();
+  const uint32_t run = starts_from_counts(g);
   g.prim_ids.resize(run);
-  ProgressSpan filling(control, 0.55, 1.0);
-  if (!for_each_prim_batch(valid.size(), filling,
-                           [&](size_t k) { for_each_cell(k, true, [&](size_t c) { g.prim_ids[bump(c)] = valid[k]; }); }))
-    return cancelled_error();
-  par::parallel_for(par::blocked_range<size_t>(0, cells, 4096), [&](const par::blocked_range<size_t>& r) {
-    for (size_t c = r.begin(); c < r.end(); ++c) {
-      const auto begin = g.prim_ids.begin() + g.cell_start[c], end = g.prim_ids.begin() + g.cell_start[c + 1];
-      if (!std::is_sorted(begin, end)) std::sort(begin, end);
-    }
-  });
-  filling.finish();
+  if (!fill_cells(inserter, g, scene, control)) return cancelled_error();
   ACCEL_CHECK(g.cell_start[cells] == run);
   sink.done(cells);
   return g;

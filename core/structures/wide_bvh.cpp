@@ -90,6 +90,79 @@ void record_collapse(const BuildTree& tree, const WideCollapse<W>& choice, Build
   }
 }
 
+/// The top of the binary tree, planned serially: wide nodes over binary subtrees of
+/// kCollapseTaskNodes or more. A child below that size (or a leaf) becomes a task, emitted
+/// into its own Layout.
+template <int W>
+struct CollapsePlan {
+  struct TopNode {
+    uint32_t src;
+    int depth, n;
+    uint32_t kids[W];
+    int32_t child[W];  ///< >= 0: index into `top`; < 0: task -child - 1
+  };
+  struct Task {
+    uint32_t src;
+    int depth;
+  };
+  std::vector<TopNode> top;
+  std::vector<Task> tasks;
+
+  /// Plans the wide node of binary node `src` at `depth` and, recursively, its large
+  /// children; returns its index in `top`.
+  int32_t plan(const BuildTree& tree, const WideCollapse<W>& choice, const std::vector<uint32_t>& size, uint32_t src,
+               int depth) {
+    const int32_t index = int32_t(top.size());
+    top.push_back({src, depth, 0, {}, {}});
+    TopNode node = top.back();
+    NullBuildSink no_steps;
+    node.n = choice.children(src, node.kids, no_steps);
+    for (int s = 0; s < node.n; ++s) {
+      const uint32_t kid = node.kids[s];
+      if (!tree.nodes[kid].count && size[kid] >= kCollapseTaskNodes) {
+        node.child[s] = plan(tree, choice, size, kid, depth + 1);
+      } else {
+        node.child[s] = -int32_t(tasks.size()) - 1;
+        tasks.push_back({kid, depth + 1});
+      }
+    }
+    top[size_t(index)] = node;
+    return index;
+  }
+};
+
+/// Where the nodes go in the final arrays: entries, wide nodes and triangle blocks.
+struct CollapseOffsets {
+  uint32_t entry = 0, node = 0, block = 0;
+};
+
+/// Pre-order placement: a top node, then each child's subtree in slot order.
+struct CollapsePlacement {
+  std::vector<CollapseOffsets> part_at;  ///< by task: where its subtree starts
+  std::vector<NodeId> top_id;            ///< by top node: its node id
+  std::vector<uint32_t> top_wide;        ///< by top node: its wide node
+  CollapseOffsets total;                 ///< the arrays' sizes
+
+  /// Places top node `t` and everything below it (`parts`: the tasks' emitted subtrees).
+  template <int W, class Part>
+  void place(const CollapsePlan<W>& plan, const std::vector<Part>& parts, int32_t t) {
+    top_id[size_t(t)] = total.entry++;
+    top_wide[size_t(t)] = total.node++;
+    const auto& node = plan.top[size_t(t)];
+    for (int s = 0; s < node.n; ++s) {
+      if (node.child[s] >= 0) {
+        place(plan, parts, node.child[s]);
+        continue;
+      }
+      const size_t k = size_t(-node.child[s] - 1);
+      part_at[k] = total;
+      total.entry += uint32_t(parts[k].entries.size());
+      total.node += uint32_t(parts[k].nodes.size());
+      total.block += uint32_t(parts[k].blocks.size());
+    }
+  }
+};
+
 }  // namespace
 
 /// One emitted subtree, numbered from 0: the arrays of WideBvhOf for that subtree alone.
@@ -159,6 +232,69 @@ struct WideBvhOf<W>::Layout {
     node.ref[s] = ref;
   }
 
+  /// Sized for the whole tree, every part placed.
+  void resize(const CollapseOffsets& total) {
+    entries.resize(total.entry);
+    boxes.resize(total.entry);
+    depth.resize(total.entry);
+    nodes.resize(total.node);
+    child_ids.resize(total.node);
+    blocks.resize(total.block);
+  }
+
+  /// The top nodes, pointing at their children's global ids; their child references wait
+  /// until every entry is final (link_top_nodes()).
+  void write_top_nodes(const BuildTree& tree, const CollapsePlan<W>& plan, const CollapsePlacement& at) {
+    for (size_t t = 0; t < plan.top.size(); ++t) {
+      const auto& node = plan.top[t];
+      const NodeId id = at.top_id[t];
+      const uint32_t w = at.top_wide[t];
+      entries[id] = {w, 0};
+      boxes[id] = tree.nodes[node.src].box;
+      depth[id] = uint16_t(node.depth);
+      nodes[w] = empty_node();
+      child_ids[w] = no_children();
+      for (int s = 0; s < node.n; ++s) {
+        // A task's root is its local node 0.
+        child_ids[w][s] = node.child[s] >= 0 ? at.top_id[size_t(node.child[s])]
+                                             : at.part_at[size_t(-node.child[s] - 1)].entry;
+        set_slot(nodes[w], s, tree.nodes[node.kids[s]].box, 0);  // reference set once all are placed
+      }
+    }
+  }
+
+  /// A task's subtree, relocated to `at`: node ids by the entry offset, WideNode indices by
+  /// the node offset, triangle blocks by the block offset.
+  void copy_part(const Layout& part, const CollapseOffsets& at) {
+    auto relocate = [&](ChildRef r) { return ref_is_leaf(r) ? leaf_ref(ref_first(r) + at.block, ref_count(r)) : r + at.node; };
+    for (size_t i = 0; i < part.entries.size(); ++i) {
+      const Entry e = part.entries[i];
+      entries[at.entry + i] = {e.index + (e.leaf() ? at.block : at.node), e.count};
+      boxes[at.entry + i] = part.boxes[i];
+      depth[at.entry + i] = part.depth[i];
+    }
+    for (size_t w = 0; w < part.nodes.size(); ++w) {
+      Node node = part.nodes[w];
+      std::array<NodeId, W> ids = part.child_ids[w];
+      for (int s = 0; s < W; ++s) {
+        if (ids[s] == kNoNode) continue;
+        node.ref[s] = relocate(node.ref[s]);
+        ids[s] += at.entry;
+      }
+      nodes[at.node + w] = node;
+      child_ids[at.node + w] = ids;
+    }
+    std::copy(part.blocks.begin(), part.blocks.end(), blocks.begin() + long(at.block));
+  }
+
+  /// Now every entry is final: the top nodes' child references.
+  void link_top_nodes(const CollapsePlan<W>& plan, const CollapsePlacement& at) {
+    for (size_t t = 0; t < plan.top.size(); ++t) {
+      const uint32_t w = at.top_wide[t];
+      for (int s = 0; s < plan.top[t].n; ++s) nodes[w].ref[s] = ref_of(child_ids[w][s]);
+    }
+  }
+
   /// Appends a leaf's triangles as blocks of four; returns the first block. Copies of the
   /// triangles in leaf order: a leaf is one contiguous read, four triangles per SSE test,
   /// instead of an index lookup and three scattered vertex loads per triangle.
@@ -189,142 +325,32 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree, BuildReco
   const WideCollapse<W> choice(tree, options_, size, kCollapseTaskNodes);
   if (recorder) record_collapse(tree, choice, *recorder);
 
-  // Plan the top: wide nodes over binary subtrees of kCollapseTaskNodes or more. A child
-  // below that size (or a leaf) becomes a task, emitted into its own Layout.
-  struct TopNode {
-    uint32_t src;
-    int depth, n;
-    uint32_t kids[W];
-    int32_t child[W];  ///< >= 0: index into `top`; < 0: task -child - 1
-  };
-  struct Task {
-    uint32_t src;
-    int depth;
-  };
-  std::vector<TopNode> top;
-  std::vector<Task> tasks;
-  auto plan = [&](auto&& self, uint32_t src, int depth) -> int32_t {
-    const int32_t index = int32_t(top.size());
-    top.push_back({src, depth, 0, {}, {}});
-    TopNode node = top.back();
-    NullBuildSink no_steps;
-    node.n = choice.children(src, node.kids, no_steps);
-    for (int s = 0; s < node.n; ++s) {
-      const uint32_t kid = node.kids[s];
-      if (!tree.nodes[kid].count && size[kid] >= kCollapseTaskNodes) {
-        node.child[s] = self(self, kid, depth + 1);
-      } else {
-        node.child[s] = -int32_t(tasks.size()) - 1;
-        tasks.push_back({kid, depth + 1});
-      }
-    }
-    top[size_t(index)] = node;
-    return index;
-  };
-  if (tree.nodes[tree.root].count || size[tree.root] < kCollapseTaskNodes) {
-    Layout whole;
+  Layout whole;
+  if (tree.nodes[tree.root].count || size[tree.root] < kCollapseTaskNodes) {  // one task
     whole.entries.reserve(size[tree.root]);
     whole.emit(scene, tree, choice, tree.root, 0);
-    nodes_ = std::move(whole.nodes);
-    child_ids_ = std::move(whole.child_ids);
-    entries_ = std::move(whole.entries);
-    boxes_ = std::move(whole.boxes);
-    depth_ = std::move(whole.depth);
-    blocks_ = std::move(whole.blocks);
-    return;
+  } else {
+    CollapsePlan<W> plan;
+    plan.plan(tree, choice, size, tree.root, 0);
+    std::vector<Layout> parts(plan.tasks.size());
+    par::parallel_for(size_t(0), plan.tasks.size(), [&](size_t t) {
+      parts[t].entries.reserve(size[plan.tasks[t].src]);
+      parts[t].emit(scene, tree, choice, plan.tasks[t].src, plan.tasks[t].depth);
+    });
+    CollapsePlacement at{std::vector<CollapseOffsets>(parts.size()), std::vector<NodeId>(plan.top.size()),
+                         std::vector<uint32_t>(plan.top.size()), {}};
+    at.place(plan, parts, 0);
+    whole.resize(at.total);
+    whole.write_top_nodes(tree, plan, at);
+    par::parallel_for(size_t(0), parts.size(), [&](size_t k) { whole.copy_part(parts[k], at.part_at[k]); });
+    whole.link_top_nodes(plan, at);
   }
-  plan(plan, tree.root, 0);
-
-  std::vector<Layout> parts(tasks.size());
-  par::parallel_for(size_t(0), tasks.size(), [&](size_t t) {
-    parts[t].entries.reserve(size[tasks[t].src]);
-    parts[t].emit(scene, tree, choice, tasks[t].src, tasks[t].depth);
-  });
-
-  // Pre-order offsets: a top node, then each child's subtree in slot order.
-  struct Offsets {
-    uint32_t entry = 0, node = 0, block = 0;
-  };
-  std::vector<Offsets> part_at(tasks.size());
-  std::vector<NodeId> top_id(top.size());
-  std::vector<uint32_t> top_wide(top.size());
-  Offsets next;
-  auto place = [&](auto&& self, int32_t t) -> void {
-    top_id[size_t(t)] = next.entry++;
-    top_wide[size_t(t)] = next.node++;
-    const TopNode& node = top[size_t(t)];
-    for (int s = 0; s < node.n; ++s) {
-      if (node.child[s] >= 0) {
-        self(self, node.child[s]);
-        continue;
-      }
-      const size_t k = size_t(-node.child[s] - 1);
-      part_at[k] = next;
-      next.entry += uint32_t(parts[k].entries.size());
-      next.node += uint32_t(parts[k].nodes.size());
-      next.block += uint32_t(parts[k].blocks.size());
-    }
-  };
-  place(place, 0);
-  entries_.resize(next.entry);
-  boxes_.resize(next.entry);
-  depth_.resize(next.entry);
-  nodes_.resize(next.node);
-  child_ids_.resize(next.node);
-  blocks_.resize(next.block);
-
-  // The top nodes, pointing at their children's global ids.
-  for (size_t t = 0; t < top.size(); ++t) {
-    const TopNode& node = top[t];
-    const NodeId id = top_id[t];
-    const uint32_t w = top_wide[t];
-    entries_[id] = {w, 0};
-    boxes_[id] = tree.nodes[node.src].box;
-    depth_[id] = uint16_t(node.depth);
-    nodes_[w] = Layout::empty_node();
-    child_ids_[w] = Layout::no_children();
-    for (int s = 0; s < node.n; ++s) {
-      NodeId child;
-      if (node.child[s] >= 0) {
-        child = top_id[size_t(node.child[s])];
-      } else {
-        const size_t k = size_t(-node.child[s] - 1);
-        child = part_at[k].entry;  // the task's root is its local node 0
-      }
-      child_ids_[w][s] = child;
-      Layout::set_slot(nodes_[w], s, tree.nodes[node.kids[s]].box, 0);  // reference set once all are placed
-    }
-  }
-  // The tasks' subtrees, relocated: node ids by the entry offset, WideNode indices by the
-  // node offset, triangle blocks by the block offset.
-  par::parallel_for(size_t(0), parts.size(), [&](size_t k) {
-    const Layout& part = parts[k];
-    const Offsets at = part_at[k];
-    auto relocate = [&](ChildRef r) { return ref_is_leaf(r) ? leaf_ref(ref_first(r) + at.block, ref_count(r)) : r + at.node; };
-    for (size_t i = 0; i < part.entries.size(); ++i) {
-      const Entry e = part.entries[i];
-      entries_[at.entry + i] = {e.index + (e.leaf() ? at.block : at.node), e.count};
-      boxes_[at.entry + i] = part.boxes[i];
-      depth_[at.entry + i] = part.depth[i];
-    }
-    for (size_t w = 0; w < part.nodes.size(); ++w) {
-      Node node = part.nodes[w];
-      std::array<NodeId, W> ids = part.child_ids[w];
-      for (int s = 0; s < W; ++s) {
-        if (ids[s] == kNoNode) continue;
-        node.ref[s] = relocate(node.ref[s]);
-        ids[s] += at.entry;
-      }
-      nodes_[at.node + w] = node;
-      child_ids_[at.node + w] = ids;
-    }
-    std::copy(part.blocks.begin(), part.blocks.end(), blocks_.begin() + long(at.block));
-  });
-  // Now every entry is final: the top nodes' child references.
-  for (size_t t = 0; t < top.size(); ++t) {
-    const uint32_t w = top_wide[t];
-    for (int s = 0; s < top[t].n; ++s) nodes_[w].ref[s] = ref_of(child_ids_[w][s]);
-  }
+  nodes_ = std::move(whole.nodes);
+  child_ids_ = std::move(whole.child_ids);
+  entries_ = std::move(whole.entries);
+  boxes_ = std::move(whole.boxes);
+  depth_ = std::move(whole.depth);
+  blocks_ = std::move(whole.blocks);
 }
 
 template <int W>
