@@ -338,7 +338,8 @@ void draw_baseline(const ChartFrame& f, const BenchData& data, const ChartModel&
   const ImVec2 p0 = f.p0, p1 = f.p1;
   const float y = f.py(*m.baseline_fy);
   const ImU32 c = kernel_color(kernel, 0.55f);
-  for (float x = p0.x; x < p1.x; x += 0.9f * em) f.dl->AddLine(ImVec2(x, y), ImVec2(std::min(x + 0.5f * em, p1.x), y), c, 1.5f);
+  for (float x = p0.x; x < p1.x; x += 0.9f * em)
+    f.dl->AddLine(ImVec2(x, y), ImVec2(std::min(x + 0.5f * em, p1.x), y), c, 1.5f);
   const std::string label_text =
       "fastest peer" + (m.baseline_row ? " (" + structure_label(data.rows[*m.baseline_row].structure) + ")" : "");
   const char* label = label_text.c_str();
@@ -374,8 +375,9 @@ std::vector<size_t> peers_first(const BenchData& data, const ChartModel& m) {
 /// Each point's name beside its marker at `where[i]`: right, left, above or below, the first
 /// place free of the rectangles in `taken` (point i's own marker, taken[first_marker + i],
 /// is not in the way).
-void draw_point_labels(const ChartFrame& f, const BenchData& data, const ChartModel& m, const std::vector<size_t>& order,
-                       const std::vector<ImVec2>& where, size_t first_marker, std::vector<ImVec4>& taken) {
+void draw_point_labels(const ChartFrame& f, const BenchData& data, const ChartModel& m,
+                       const std::vector<size_t>& order, const std::vector<ImVec2>& where, size_t first_marker,
+                       std::vector<ImVec4>& taken) {
   const float em = f.em, r = f.marker_r;
   // Rows that share structure and kernel (a parameter study) are told apart by their
   // parameters.
@@ -449,7 +451,8 @@ void draw_legend(const ChartFrame& f, const ChartModel& m, const std::string& ba
   dl->AddText(ImVec2(x, y), f.dim, "structure (shape)");
   y += line;
   for (const std::string& s : m.structures) {
-    draw_marker(dl, structure_shape(s), ImVec2(x + 0.45f * em, y + 0.6f * em), f.marker_r, IM_COL32(215, 218, 225, 255));
+    const ImVec2 c(x + 0.45f * em, y + 0.6f * em);
+    draw_marker(dl, structure_shape(s), c, f.marker_r, IM_COL32(215, 218, 225, 255));
     dl->AddText(ImVec2(x + 1.4f * em, y), f.text, structure_label(s).c_str());
     y += line;
   }
