@@ -332,38 +332,37 @@ int run_script(const std::string& script_name, const std::vector<viz::ScriptComm
   return 0;
 }
 
-}  // namespace
+/// --list: a Markdown table of the tools' rows. They need no window: an App without GL has them.
+int print_list(const std::string& list) {
+  const viz::App app;
+  const std::string table = list == "commands"       ? viz::verbs_markdown(viz::script_verbs())
+                            : list == "keys-summary" ? viz::keys_summary_markdown(app.key_groups())
+                            : list == "mouse"        ? viz::mouse_markdown()
+                                                     : viz::keys_markdown(app.key_groups());
+  std::fputs(table.c_str(), stdout);
+  return 0;
+}
 
-int main(int argc, char** argv) {
-  Options options;
-  if (const auto code = parse_command_line(argc, argv, options)) return *code;
-  if (!options.list.empty()) {  // the rows need no window: an App without GL has them
-    const viz::App app;
-    const std::string table = options.list == "commands"       ? viz::verbs_markdown(viz::script_verbs())
-                              : options.list == "keys-summary" ? viz::keys_summary_markdown(app.key_groups())
-                              : options.list == "mouse"        ? viz::mouse_markdown()
-                                                               : viz::keys_markdown(app.key_groups());
-    std::fputs(table.c_str(), stdout);
-    return 0;
-  }
-  accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
-  viz::browser::install_input_fetcher();  // the page: files next to it are fetched when opened
-  const bool screenshot_mode = !options.screenshot.empty();
-  const bool script_mode = !options.script.empty();
-  const bool headless = screenshot_mode || script_mode;
+/// The commands to run once the window is up.
+struct StartupCommands {
+  std::vector<viz::ScriptCommand> script;   ///< --script's
+  std::vector<viz::ScriptCommand> restore;  ///< --restore's: the state to reopen
+};
 
-  // The script first: a typo is reported with its line before any window opens.
-  std::vector<viz::ScriptCommand> script;
-  if (script_mode) {
+// Parses --script and --restore before any window opens, so a typo or a stale or broken
+// file is reported (with its line) first. A leading `size` sets the window's size from the
+// start (no resize round trip). Returns an exit code when main() should stop.
+std::optional<int> load_startup_commands(Options& options, StartupCommands& commands) {
+  if (!options.script.empty()) {
     auto parsed = viz::load_script(options.script);
     if (!parsed) {
       std::fprintf(stderr, "accelviz: %s\n", parsed.error().message.c_str());
       viz::browser::log_line("script failed: " + parsed.error().message);
       return 2;
     }
-    script = std::move(parsed.value());
+    commands.script = std::move(parsed.value());
     // A leading `size` sets the window's size from the start (no resize round trip).
-    for (const viz::ScriptCommand& c : script) {
+    for (const viz::ScriptCommand& c : commands.script) {
       if (c.verb == "size") {
         options.width = c.get<viz::SizeArgs>().width;
         options.height = c.get<viz::SizeArgs>().height;
@@ -371,24 +370,24 @@ int main(int argc, char** argv) {
       if (c.verb != "size" && c.verb != "scene" && c.verb != "structure" && c.verb != "kernel") break;
     }
   }
-
-  // A state to reopen: parsed now (a stale or broken file is reported before any window),
-  // run once the window is up.
-  std::vector<viz::ScriptCommand> restore_commands;
   if (!options.restore.empty()) {
     auto parsed = viz::load_script(options.restore);
     if (!parsed) {
       std::fprintf(stderr, "accelviz: --restore: %s\n", parsed.error().message.c_str());
       return 2;
     }
-    restore_commands = std::move(parsed.value());
+    commands.restore = std::move(parsed.value());
   }
+  return std::nullopt;
+}
 
-  // The scene next: a bad path is the user's mistake (exit 2) whether or not there is a
-  // display, and scripts get the same answer everywhere. Its structure starts building in
-  // the background while the window opens (synchronously for a script).
-  viz::App app;
-  app.set_synchronous(script_mode);
+// Loads what the command line names into `app`: the structure, the scene, the bench file,
+// the playlist. A bad one is the user's mistake (exit 2, "accelviz: FILE[:LINE]: ...")
+// whether or not there is a display, and scripts get the same answer everywhere. The
+// structure starts building in the background while the window opens (synchronously for a
+// script); the playlist's first state runs once the window is up.
+std::optional<int> load_command_line_inputs(const Options& options, viz::App& app) {
+  app.set_synchronous(!options.script.empty());
   if (options.memory_limit) app.set_memory_limit(options.memory_limit);
   if (!options.structure.empty()) {
     if (const accel::Status st = app.set_structure(options.structure, options.params); !st) {
@@ -396,49 +395,41 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (const accel::Status st = app.load_scene(options.scene); !st) {
+  accel::Status st = app.load_scene(options.scene);
+  if (st && !options.bench_json.empty()) st = app.load_bench(options.bench_json);
+  if (st && !options.playlist.empty()) {
+    st = app.load_playlist(options.playlist);
+    if (st && options.state != 0) st = app.go_to_state_number(options.state);
+  }
+  if (!st) {
     std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
     return 2;
   }
-  // Likewise a bad bench file: "accelviz: FILE: ..." before any window.
-  if (!options.bench_json.empty()) {
-    if (const accel::Status st = app.load_bench(options.bench_json); !st) {
-      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
-      return 2;
-    }
-  }
-  // And a bad playlist: "accelviz: FILE:LINE: ..." before any window. Its first state runs
-  // once the window is up.
-  if (!options.playlist.empty()) {
-    accel::Status st = app.load_playlist(options.playlist);
-    if (st && options.state != 0) st = app.go_to_state_number(options.state);
-    if (!st) {
-      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
-      return 2;
-    }
-  }
-  const auto shader_dir = viz::find_shader_dir(viz::Renderer::shader_files());
-  if (!shader_dir) {
-    std::fprintf(stderr, "accelviz: %s\n", shader_dir.error().message.c_str());
-    return 1;
-  }
+  return std::nullopt;
+}
 
-  // Without a display GLFW would fail with an X11 message; say what to do instead.
+// A display and GLFW on it; false (after saying what to do instead) without one. Without a
+// display GLFW would fail with an X11 message.
+bool init_glfw(int argc, char** argv) {
   const std::string hint = "run it under a virtual display: xvfb-run -a " + command_line(argc, argv);
   if (!viz::browser::kInBrowser && !env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) {
     std::fprintf(stderr, "accelviz: no display found (DISPLAY is not set); %s\n", hint.c_str());
-    return 1;
+    return false;
   }
-
   glfwSetErrorCallback(glfw_error_callback);
   if (!glfwInit()) {
     const char* description = last_glfw_error();
     std::fprintf(stderr, "accelviz: no display found (GLFW: %s); %s\n",
                  description != nullptr ? description : "glfwInit failed", hint.c_str());
-    return 1;
+    return false;
   }
   report_glfw_errors = true;
+  return true;
+}
 
+// The window with an OpenGL 3.3 core context, current, its functions loaded; nullptr (after
+// one line saying why, GLFW terminated) when that fails.
+GLFWwindow* create_window(const Options& options, bool headless) {
   // OpenGL 3.3 core: what glad was generated for and what the shaders' #version says.
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -456,7 +447,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "accelviz: cannot create an OpenGL 3.3 core window (GLFW: %s)\n",
                  description != nullptr ? description : "unknown error");
     glfwTerminate();
-    return 1;
+    return nullptr;
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(headless ? 0 : 1);  // vsync when interactive; no waiting otherwise
@@ -466,9 +457,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "accelviz: cannot load OpenGL 3.3 functions\n");
     glfwDestroyWindow(window);
     glfwTerminate();
-    return 1;
+    return nullptr;
   }
+  return window;
+}
 
+// ImGui's context, style and backends on `window`. Larger, smooth fonts read at the back of
+// a lecture hall; the lecture mode (L) switches to the larger size.
+viz::Fonts init_imgui(GLFWwindow* window) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -478,53 +474,69 @@ int main(int argc, char** argv) {
   style.WindowRounding = 4.0f;
   style.FrameRounding = 3.0f;
   style.ScaleAllSizes(1.25f);
-  // Larger, smooth fonts read at the back of a lecture hall; the lecture mode (L) switches
-  // to the larger size.
   const viz::Fonts fonts = load_fonts(io);
 
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init(viz::gl::kImGuiGlslVersion);
+  return fonts;
+}
 
-  app.set_ui_visible(!options.no_ui);
-  int exit_code = 0;
-  if (const accel::Status st = app.init(window, shader_dir.value(), fonts); !st) {
+// --screenshot: ImGui needs a frame or two to size its windows, hence --frames. The back
+// buffer holds the finished frame until the swap: read it then. Returns the exit code.
+int take_screenshot(GLFWwindow* window, viz::App& app, const Options& options) {
+  glm::ivec2 fb{0, 0};
+  for (int frame = 0; frame < options.frames; ++frame) {
+    fb = render_frame(window, app, 1.0f / 60.0f);
+    if (frame + 1 < options.frames) glfwSwapBuffers(window);
+  }
+  if (fb.x != options.width || fb.y != options.height) {
+    std::fprintf(stderr, "accelviz: warning: framebuffer is %dx%d, not the requested %dx%d\n", fb.x, fb.y,
+                 options.width, options.height);
+  }
+  if (const accel::Status st = viz::save_framebuffer_png(options.screenshot, fb.x, fb.y); !st) {
     std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
-    exit_code = 1;
-    glfwSetWindowShouldClose(window, GLFW_TRUE);
+    return 1;
   }
+  return 0;
+}
 
-  if (exit_code == 0) viz::browser::log_line("ready");  // the page is up (a test waits for this)
-  if (exit_code == 0 && !restore_commands.empty()) {
-    app.set_synchronous(true);  // the ray is traced on the structure the file names
-    exit_code = run_script(options.restore, restore_commands, window, app);
-    app.set_synchronous(script_mode);
-    if (exit_code != 0) glfwSetWindowShouldClose(window, GLFW_TRUE);
+// Once the window is up: the app's GL, then the state to reopen, the script, the
+// screenshot. Returns the exit code; the window is told to close when nothing is left to do.
+int run_startup(GLFWwindow* window, viz::App& app, const Options& options, const StartupCommands& commands,
+                const std::string& shader_dir, const viz::Fonts& fonts) {
+  const bool script_mode = !options.script.empty();
+  if (const accel::Status st = app.init(window, shader_dir, fonts); !st) {
+    std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+    return 1;
   }
-  if (exit_code == 0 && script_mode) {
-    exit_code = run_script(options.script, script, window, app);
+  viz::browser::log_line("ready");  // the page is up (a test waits for this)
+  if (!commands.restore.empty()) {
+    app.set_synchronous(true);  // the ray is traced on the structure the file names
+    const int exit_code = run_script(options.restore, commands.restore, window, app);
+    app.set_synchronous(script_mode);
+    if (exit_code != 0) {
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+      return exit_code;
+    }
+  }
+  int exit_code = 0;
+  if (script_mode) {
+    exit_code = run_script(options.script, commands.script, window, app);
     // The page stays open on the script's last state (the window has nowhere to go).
     if (viz::browser::kInBrowser) app.set_synchronous(false);  // from here on, used by hand
     else glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
-  if (exit_code == 0 && screenshot_mode) {
-    // ImGui needs a frame or two to size its windows, hence --frames. The back buffer holds
-    // the finished frame until the swap: read it then.
-    glm::ivec2 fb{0, 0};
-    for (int frame = 0; frame < options.frames; ++frame) {
-      fb = render_frame(window, app, 1.0f / 60.0f);
-      if (frame + 1 < options.frames) glfwSwapBuffers(window);
-    }
-    if (fb.x != options.width || fb.y != options.height) {
-      std::fprintf(stderr, "accelviz: warning: framebuffer is %dx%d, not the requested %dx%d\n", fb.x, fb.y,
-                   options.width, options.height);
-    }
-    if (const accel::Status st = viz::save_framebuffer_png(options.screenshot, fb.x, fb.y); !st) {
-      std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
-      exit_code = 1;
-    }
+  if (exit_code == 0 && !options.screenshot.empty()) {
+    exit_code = take_screenshot(window, app, options);
     glfwSetWindowShouldClose(window, GLFW_TRUE);
   }
+  return exit_code;
+}
 
+// Frames until the window closes. The page: after each frame the background tasks (builds
+// and the like) get part of the frame's time, and the loop waits for the browser's next frame.
+void run_loop(GLFWwindow* window, viz::App& app) {
   double last_time = glfwGetTime();
   double background_ms = kBackgroundMsMin;
   while (!glfwWindowShouldClose(window)) {
@@ -537,7 +549,6 @@ int main(int argc, char** argv) {
     const double now = glfwGetTime();
     const float dt = static_cast<float>(now - last_time);
     last_time = now;
-    // The page: background tasks (builds and the like) get part of each frame's time.
     viz::browser::run_background_tasks(background_ms);
     const double render_start = glfwGetTime();
     render_frame(window, app, dt);
@@ -545,9 +556,12 @@ int main(int argc, char** argv) {
     background_ms = std::clamp(1000.0 * (glfwGetTime() - render_start), kBackgroundMsMin, kBackgroundMsMax);
     viz::browser::wait_for_next_frame();
   }
+}
 
-  // A session used by hand leaves its state for --restore (scripts and screenshots do not).
-  if (exit_code == 0 && !headless && !viz::browser::kInBrowser && !viz::last_state_path().empty())
+// Cleanup in reverse. A session used by hand (`used_by_hand`: not a script, a screenshot or
+// the page, and nothing failed) first leaves its state for --restore.
+void shut_down(GLFWwindow* window, viz::App& app, bool used_by_hand) {
+  if (used_by_hand && !viz::last_state_path().empty())
     if (const accel::Status st = app.save_state(viz::last_state_path()); !st)
       std::fprintf(stderr, "accelviz: %s\n", st.error().message.c_str());
   app.shutdown();
@@ -556,5 +570,37 @@ int main(int argc, char** argv) {
   ImGui::DestroyContext();
   glfwDestroyWindow(window);
   glfwTerminate();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (const auto code = parse_command_line(argc, argv, options)) return *code;
+  if (!options.list.empty()) return print_list(options.list);
+  accel::prepare_for_builds();  // before the scene load: its freed memory serves the builds
+  viz::browser::install_input_fetcher();  // the page: files next to it are fetched when opened
+  const bool headless = !options.screenshot.empty() || !options.script.empty();
+
+  // The script and the state to reopen first, then the scene and the other files: every
+  // mistake of the command line is reported before any window opens.
+  StartupCommands commands;
+  if (const auto code = load_startup_commands(options, commands)) return *code;
+  viz::App app;
+  if (const auto code = load_command_line_inputs(options, app)) return *code;
+  const auto shader_dir = viz::find_shader_dir(viz::Renderer::shader_files());
+  if (!shader_dir) {
+    std::fprintf(stderr, "accelviz: %s\n", shader_dir.error().message.c_str());
+    return 1;
+  }
+
+  if (!init_glfw(argc, argv)) return 1;
+  GLFWwindow* window = create_window(options, headless);
+  if (window == nullptr) return 1;
+  const viz::Fonts fonts = init_imgui(window);
+  app.set_ui_visible(!options.no_ui);
+  const int exit_code = run_startup(window, app, options, commands, shader_dir.value(), fonts);
+  run_loop(window, app);
+  shut_down(window, app, exit_code == 0 && !headless && !viz::browser::kInBrowser);
   return exit_code;
 }

@@ -211,224 +211,250 @@ void row_tooltip(const BenchRow& r) {
   ImGui::EndTooltip();
 }
 
-/// Draws the chart of `m` into the rectangle [origin, origin + size].
-void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& options, ImVec2 origin, ImVec2 size) {
-  const float em = ImGui::GetFontSize();
+/// Where the chart's parts go in its rectangle [origin, origin + size]: y labels left, x
+/// labels and title below, legend right; the plot frame [p0, p1] between them.
+struct ChartFrame {
+  float em = ImGui::GetFontSize();
   ImDrawList* dl = ImGui::GetWindowDrawList();
-  const ImU32 text = ImGui::GetColorU32(ImGuiCol_Text);
-  const ImU32 dim = ImGui::GetColorU32(ImGuiCol_TextDisabled);
-  const ImU32 grid_major = IM_COL32(255, 255, 255, 34), grid_minor = IM_COL32(255, 255, 255, 13);
+  ImU32 text = ImGui::GetColorU32(ImGuiCol_Text);
+  ImU32 dim = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+  ImVec2 origin, size;
+  float legend_w = 0.0f;  // 0: no legend (a narrow window)
+  float below = 0.0f;     // under the frame: tick labels (+ notes) and the x title
+  ImVec2 p0, p1;          // the plot frame: top-left, bottom-right
+  // Data area: a margin inside the frame on the right and top so edge markers stay inside.
+  float inset = 0.7f * em;
+  float band_x1 = 0.0f, axis_x0 = 0.0f;  // the zero band's right edge; where the log axis starts
+  float marker_r = 0.36f * em;
 
-  // ---- Layout: y labels left, x labels and title below, legend right.
+  float px(float fx) const { return p0.x + fx * (p1.x - inset - p0.x); }
+  float py(float fy) const { return p1.y - fy * (p1.y - inset - p0.y); }
+  bool too_small() const { return p1.x - p0.x < 6.0f * em || p1.y - p0.y < 4.0f * em; }
+};
+
+ChartFrame chart_frame(const ChartModel& m, ImVec2 origin, ImVec2 size) {
+  ChartFrame f;
+  const float em = f.em;
+  f.origin = origin;
+  f.size = size;
   float y_label_w = 0.0f;
   for (const AxisTick& t : m.y.ticks)
     if (t.major && t.labelled) y_label_w = std::max(y_label_w, text_size(t.label.c_str()).x);
-  const float legend_w = size.x >= 36.0f * em ? 11.5f * em : 0.0f;
-  const ImVec2 p0(origin.x + y_label_w + 0.8f * em, origin.y + 1.6f * em);  // plot frame, top-left
+  f.legend_w = size.x >= 36.0f * em ? 11.5f * em : 0.0f;
+  f.p0 = ImVec2(origin.x + y_label_w + 0.8f * em, origin.y + 1.6f * em);
   const bool notes = std::any_of(m.x.ticks.begin(), m.x.ticks.end(), [](const AxisTick& t) { return !t.note.empty(); });
-  const float below = notes ? 4.1f * em : 3.0f * em;  // tick labels (+ notes) and the x title
-  const ImVec2 p1(origin.x + size.x - legend_w - 0.6f * em, origin.y + size.y - below);
-  if (p1.x - p0.x < 6.0f * em || p1.y - p0.y < 4.0f * em) {
-    dl->AddText(origin, dim, "(window too small for the chart)");
-    return;
-  }
-  // Data area: a margin inside the frame on the right and top so edge markers stay inside.
-  const float inset = 0.7f * em;
-  auto px = [&](float fx) { return p0.x + fx * (p1.x - inset - p0.x); };
-  auto py = [&](float fy) { return p1.y - fy * (p1.y - inset - p0.y); };
-  auto clip_push = [&] { dl->PushClipRect(p0, p1, true); };
+  f.below = notes ? 4.1f * em : 3.0f * em;
+  f.p1 = ImVec2(origin.x + size.x - f.legend_w - 0.6f * em, origin.y + size.y - f.below);
+  f.band_x1 = f.px(m.zero_band);
+  f.axis_x0 = f.px(m.x_start());
+  return f;
+}
 
-  // ---- Frame, zero band, grid.
-  dl->AddRectFilled(p0, p1, IM_COL32(255, 255, 255, 8));
-  const float band_x1 = px(m.zero_band), axis_x0 = px(m.x_start());
-  dl->AddRectFilled(ImVec2(p0.x, p0.y), ImVec2(band_x1, p1.y), IM_COL32(90, 200, 120, 30));
-  dl->AddLine(ImVec2(band_x1, p0.y), ImVec2(band_x1, p1.y), IM_COL32(90, 200, 120, 90), 1.0f);
-  std::vector<ImVec4> taken;  // rectangles of text and markers drawn in the plot: labels avoid them
-  {
-    // The band's title at its top: one line if it fits, else two.
-    const std::string& label = m.zero_label;
-    const float band_w = band_x1 - p0.x;
-    const ImU32 green = IM_COL32(140, 225, 160, 255);
-    std::vector<std::string> lines{label};
-    if (const size_t space = label.find(' '); text_size(label.c_str()).x > band_w - 4.0f && space != std::string::npos)
-      lines = {label.substr(0, space), label.substr(space + 1)};
-    float y = p0.y + 0.2f * em;
-    for (const std::string& l : lines) {
-      const ImVec2 ts = text_size(l.c_str());
-      const ImVec2 q(p0.x + 0.5f * (band_w - ts.x), y);
-      dl->AddText(q, green, l.c_str());
-      taken.push_back(ImVec4(q.x, q.y, q.x + ts.x, q.y + ts.y));
-      y += ts.y;
-    }
+/// The frame and the zero band with its title at its top (one line if it fits, else two);
+/// the title's rectangle goes to `taken`.
+void draw_zero_band(const ChartFrame& f, const ChartModel& m, std::vector<ImVec4>& taken) {
+  const float em = f.em;
+  f.dl->AddRectFilled(f.p0, f.p1, IM_COL32(255, 255, 255, 8));
+  f.dl->AddRectFilled(ImVec2(f.p0.x, f.p0.y), ImVec2(f.band_x1, f.p1.y), IM_COL32(90, 200, 120, 30));
+  f.dl->AddLine(ImVec2(f.band_x1, f.p0.y), ImVec2(f.band_x1, f.p1.y), IM_COL32(90, 200, 120, 90), 1.0f);
+  const std::string& label = m.zero_label;
+  const float band_w = f.band_x1 - f.p0.x;
+  const ImU32 green = IM_COL32(140, 225, 160, 255);
+  std::vector<std::string> lines{label};
+  if (const size_t space = label.find(' '); text_size(label.c_str()).x > band_w - 4.0f && space != std::string::npos)
+    lines = {label.substr(0, space), label.substr(space + 1)};
+  float y = f.p0.y + 0.2f * em;
+  for (const std::string& l : lines) {
+    const ImVec2 ts = text_size(l.c_str());
+    const ImVec2 q(f.p0.x + 0.5f * (band_w - ts.x), y);
+    f.dl->AddText(q, green, l.c_str());
+    taken.push_back(ImVec4(q.x, q.y, q.x + ts.x, q.y + ts.y));
+    y += ts.y;
   }
+}
+
+/// The grid with its ticks; the axes: y at the left edge, x broken between the band and the
+/// log axis (0 is not on it).
+void draw_grid_and_axes(const ChartFrame& f, const ChartModel& m) {
+  const float em = f.em;
+  const ImVec2 p0 = f.p0, p1 = f.p1;
+  const ImU32 grid_major = IM_COL32(255, 255, 255, 34), grid_minor = IM_COL32(255, 255, 255, 13);
   for (const AxisTick& t : m.x.ticks) {
-    const float x = px(m.x_start() + (1.0f - m.x_start()) * t.pos);
-    dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), t.major ? grid_major : grid_minor);
-    dl->AddLine(ImVec2(x, p1.y), ImVec2(x, p1.y + (t.major ? 0.35f : 0.2f) * em), dim);
+    const float x = f.px(m.x_start() + (1.0f - m.x_start()) * t.pos);
+    f.dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), t.major ? grid_major : grid_minor);
+    f.dl->AddLine(ImVec2(x, p1.y), ImVec2(x, p1.y + (t.major ? 0.35f : 0.2f) * em), f.dim);
   }
   for (const AxisTick& t : m.y.ticks) {
-    const float y = py(t.pos);
-    dl->AddLine(ImVec2(p0.x, y), ImVec2(p1.x, y), t.major ? grid_major : grid_minor);
-    dl->AddLine(ImVec2(p0.x - (t.major ? 0.35f : 0.2f) * em, y), ImVec2(p0.x, y), dim);
+    const float y = f.py(t.pos);
+    f.dl->AddLine(ImVec2(p0.x, y), ImVec2(p1.x, y), t.major ? grid_major : grid_minor);
+    f.dl->AddLine(ImVec2(p0.x - (t.major ? 0.35f : 0.2f) * em, y), ImVec2(p0.x, y), f.dim);
   }
-  // Axes: y at the left edge; x broken between the band and the log axis (0 is not on it).
-  dl->AddLine(ImVec2(p0.x, p0.y), ImVec2(p0.x, p1.y), dim, 1.5f);
-  dl->AddLine(ImVec2(p0.x, p1.y), ImVec2(band_x1 + 0.25f * (axis_x0 - band_x1), p1.y), dim, 1.5f);
-  dl->AddLine(ImVec2(axis_x0 - 0.25f * (axis_x0 - band_x1), p1.y), ImVec2(p1.x, p1.y), dim, 1.5f);
-  for (float f : {0.25f, 0.75f}) {
-    const float x = band_x1 + f * (axis_x0 - band_x1);
-    dl->AddLine(ImVec2(x - 0.2f * em, p1.y + 0.35f * em), ImVec2(x + 0.2f * em, p1.y - 0.35f * em), dim, 1.5f);
+  const float band_x1 = f.band_x1, axis_x0 = f.axis_x0;
+  f.dl->AddLine(ImVec2(p0.x, p0.y), ImVec2(p0.x, p1.y), f.dim, 1.5f);
+  f.dl->AddLine(ImVec2(p0.x, p1.y), ImVec2(band_x1 + 0.25f * (axis_x0 - band_x1), p1.y), f.dim, 1.5f);
+  f.dl->AddLine(ImVec2(axis_x0 - 0.25f * (axis_x0 - band_x1), p1.y), ImVec2(p1.x, p1.y), f.dim, 1.5f);
+  for (float frac : {0.25f, 0.75f}) {
+    const float x = band_x1 + frac * (axis_x0 - band_x1);
+    f.dl->AddLine(ImVec2(x - 0.2f * em, p1.y + 0.35f * em), ImVec2(x + 0.2f * em, p1.y - 0.35f * em), f.dim, 1.5f);
   }
+}
 
-  // ---- Tick labels and titles.
-  const float label_y = p1.y + 0.45f * em;
+/// The tick labels (the x ticks' notes under theirs) and the axis titles.
+void draw_tick_labels(const ChartFrame& f, const ChartModel& m) {
+  const float em = f.em;
+  const float label_y = f.p1.y + 0.45f * em;
   {
-    const float x = px(0.5f * m.zero_band);
-    dl->AddText(ImVec2(x - 0.5f * text_size("0").x, label_y + 0.2f * em), text, "0");
+    const float x = f.px(0.5f * m.zero_band);
+    f.dl->AddText(ImVec2(x - 0.5f * text_size("0").x, label_y + 0.2f * em), f.text, "0");
   }
   for (const AxisTick& t : m.x.ticks) {
     if (!t.major || !t.labelled) continue;
-    const float x = px(m.x_start() + (1.0f - m.x_start()) * t.pos);
-    if (m.x.power_labels) power_label(dl, t, ImVec2(x, label_y), text, true);
-    else dl->AddText(ImVec2(x - 0.5f * text_size(t.label.c_str()).x, label_y), text, t.label.c_str());
+    const float x = f.px(m.x_start() + (1.0f - m.x_start()) * t.pos);
+    if (m.x.power_labels) power_label(f.dl, t, ImVec2(x, label_y), f.text, true);
+    else f.dl->AddText(ImVec2(x - 0.5f * text_size(t.label.c_str()).x, label_y), f.text, t.label.c_str());
     if (!t.note.empty()) {
       const ImVec2 ns = text_size(t.note.c_str(), kSmall);
-      dl->AddText(ImGui::GetFont(), kSmall * em, ImVec2(x - 0.5f * ns.x, label_y + 1.3f * em),
-                  ImGui::GetColorU32(ImGuiCol_Text, 0.7f), t.note.c_str());
+      f.dl->AddText(ImGui::GetFont(), kSmall * em, ImVec2(x - 0.5f * ns.x, label_y + 1.3f * em),
+                    ImGui::GetColorU32(ImGuiCol_Text, 0.7f), t.note.c_str());
     }
   }
   for (const AxisTick& t : m.y.ticks) {
     if (!t.major || !t.labelled) continue;
-    const float y = py(t.pos) - 0.5f * em;
-    if (m.y.power_labels) power_label(dl, t, ImVec2(p0.x - 0.5f * em - power_label_width(t), y - 0.2f * em), text, false);
-    else dl->AddText(ImVec2(p0.x - 0.5f * em - text_size(t.label.c_str()).x, y), text, t.label.c_str());
+    const float y = f.py(t.pos) - 0.5f * em;
+    if (m.y.power_labels)
+      power_label(f.dl, t, ImVec2(f.p0.x - 0.5f * em - power_label_width(t), y - 0.2f * em), f.text, false);
+    else f.dl->AddText(ImVec2(f.p0.x - 0.5f * em - text_size(t.label.c_str()).x, y), f.text, t.label.c_str());
   }
   const ImVec2 xt = text_size(m.x_title.c_str());
-  dl->AddText(ImVec2(0.5f * (axis_x0 + p1.x) - 0.5f * xt.x, p1.y + below - 1.25f * em), text, m.x_title.c_str());
-  dl->AddText(ImVec2(origin.x, origin.y), text, m.y_title.c_str());
+  f.dl->AddText(ImVec2(0.5f * (f.axis_x0 + f.p1.x) - 0.5f * xt.x, f.p1.y + f.below - 1.25f * em), f.text,
+                m.x_title.c_str());
+  f.dl->AddText(ImVec2(f.origin.x, f.origin.y), f.text, m.y_title.c_str());
+}
 
-  // ---- Points (markers first in `taken`, indexed like m.points), then the labels.
-  const float r = 0.36f * em;
-  std::vector<ImVec2> where(m.points.size());
-  const size_t first_marker = taken.size();
-  for (size_t i = 0; i < m.points.size(); ++i) {
-    const ChartPoint& p = m.points[i];
-    where[i] = ImVec2(px(p.fx), py(p.fy));
-    taken.push_back(ImVec4(where[i].x - r, where[i].y - r, where[i].x + r, where[i].y + r));
-  }
-  clip_push();
-  // The fastest peer's speed as a dashed line across the plot in its kernel's colour,
-  // labelled where no marker is.
-  const std::string baseline_kernel = m.baseline_row ? data.rows[*m.baseline_row].kernel : std::string("embree");
-  if (m.baseline_fy) {
-    const float y = py(*m.baseline_fy);
-    const ImU32 c = kernel_color(baseline_kernel, 0.55f);
-    for (float x = p0.x; x < p1.x; x += 0.9f * em) dl->AddLine(ImVec2(x, y), ImVec2(std::min(x + 0.5f * em, p1.x), y), c, 1.5f);
-    const std::string label_text =
-        "fastest peer" + (m.baseline_row ? " (" + structure_label(data.rows[*m.baseline_row].structure) + ")" : "");
-    const char* label = label_text.c_str();
-    const ImVec2 ts = text_size(label);
-    bool placed = false;
-    for (float fx : {0.02f, 0.35f, 0.65f}) {
-      for (float dy : {-1.1f * em, 0.1f * em}) {
-        const float x = axis_x0 + fx * (p1.x - axis_x0);
-        const ImVec4 box(x, y + dy, x + ts.x, y + dy + ts.y);
-        if (placed || box.z > p1.x || box.y < p0.y || box.w > p1.y ||
-            std::any_of(taken.begin(), taken.end(), [&](const ImVec4& t) { return overlaps(box, t); }))
-          continue;
-        dl->AddText(ImVec2(box.x, box.y), kernel_color(baseline_kernel, 0.8f), label);
-        // Point labels keep half an em from it: "Embree high fastest peer (...)" would
-        // read as one label.
-        taken.push_back(ImVec4(box.x - 0.5f * em, box.y, box.z + 0.5f * em, box.w));
-        placed = true;
-      }
+/// The fastest peer's speed as a dashed line across the plot in its kernel's colour,
+/// labelled where nothing in `taken` is; the label and the line go to `taken`.
+void draw_baseline(const ChartFrame& f, const BenchData& data, const ChartModel& m, const std::string& kernel,
+                   std::vector<ImVec4>& taken) {
+  const float em = f.em;
+  const ImVec2 p0 = f.p0, p1 = f.p1;
+  const float y = f.py(*m.baseline_fy);
+  const ImU32 c = kernel_color(kernel, 0.55f);
+  for (float x = p0.x; x < p1.x; x += 0.9f * em)
+    f.dl->AddLine(ImVec2(x, y), ImVec2(std::min(x + 0.5f * em, p1.x), y), c, 1.5f);
+  const std::string label_text =
+      "fastest peer" + (m.baseline_row ? " (" + structure_label(data.rows[*m.baseline_row].structure) + ")" : "");
+  const char* label = label_text.c_str();
+  const ImVec2 ts = text_size(label);
+  bool placed = false;
+  for (float fx : {0.02f, 0.35f, 0.65f}) {
+    for (float dy : {-1.1f * em, 0.1f * em}) {
+      const float x = f.axis_x0 + fx * (p1.x - f.axis_x0);
+      const ImVec4 box(x, y + dy, x + ts.x, y + dy + ts.y);
+      if (placed || box.z > p1.x || box.y < p0.y || box.w > p1.y ||
+          std::any_of(taken.begin(), taken.end(), [&](const ImVec4& t) { return overlaps(box, t); }))
+        continue;
+      f.dl->AddText(ImVec2(box.x, box.y), kernel_color(kernel, 0.8f), label);
+      // Point labels keep half an em from it: "Embree high fastest peer (...)" would
+      // read as one label.
+      taken.push_back(ImVec4(box.x - 0.5f * em, box.y, box.z + 0.5f * em, box.w));
+      placed = true;
     }
-    taken.push_back(ImVec4(p0.x, y - 1.0f, p1.x, y + 1.0f));  // point labels keep off the line
   }
-  // Peers first so that the structures' markers stay on top of the peers'.
+  taken.push_back(ImVec4(p0.x, y - 1.0f, p1.x, y + 1.0f));  // point labels keep off the line
+}
+
+/// The points' indices, peers first so that the structures' markers stay on top of the peers'.
+std::vector<size_t> peers_first(const BenchData& data, const ChartModel& m) {
   std::vector<size_t> order(m.points.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return data.rows[m.points[a].row].is_peer() > data.rows[m.points[b].row].is_peer();
   });
+  return order;
+}
+
+/// Each point's name beside its marker at `where[i]`: right, left, above or below, the first
+/// place free of the rectangles in `taken` (point i's own marker, taken[first_marker + i],
+/// is not in the way).
+void draw_point_labels(const ChartFrame& f, const BenchData& data, const ChartModel& m,
+                       const std::vector<size_t>& order, const std::vector<ImVec2>& where, size_t first_marker,
+                       std::vector<ImVec4>& taken) {
+  const float em = f.em, r = f.marker_r;
+  // Rows that share structure and kernel (a parameter study) are told apart by their
+  // parameters.
+  auto twins = [&](const BenchRow& row) {
+    return std::count_if(m.points.begin(), m.points.end(), [&](const ChartPoint& p) {
+      const BenchRow& other = data.rows[p.row];
+      return other.structure == row.structure && other.kernel == row.kernel;
+    });
+  };
   for (size_t i : order) {
     const BenchRow& row = data.rows[m.points[i].row];
-    draw_marker(dl, structure_shape(row.structure), where[i], r, kernel_color(row.kernel));
-  }
-  if (options.labels) {
-    // Rows that share structure and kernel (a parameter study) are told apart by their
-    // parameters.
-    auto twins = [&](const BenchRow& row) {
-      return std::count_if(m.points.begin(), m.points.end(), [&](const ChartPoint& p) {
-        const BenchRow& other = data.rows[p.row];
-        return other.structure == row.structure && other.kernel == row.kernel;
-      });
-    };
-    for (size_t i : order) {
-      const BenchRow& row = data.rows[m.points[i].row];
-      std::string name = structure_label(row.structure);
-      if (!row.params.empty() && twins(row) > 1)
-        name += " " + (row.params.size() > 18 ? row.params.substr(0, 16) + ".." : row.params);
-      const ImVec2 ts = text_size(name.c_str());
-      const ImVec2 c = where[i];
-      // Right, left, above, below: the first place free of other labels and markers.
-      const ImVec2 candidates[] = {{c.x + r + 0.25f * em, c.y - 0.5f * ts.y},
-                                   {c.x - r - 0.25f * em - ts.x, c.y - 0.5f * ts.y},
-                                   {c.x - 0.5f * ts.x, c.y - r - ts.y},
-                                   {c.x - 0.5f * ts.x, c.y + r}};
-      for (const ImVec2& q : candidates) {
-        const ImVec4 box(q.x, q.y, q.x + ts.x, q.y + ts.y);
-        if (box.x < p0.x || box.z > p1.x || box.y < p0.y || box.w > p1.y) continue;
-        bool free = true;
-        for (size_t k = 0; k < taken.size() && free; ++k) {
-          // Its own marker is not in the way.
-          if (k == first_marker + i) continue;
-          free = !overlaps(box, taken[k]);
-        }
-        if (!free) continue;
-        dl->AddText(q, kernel_color(row.kernel, 0.9f), name.c_str());
-        taken.push_back(box);
-        break;
+    std::string name = structure_label(row.structure);
+    if (!row.params.empty() && twins(row) > 1)
+      name += " " + (row.params.size() > 18 ? row.params.substr(0, 16) + ".." : row.params);
+    const ImVec2 ts = text_size(name.c_str());
+    const ImVec2 c = where[i];
+    const ImVec2 candidates[] = {{c.x + r + 0.25f * em, c.y - 0.5f * ts.y},
+                                 {c.x - r - 0.25f * em - ts.x, c.y - 0.5f * ts.y},
+                                 {c.x - 0.5f * ts.x, c.y - r - ts.y},
+                                 {c.x - 0.5f * ts.x, c.y + r}};
+    for (const ImVec2& q : candidates) {
+      const ImVec4 box(q.x, q.y, q.x + ts.x, q.y + ts.y);
+      if (box.x < f.p0.x || box.z > f.p1.x || box.y < f.p0.y || box.w > f.p1.y) continue;
+      bool free = true;
+      for (size_t k = 0; k < taken.size() && free; ++k) {
+        if (k == first_marker + i) continue;
+        free = !overlaps(box, taken[k]);
       }
+      if (!free) continue;
+      f.dl->AddText(q, kernel_color(row.kernel, 0.9f), name.c_str());
+      taken.push_back(box);
+      break;
     }
   }
-  dl->PopClipRect();
+}
 
-  // ---- Hover: the nearest point under the mouse gets a ring and the full row.
-  if (ImGui::IsItemHovered()) {
-    const ImVec2 mouse = ImGui::GetIO().MousePos;
-    size_t best = m.points.size();
-    float best_d2 = (1.2f * r + 4.0f) * (1.2f * r + 4.0f);
-    for (size_t i = 0; i < m.points.size(); ++i) {
-      const float dx = where[i].x - mouse.x, dy = where[i].y - mouse.y;
-      if (dx * dx + dy * dy <= best_d2) {
-        best_d2 = dx * dx + dy * dy;
-        best = i;
-      }
-    }
-    if (best < m.points.size()) {
-      dl->AddCircle(where[best], 2.0f * r, IM_COL32(255, 255, 255, 220), 24, 2.0f);
-      row_tooltip(data.rows[m.points[best].row]);
+/// Hover: the nearest point under the mouse gets a ring and the full row.
+void hover_point(const ChartFrame& f, const BenchData& data, const ChartModel& m, const std::vector<ImVec2>& where) {
+  const float r = f.marker_r;
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  size_t best = m.points.size();
+  float best_d2 = (1.2f * r + 4.0f) * (1.2f * r + 4.0f);
+  for (size_t i = 0; i < m.points.size(); ++i) {
+    const float dx = where[i].x - mouse.x, dy = where[i].y - mouse.y;
+    if (dx * dx + dy * dy <= best_d2) {
+      best_d2 = dx * dx + dy * dy;
+      best = i;
     }
   }
+  if (best < m.points.size()) {
+    f.dl->AddCircle(where[best], 2.0f * r, IM_COL32(255, 255, 255, 220), 24, 2.0f);
+    row_tooltip(data.rows[m.points[best].row]);
+  }
+}
 
-  // ---- Legend: colours are kernels, shapes are structures.
-  if (legend_w <= 0.0f) return;
-  float x = origin.x + size.x - legend_w + 0.6f * em, y = p0.y;
+/// Legend, right of the plot: colours are kernels, shapes are structures, and the fastest
+/// peer's dashes (in `baseline_kernel`'s colour).
+void draw_legend(const ChartFrame& f, const ChartModel& m, const std::string& baseline_kernel) {
+  const float em = f.em;
+  ImDrawList* dl = f.dl;
+  float x = f.origin.x + f.size.x - f.legend_w + 0.6f * em, y = f.p0.y;
   const float line = 1.45f * em;
-  dl->AddText(ImVec2(x, y), dim, "kernel (colour)");
+  dl->AddText(ImVec2(x, y), f.dim, "kernel (colour)");
   y += line;
   for (const std::string& k : m.kernels) {
     dl->AddRectFilled(ImVec2(x, y + 0.2f * em), ImVec2(x + 0.9f * em, y + 1.0f * em), kernel_color(k), 2.0f);
-    dl->AddText(ImVec2(x + 1.4f * em, y), text, kernel_label(k).c_str());
+    dl->AddText(ImVec2(x + 1.4f * em, y), f.text, kernel_label(k).c_str());
     y += line;
   }
   y += 0.5f * em;
-  dl->AddText(ImVec2(x, y), dim, "structure (shape)");
+  dl->AddText(ImVec2(x, y), f.dim, "structure (shape)");
   y += line;
   for (const std::string& s : m.structures) {
-    draw_marker(dl, structure_shape(s), ImVec2(x + 0.45f * em, y + 0.6f * em), r, IM_COL32(215, 218, 225, 255));
-    dl->AddText(ImVec2(x + 1.4f * em, y), text, structure_label(s).c_str());
+    const ImVec2 c(x + 0.45f * em, y + 0.6f * em);
+    draw_marker(dl, structure_shape(s), c, f.marker_r, IM_COL32(215, 218, 225, 255));
+    dl->AddText(ImVec2(x + 1.4f * em, y), f.text, structure_label(s).c_str());
     y += line;
   }
   if (m.baseline_fy) {
@@ -436,8 +462,44 @@ void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& 
     const ImU32 c = kernel_color(baseline_kernel, 0.7f);
     for (float d = 0.0f; d < 1.0f * em; d += 0.45f * em)
       dl->AddLine(ImVec2(x + d, y + 0.6f * em), ImVec2(x + d + 0.25f * em, y + 0.6f * em), c, 1.5f);
-    dl->AddText(ImVec2(x + 1.4f * em, y), text, "fastest peer");
+    dl->AddText(ImVec2(x + 1.4f * em, y), f.text, "fastest peer");
   }
+}
+
+/// Draws the chart of `m` into the rectangle [origin, origin + size].
+void draw_chart(const BenchData& data, const ChartModel& m, const ChartOptions& options, ImVec2 origin, ImVec2 size) {
+  const ChartFrame f = chart_frame(m, origin, size);
+  if (f.too_small()) {
+    f.dl->AddText(origin, f.dim, "(window too small for the chart)");
+    return;
+  }
+  std::vector<ImVec4> taken;  // rectangles of text and markers drawn in the plot: labels avoid them
+  draw_zero_band(f, m, taken);
+  draw_grid_and_axes(f, m);
+  draw_tick_labels(f, m);
+
+  // The points: markers first in `taken`, indexed like m.points; then the labels.
+  const float r = f.marker_r;
+  std::vector<ImVec2> where(m.points.size());
+  const size_t first_marker = taken.size();
+  for (size_t i = 0; i < m.points.size(); ++i) {
+    const ChartPoint& p = m.points[i];
+    where[i] = ImVec2(f.px(p.fx), f.py(p.fy));
+    taken.push_back(ImVec4(where[i].x - r, where[i].y - r, where[i].x + r, where[i].y + r));
+  }
+  f.dl->PushClipRect(f.p0, f.p1, true);
+  const std::string baseline_kernel = m.baseline_row ? data.rows[*m.baseline_row].kernel : std::string("embree");
+  if (m.baseline_fy) draw_baseline(f, data, m, baseline_kernel, taken);
+  const std::vector<size_t> order = peers_first(data, m);
+  for (size_t i : order) {
+    const BenchRow& row = data.rows[m.points[i].row];
+    draw_marker(f.dl, structure_shape(row.structure), where[i], r, kernel_color(row.kernel));
+  }
+  if (options.labels) draw_point_labels(f, data, m, order, where, first_marker, taken);
+  f.dl->PopClipRect();
+
+  if (ImGui::IsItemHovered()) hover_point(f, data, m, where);
+  if (f.legend_w > 0.0f) draw_legend(f, m, baseline_kernel);
 }
 
 /// The file row: path field, Load button, the loaded file, the last error.

@@ -164,12 +164,9 @@ glm::vec3 pca_dir(const BuildTrace& trace, size_t applied, uint32_t node) {
   return glm::vec3(0.0f);
 }
 
-}  // namespace
-
-BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, const accel::Scene& scene) {
-  BuildView v;
+/// The nodes built so far, coloured by depth (shallow first when there are too many).
+void append_nodes_so_far(BuildView& v, const accel::BuildReplay& replay, const accel::Scene& scene) {
   const auto& nodes = replay.nodes();
-  // The nodes so far, coloured by depth (shallow first when there are too many).
   int max_depth = 1;
   for (const accel::ReplayNode& n : nodes)
     if (!n.gone) max_depth = std::max(max_depth, n.depth);
@@ -189,71 +186,70 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
     else append_box_edges(v.lines, n.box, color);
     ++v.nodes_drawn;
   }
-  // The grid: its box and the cells filled so far.
-  const accel::ReplayGrid& g = replay.grid();
-  if (g.resolved) {
-    append_box_segments(v.segments, g.box, glm::vec4(0.8f, 0.8f, 0.9f, 0.8f), 1.5f);
-    size_t drawn = 0;
-    for (size_t c = 0; c < g.cells.size() && drawn < BuildView::kMaxNodes; ++c) {
-      if (g.cells[c].empty()) continue;
-      const int x = static_cast<int>(c % size_t(g.res[0]));
-      const int y = static_cast<int>((c / size_t(g.res[0])) % size_t(g.res[1]));
-      const int z = static_cast<int>(c / (size_t(g.res[0]) * size_t(g.res[1])));
-      const float t = std::min(1.0f, static_cast<float>(g.cells[c].size()) / 8.0f);
-      append_box_edges(v.lines, cell_box(g, x, y, z), glm::vec4(colormap(0.15f + 0.8f * t), 0.5f));
-      ++drawn;
-    }
-  }
+}
 
-  const BuildEvent* e = replay.current();
-  if (!e) return v;
+/// The grid: its box and the cells filled so far.
+void append_grid_so_far(BuildView& v, const accel::ReplayGrid& g) {
+  if (!g.resolved) return;
+  append_box_segments(v.segments, g.box, glm::vec4(0.8f, 0.8f, 0.9f, 0.8f), 1.5f);
+  size_t drawn = 0;
+  for (size_t c = 0; c < g.cells.size() && drawn < BuildView::kMaxNodes; ++c) {
+    if (g.cells[c].empty()) continue;
+    const int x = static_cast<int>(c % size_t(g.res[0]));
+    const int y = static_cast<int>((c / size_t(g.res[0])) % size_t(g.res[1]));
+    const int z = static_cast<int>(c / (size_t(g.res[0]) * size_t(g.res[1])));
+    const float t = std::min(1.0f, static_cast<float>(g.cells[c].size()) / 8.0f);
+    append_box_edges(v.lines, cell_box(g, x, y, z), glm::vec4(colormap(0.15f + 0.8f * t), 0.5f));
+    ++drawn;
+  }
+}
+
+/// A GridInsert step: the cells under the triangle's bbox (thin) against the cells that
+/// keep it (thick), and the triangle.
+void append_grid_insert(BuildView& v, const BuildTrace& trace, const accel::ReplayGrid& g, const BuildEvent& e,
+                        const accel::Scene& scene) {
+  size_t drawn = 0;
+  for (int z = e.lo[2]; z <= e.hi[2]; ++z)
+    for (int y = e.lo[1]; y <= e.hi[1]; ++y)
+      for (int x = e.lo[0]; x <= e.hi[0] && drawn < 4096; ++x, ++drawn)
+        append_box_edges(v.lines, cell_box(g, x, y, z), kBboxCellColor);
+  for (uint32_t i = 0; i < e.list_count && i < 4096; ++i) {
+    const uint32_t c = trace.list(e)[i];
+    if (!g.resolved) break;
+    const int x = static_cast<int>(c % uint32_t(g.res[0]));
+    const int y = static_cast<int>((c / uint32_t(g.res[0])) % uint32_t(g.res[1]));
+    const int z = static_cast<int>(c / (uint32_t(g.res[0]) * uint32_t(g.res[1])));
+    append_box_segments(v.segments, cell_box(g, x, y, z), kKeptCellColor, 2.5f);
+  }
+  append_prim(v, scene, e.prim);
+}
+
+/// A step about one node: its outline, its triangles, and what the step does to it (the
+/// chosen plane, the other nodes of a merge, the triangle inserted).
+void append_current_node(BuildView& v, const BuildTrace& trace, const accel::BuildReplay& replay,
+                         const accel::Scene& scene, const BuildEvent& e) {
+  const auto& nodes = replay.nodes();
   const size_t applied = replay.step();
-  if (e->kind == BuildEventKind::SceneBox) {
-    append_box_segments(v.segments, e->box, kCurrentColor, 3.0f);
-    return v;
-  }
-  if (e->kind == BuildEventKind::GridResolution) {
-    append_box_segments(v.segments, e->box, kCurrentColor, 3.0f);
-    return v;
-  }
-  if (e->kind == BuildEventKind::GridInsert) {
-    // The cells under the triangle's bbox (thin) against the cells that keep it (thick).
-    size_t drawn = 0;
-    for (int z = e->lo[2]; z <= e->hi[2]; ++z)
-      for (int y = e->lo[1]; y <= e->hi[1]; ++y)
-        for (int x = e->lo[0]; x <= e->hi[0] && drawn < 4096; ++x, ++drawn)
-          append_box_edges(v.lines, cell_box(g, x, y, z), kBboxCellColor);
-    for (uint32_t i = 0; i < e->list_count && i < 4096; ++i) {
-      const uint32_t c = trace.list(*e)[i];
-      if (!g.resolved) break;
-      const int x = static_cast<int>(c % uint32_t(g.res[0]));
-      const int y = static_cast<int>((c / uint32_t(g.res[0])) % uint32_t(g.res[1]));
-      const int z = static_cast<int>(c / (uint32_t(g.res[0]) * uint32_t(g.res[1])));
-      append_box_segments(v.segments, cell_box(g, x, y, z), kKeptCellColor, 2.5f);
-    }
-    append_prim(v, scene, e->prim);
-    return v;
-  }
-  const uint32_t id = build_event_node(*e);
+  const uint32_t id = build_event_node(e);
   const uint32_t slot = id == kNoBuildNode ? kNoBuildNode : replay.slot(id);
-  if (slot == kNoBuildNode || slot >= nodes.size()) return v;
+  if (slot == kNoBuildNode || slot >= nodes.size()) return;
   const accel::ReplayNode& n = nodes[slot];
   append_node_outline(v.segments, n, kCurrentColor, 3.5f, scene.planar());
   // Its triangles (a leaf's own; an inner node's while it is being split).
   const size_t shown = std::min(n.prims.size(), BuildView::kMaxTriangles);
   for (size_t i = 0; i < shown; ++i) append_prim(v, scene, n.prims[i]);
-  switch (e->kind) {
+  switch (e.kind) {
     case BuildEventKind::Candidates: {
-      if (e->list_count == 0) break;
-      const accel::SplitCandidate* c = trace.candidates_of(*e);
+      if (e.list_count == 0) break;
+      const accel::SplitCandidate* c = trace.candidates_of(e);
       uint32_t best = 0;
-      for (uint32_t i = 1; i < e->list_count; ++i)
+      for (uint32_t i = 1; i < e.list_count; ++i)
         if (c[i].cost < c[best].cost) best = i;
-      append_plane(v, n.box, e->axis, c[best].pos, e->axis == 3 ? pca_dir(trace, applied, id) : glm::vec3(0.0f));
+      append_plane(v, n.box, e.axis, c[best].pos, e.axis == 3 ? pca_dir(trace, applied, id) : glm::vec3(0.0f));
       break;
     }
     case BuildEventKind::Split:
-      append_plane(v, n.box, e->axis, e->pos, e->axis == 3 ? pca_dir(trace, applied, id) : glm::vec3(0.0f));
+      append_plane(v, n.box, e.axis, e.pos, e.axis == 3 ? pca_dir(trace, applied, id) : glm::vec3(0.0f));
       break;
     case BuildEventKind::Merge:
     case BuildEventKind::Subdivide:
@@ -261,8 +257,24 @@ BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, 
       for (uint32_t c : n.children)
         if (c < nodes.size() && !nodes[c].gone) append_node_outline(v.segments, nodes[c], kOtherColor, 2.0f, scene.planar());
       break;
-    case BuildEventKind::InsertStep: append_prim(v, scene, e->prim); break;
+    case BuildEventKind::InsertStep: append_prim(v, scene, e.prim); break;
     default: break;
+  }
+}
+
+}  // namespace
+
+BuildView build_view(const BuildTrace& trace, const accel::BuildReplay& replay, const accel::Scene& scene) {
+  BuildView v;
+  append_nodes_so_far(v, replay, scene);
+  append_grid_so_far(v, replay.grid());
+  const BuildEvent* e = replay.current();
+  if (!e) return v;
+  switch (e->kind) {
+    case BuildEventKind::SceneBox:
+    case BuildEventKind::GridResolution: append_box_segments(v.segments, e->box, kCurrentColor, 3.0f); break;
+    case BuildEventKind::GridInsert: append_grid_insert(v, trace, replay.grid(), *e, scene); break;
+    default: append_current_node(v, trace, replay, scene, *e); break;
   }
   return v;
 }

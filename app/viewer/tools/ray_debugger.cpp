@@ -46,6 +46,68 @@ ImVec4 event_color(const accel::TraceEvent& e) {
   return kDimText;
 }
 
+/// Counters of this ray: up to this step (`so_far`, `steps`), and for the whole traversal
+/// (`total`, `total_steps`); `noun` names the structure's nodes.
+void counters_table(const char* noun, const accel::QueryStats& so_far, const accel::QueryStats& total,
+                    uint64_t steps, uint64_t total_steps) {
+  if (!ImGui::BeginTable("counters", 5, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerH)) return;
+  for (const char* h_name : {"this ray", noun, "skipped", "triangles", "steps"}) ImGui::TableSetupColumn(h_name);
+  ImGui::TableHeadersRow();
+  auto row = [](const char* label, std::initializer_list<uint64_t> values) {
+    ImGui::TableNextRow();
+    ImGui::TableSetColumnIndex(0);
+    ImGui::TextDisabled("%s", label);
+    int column = 1;
+    for (uint64_t v : values) {
+      ImGui::TableSetColumnIndex(column++);
+      ImGui::Text("%llu", static_cast<unsigned long long>(v));
+    }
+  };
+  row("so far", {so_far.nodes_visited, so_far.nodes_culled, so_far.prims_tested, steps});
+  row("total", {total.nodes_visited, total.nodes_culled, total.prims_tested, total_steps});
+  ImGui::EndTable();
+}
+
+/// Stack / priority queue contents (`pq`), reconstructed from the push/pop events so far:
+/// "node @key" entries, wrapped between entries (never inside one).
+void pending_line(const std::vector<accel::PendingNode>& pending, bool pq) {
+  const float em = ImGui::GetFontSize();
+  ImGui::PushStyleColor(ImGuiCol_Text, kQueueText);
+  ImGui::Text("%s (%zu):", pq ? "priority queue, nearest first" : "stack, top first", pending.size());
+  ImGui::PopStyleColor();
+  std::vector<accel::PendingNode> list =
+      pq ? accel::sorted_by_key(pending) : std::vector<accel::PendingNode>(pending.rbegin(), pending.rend());
+  const float right_edge = ImGui::GetCursorPosX() + ImGui::GetContentRegionAvail().x;
+  constexpr size_t kShown = 10;
+  for (size_t i = 0; i < list.size() && i <= kShown; ++i) {
+    const std::string item =
+        i == kShown ? "..." : std::to_string(list[i].node) + fmt(" @%.3g", static_cast<double>(list[i].key));
+    if (i > 0) {
+      ImGui::SameLine(0.0f, em);
+      if (ImGui::GetCursorPosX() + ImGui::CalcTextSize(item.c_str()).x > right_edge) ImGui::NewLine();
+    }
+    ImGui::TextUnformatted(item.c_str());
+  }
+}
+
+/// What the 3D highlights' colours mean.
+void colours_legend() {
+  if (!ImGui::TreeNode("Colours")) return;
+  ImGui::TextColored(kCurrentText, "current node and the ray's interval in it");
+  ImGui::TextColored(ImVec4(0.85f, 0.88f, 0.95f, 1.0f), "nodes visited before (trail)");
+  ImGui::TextColored(kQueueText, "pending on the stack / queue (thick: popped next)");
+  ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.15f, 1.0f), "skipped: entered beyond the closest hit");
+  ImGui::TextColored(ImVec4(0.7f, 0.55f, 1.0f, 1.0f), "skipped: the ray misses its bounds");
+  ImGui::TextColored(kFalseClaimText, "FALSE: a student's logged claim the geometry contradicts");
+  ImGui::TextColored(hit_text(), "triangle tested: hit");
+  ImGui::SameLine();
+  ImGui::TextColored(miss_text(), "  miss");
+  ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.05f, 1.0f), "closest hit so far");
+  ImGui::SameLine();
+  ImGui::TextColored(ImVec4(1.0f, 0.2f, 0.9f, 1.0f), "  hit point");
+  ImGui::TreePop();
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -149,7 +211,6 @@ std::string RayDebugger::ray_line() const { return accel::format_ray_line(ray_.r
 // Panels
 
 bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built, bool board) {
-  const float em = ImGui::GetFontSize();
   if (!ui::begin_panel(where, "Debug ray")) return false;
   bool compare = false;
   if (!ray_.active) {
@@ -167,79 +228,7 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
   transport_controls(p, {1, "no trace"}, [&p] {
     if (ImGui::Button("Jump to hit")) p.jump_to_hit();
   });
-
-  if (has) {
-    // The current step, large and in its colour; a false claim of a student's log in the
-    // warning colour with the truth, instead of the log's sentence when the step is the claim.
-    const accel::TraceEvent& e = *p.current();
-    const std::vector<const accel::FalseClaim*> claims = claims_at(ray_.audit, p.step());
-    if (claims.empty() || !event_is_claim(e)) {
-      ImGui::PushStyleColor(ImGuiCol_Text, event_color(e));
-      ImGui::TextWrapped("%s", accel::describe_event(e).c_str());
-      ImGui::PopStyleColor();
-    }
-    ImGui::PushStyleColor(ImGuiCol_Text, kFalseClaimText);
-    for (const accel::FalseClaim* c : claims) ImGui::TextWrapped("%s", false_claim_text(*c).c_str());
-    ImGui::PopStyleColor();
-    const accel::TraceHighlight& h = highlights_.step;
-    // Counters of this ray: up to this step, and for the whole traversal.
-    if (ImGui::BeginTable("counters", 5, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerH)) {
-      const char* noun = built ? built->info->node_noun.c_str() : "nodes";
-      for (const char* h_name : {"this ray", noun, "skipped", "triangles", "steps"})
-        ImGui::TableSetupColumn(h_name);
-      ImGui::TableHeadersRow();
-      auto row = [](const char* label, std::initializer_list<uint64_t> values) {
-        ImGui::TableNextRow();
-        ImGui::TableSetColumnIndex(0);
-        ImGui::TextDisabled("%s", label);
-        int column = 1;
-        for (uint64_t v : values) {
-          ImGui::TableSetColumnIndex(column++);
-          ImGui::Text("%llu", static_cast<unsigned long long>(v));
-        }
-      };
-      row("so far", {h.counters.nodes_visited, h.counters.nodes_culled, h.counters.prims_tested, p.step() + 1});
-      row("total", {ray_.stats.nodes_visited, ray_.stats.nodes_culled, ray_.stats.prims_tested, p.size()});
-      ImGui::EndTable();
-    }
-    if (ray_.truncated)
-      ImGui::TextWrapped("The traversal made more steps than a recording keeps (%zu MiB): the first %zu steps and the "
-                         "answer are shown; the totals count every step.",
-                         accel::TraceRecorder::kDefaultBudgetBytes >> 20, p.size() - 1);
-    if (h.closest_prim >= 0)
-      ImGui::Text("closest so far: triangle %d at t=%.5g", h.closest_prim, static_cast<double>(h.closest_t));
-    if (ray_.hit.valid())
-      ImGui::Text("answer: triangle %d at t=%.5g", ray_.hit.prim, static_cast<double>(ray_.hit.t));
-    else
-      ImGui::TextUnformatted("answer: miss");
-    // A student's walk: how much of its log the kit found false (the steps say which).
-    if (ray_.audit) {
-      ImGui::PushStyleColor(ImGuiCol_Text, ray_.audit->claims.empty() ? kDimText : kFalseClaimText);
-      ImGui::TextWrapped("%s", claims_summary(*ray_.audit).c_str());
-      ImGui::PopStyleColor();
-    }
-    // Stack / priority queue contents, reconstructed from the push/pop events so far.
-    if (!h.pending.empty()) {
-      const bool pq = built && built->kind == TraversalKind::HierarchyPqueue;
-      ImGui::PushStyleColor(ImGuiCol_Text, kQueueText);
-      ImGui::Text("%s (%zu):", pq ? "priority queue, nearest first" : "stack, top first", h.pending.size());
-      ImGui::PopStyleColor();
-      std::vector<accel::PendingNode> list = pq ? accel::sorted_by_key(h.pending)
-                                                : std::vector<accel::PendingNode>(h.pending.rbegin(), h.pending.rend());
-      // "node @key" entries, wrapped between entries (never inside one).
-      const float right_edge = ImGui::GetCursorPosX() + ImGui::GetContentRegionAvail().x;
-      constexpr size_t kShown = 10;
-      for (size_t i = 0; i < list.size() && i <= kShown; ++i) {
-        const std::string item =
-            i == kShown ? "..." : std::to_string(list[i].node) + fmt(" @%.3g", static_cast<double>(list[i].key));
-        if (i > 0) {
-          ImGui::SameLine(0.0f, em);
-          if (ImGui::GetCursorPosX() + ImGui::CalcTextSize(item.c_str()).x > right_edge) ImGui::NewLine();
-        }
-        ImGui::TextUnformatted(item.c_str());
-      }
-    }
-  }
+  if (has) trace_lines(built);
   if (ImGui::Button("Compare structures (C)")) {
     compare = true;
   }
@@ -250,36 +239,61 @@ bool RayDebugger::ray_panel(const PanelPlace& where, const BuiltStructure* built
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("a click aims from the saved viewpoint (Scene > Save view) at the point under the cursor");
   }
-  if (ImGui::TreeNode("Colours")) {
-    ImGui::TextColored(kCurrentText, "current node and the ray's interval in it");
-    ImGui::TextColored(ImVec4(0.85f, 0.88f, 0.95f, 1.0f), "nodes visited before (trail)");
-    ImGui::TextColored(kQueueText, "pending on the stack / queue (thick: popped next)");
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.15f, 1.0f), "skipped: entered beyond the closest hit");
-    ImGui::TextColored(ImVec4(0.7f, 0.55f, 1.0f, 1.0f), "skipped: the ray misses its bounds");
-    ImGui::TextColored(kFalseClaimText, "FALSE: a student's logged claim the geometry contradicts");
-    ImGui::TextColored(hit_text(), "triangle tested: hit");
-    ImGui::SameLine();
-    ImGui::TextColored(miss_text(), "  miss");
-    ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.05f, 1.0f), "closest hit so far");
-    ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1.0f, 0.2f, 0.9f, 1.0f), "  hit point");
-    ImGui::TreePop();
-  }
-  if (ImGui::TreeNode("Type a ray")) {
-    ImGui::SetNextItemWidth(-4.0f * em);
-    ImGui::InputFloat3("origin", typed_ray_, "%.4g");
-    ImGui::SetNextItemWidth(-4.0f * em);
-    ImGui::InputFloat3("dir", typed_ray_ + 3, "%.4g");
-    if (ImGui::Button("Shoot")) {
-      accel::Ray r;
-      r.org = {typed_ray_[0], typed_ray_[1], typed_ray_[2]};
-      r.dir = {typed_ray_[3], typed_ray_[4], typed_ray_[5]};
-      if (r.dir != glm::vec3(0.0f)) set_ray(r, "typed", built);
-    }
-    ImGui::TreePop();
-  }
+  colours_legend();
+  typed_ray(built);
   ImGui::End();
   return compare;
+}
+
+void RayDebugger::trace_lines(const BuiltStructure* built) {
+  const accel::TracePlayer& p = ray_.player;
+  // The current step, large and in its colour; a false claim of a student's log in the
+  // warning colour with the truth, instead of the log's sentence when the step is the claim.
+  const accel::TraceEvent& e = *p.current();
+  const std::vector<const accel::FalseClaim*> claims = claims_at(ray_.audit, p.step());
+  if (claims.empty() || !event_is_claim(e)) {
+    ImGui::PushStyleColor(ImGuiCol_Text, event_color(e));
+    ImGui::TextWrapped("%s", accel::describe_event(e).c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, kFalseClaimText);
+  for (const accel::FalseClaim* c : claims) ImGui::TextWrapped("%s", false_claim_text(*c).c_str());
+  ImGui::PopStyleColor();
+  const accel::TraceHighlight& h = highlights_.step;
+  counters_table(built ? built->info->node_noun.c_str() : "nodes", h.counters, ray_.stats, p.step() + 1, p.size());
+  if (ray_.truncated)
+    ImGui::TextWrapped("The traversal made more steps than a recording keeps (%zu MiB): the first %zu steps and the "
+                       "answer are shown; the totals count every step.",
+                       accel::TraceRecorder::kDefaultBudgetBytes >> 20, p.size() - 1);
+  if (h.closest_prim >= 0)
+    ImGui::Text("closest so far: triangle %d at t=%.5g", h.closest_prim, static_cast<double>(h.closest_t));
+  if (ray_.hit.valid())
+    ImGui::Text("answer: triangle %d at t=%.5g", ray_.hit.prim, static_cast<double>(ray_.hit.t));
+  else
+    ImGui::TextUnformatted("answer: miss");
+  // A student's walk: how much of its log the kit found false (the steps say which).
+  if (ray_.audit) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ray_.audit->claims.empty() ? kDimText : kFalseClaimText);
+    ImGui::TextWrapped("%s", claims_summary(*ray_.audit).c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!h.pending.empty()) pending_line(h.pending, built && built->kind == TraversalKind::HierarchyPqueue);
+}
+
+void RayDebugger::typed_ray(const BuiltStructure* built) {
+  if (!ImGui::TreeNode("Type a ray")) return;
+  const float em = ImGui::GetFontSize();
+  ImGui::SetNextItemWidth(-4.0f * em);
+  ImGui::InputFloat3("origin", typed_ray_, "%.4g");
+  ImGui::SetNextItemWidth(-4.0f * em);
+  ImGui::InputFloat3("dir", typed_ray_ + 3, "%.4g");
+  if (ImGui::Button("Shoot")) {
+    accel::Ray r;
+    r.org = {typed_ray_[0], typed_ray_[1], typed_ray_[2]};
+    r.dir = {typed_ray_[3], typed_ray_[4], typed_ray_[5]};
+    if (r.dir != glm::vec3(0.0f)) set_ray(r, "typed", built);
+  }
+  ImGui::TreePop();
 }
 
 void RayDebugger::steps_panel(const PanelPlace& where, bool board) {

@@ -117,6 +117,12 @@ class RayDebugger final : public Tool {
   void highlight_options();
 
  private:
+  /// The ray_panel()'s lines about the trace: the current step, the counters, the answer,
+  /// the student's false claims, the stack or queue.
+  void trace_lines(const BuiltStructure* built);
+  /// The ray_panel()'s "Type a ray" node: an origin and a direction, and Shoot.
+  void typed_ray(const BuiltStructure* built);
+
   DebugRay ray_;
   HighlightOptions options_;
   Highlights highlights_;

@@ -2,13 +2,12 @@
 //   Following     update(): what changed since the last frame, and what that rebuilds
 //   Selection     select(), the 3D highlight of the selection
 //   The window    panel(), the legend, the node numbers
-//   The diagram   the canvas: zoom, pan, follow, edges, nodes, hover, click
 //   The grid      the cell walk table
+// The diagram's canvas (zoom, pan, follow, edges, nodes, hover, click) is
+// tree_diagram_canvas.cpp's.
 #include "tools/tree_diagram.h"
 
 #include <algorithm>
-#include <cfloat>
-#include <cmath>
 #include <cstdio>
 
 #include <GLFW/glfw3.h>
@@ -20,6 +19,7 @@
 #include "tools/build_player.h"
 #include "tools/ray_debugger.h"
 #include "tools/structure_session.h"
+#include "tools/tree_diagram_colors.h"
 #include "tools/tree_diagram_verbs.h"
 #include "tools/ui_colors.h"
 #include "tools/vars_panel.h"
@@ -28,6 +28,9 @@
 namespace viz {
 namespace {
 
+using tree_colors::color_u32;
+using tree_colors::state_color;
+
 // Top levels opened breadth-first besides the ray's path: enough to see the tree's shape,
 // few enough that the path stays the diagram's subject. Without a ray more are opened.
 constexpr size_t kBudgetWithTrace = 15;
@@ -35,52 +38,10 @@ constexpr size_t kBudgetWithoutTrace = 63;
 // An isolated subtree draws at most this many nodes in 3D (breadth-first: the top levels),
 // about what the node display shows of a big tree at first: more only slows the frame.
 constexpr size_t kMaxIsolatedNodes = 4095;
-// Spacing of the diagram in font sizes at zoom 1 (so lecture mode scales with its font).
-constexpr float kSlotEm = 1.7f;
-constexpr float kRowEm = 2.4f;
-constexpr float kNodeEm = 0.45f;  // half size of a node's glyph
-constexpr float kMinZoom = 0.05f, kMaxZoom = 6.0f;
-constexpr float kMinRowScale = 0.45f;  // rows at most this much closer than the zoom's spacing
 // Column width of the node numbers beside the diagram.
 constexpr float kNumbersEm = 15.0f;
 
 const glm::vec4 kSelected3D(1.0f, 0.3f, 0.9f, 1.0f);  // as the diagram's selection ring
-
-ImU32 color_u32(const ImVec4& c, float alpha_scale = 1.0f) {
-  return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, c.w * alpha_scale));
-}
-
-ImVec4 state_color(const TreeNodeStatus& s) {
-  switch (s.state) {
-    case TreeNodeState::Current: return ui::kCurrentText;
-    case TreeNodeState::Visited: return ui::kVisitedText;
-    case TreeNodeState::OnStack: return ui::kQueueText;
-    case TreeNodeState::Culled:
-      return s.reason == accel::CullReason::MissedBounds ? ui::kCullMissedText : ui::kCullText;
-    case TreeNodeState::NotReached: break;
-  }
-  return ImVec4(0.42f, 0.45f, 0.52f, 1.0f);
-}
-
-const char* state_name(TreeNodeState s) {
-  switch (s) {
-    case TreeNodeState::Current: return "current";
-    case TreeNodeState::Visited: return "visited";
-    case TreeNodeState::OnStack: return "on the stack / queue";
-    case TreeNodeState::Culled: return "culled";
-    case TreeNodeState::NotReached: break;
-  }
-  return "not reached";
-}
-
-/// 1234567 -> "1.2M": the collapsed glyphs' labels must stay short.
-std::string short_count(size_t n) {
-  char buf[32];
-  if (n < 10000) std::snprintf(buf, sizeof buf, "%zu", n);
-  else if (n < 1000000) std::snprintf(buf, sizeof buf, "%.0fk", static_cast<double>(n) / 1e3);
-  else std::snprintf(buf, sizeof buf, "%.1fM", static_cast<double>(n) / 1e6);
-  return buf;
-}
 
 /// The grid's resolution from its statistics line "resolution" = "NXxNYxNZ" (0s: unknown).
 void grid_resolution(const accel::BuildStats& stats, int res[3]) {
@@ -412,178 +373,6 @@ void TreeDiagram::selection_numbers() {
     summary_.reset();
     layout_dirty_ = true;
     highlight_dirty_ = true;
-  }
-}
-
-// =======================================================================================
-// [SECTION] The diagram
-
-void TreeDiagram::diagram_canvas(float width, float height) {
-  const float em = ImGui::GetFontSize();
-  const ImVec2 p0 = ImGui::GetCursorScreenPos();
-  const ImVec2 p1(p0.x + width, p0.y + height);
-  ImGui::InvisibleButton("##tree_canvas", ImVec2(width, height));
-  const bool hovered = ImGui::IsItemHovered();
-  const bool active = ImGui::IsItemActive();
-  const bool released = ImGui::IsItemDeactivated();
-  ImGuiIO& io = ImGui::GetIO();
-  const float margin = 1.2f * em;
-
-  // Fit: the whole layout when it is small; else a readable zoom around the current node.
-  // Again when the canvas changes size (the layout is applied, lecture fonts) while following.
-  if (follow_ && (width != canvas_size_.x || height != canvas_size_.y)) fit_pending_ = true;
-  canvas_size_ = {width, height};
-  if (fit_pending_) {
-    fit_pending_ = false;
-    const float cols = std::max(layout_.columns - 1.0f, 1.0f), rows = std::max(layout_.rows - 1.0f, 1.0f);
-    const float fit_x = (width - 2.0f * margin) / (cols * kSlotEm * em);
-    const float fit_y = (height - 2.5f * margin) / (rows * kRowEm * em);  // room for the leaves' counts
-    // Width and depth are fitted apart (rows squeezed down to kMinRowScale first): a deep,
-    // narrow path would otherwise shrink to dots.
-    zoom_ = std::clamp(std::min({fit_x, 1.0f, fit_y / kMinRowScale}), 0.35f, kMaxZoom);
-    row_scale_ = std::clamp(fit_y / zoom_, kMinRowScale, 1.0f);
-    const float content_w = cols * kSlotEm * em * zoom_;
-    pan_ = {std::max((width - 2.0f * margin - content_w) * 0.5f, 0.0f), 0.0f};
-    followed_item_ = -1;  // re-centre on the current node if it is out of view
-  }
-  const float sx = kSlotEm * em * zoom_, sy = kRowEm * em * zoom_ * row_scale_;
-  const float r = std::max(std::min(kNodeEm * em * std::min(zoom_, 1.5f), 0.3f * sy), 2.0f);
-  auto screen = [&](const TreeItem& it) {
-    return ImVec2(p0.x + pan_.x + margin + it.x * sx, p0.y + pan_.y + margin + static_cast<float>(it.depth) * sy);
-  };
-  // An item out of view is brought to the middle, per axis; one in view stays where it is,
-  // and the view never leaves room above the root (the path reads from the top).
-  auto bring_into_view = [&](int item) {
-    const ImVec2 c = screen(layout_.items[static_cast<size_t>(item)]);
-    if (c.x < p0.x + margin || c.x > p1.x - margin) pan_.x += (p0.x + 0.5f * width) - c.x;
-    if (c.y < p0.y + 0.5f * margin || c.y > p1.y - 0.5f * margin)
-      pan_.y = std::min(pan_.y + (p0.y + 0.6f * height) - c.y, 0.0f);
-  };
-  if (center_on_selected_) {
-    center_on_selected_ = false;
-    if (const int i = layout_.find(selected_); i >= 0) bring_into_view(i);
-  }
-  if (follow_ && current_item_ >= 0 && current_item_ != followed_item_) {
-    followed_item_ = current_item_;
-    bring_into_view(current_item_);
-  }
-
-  // Zoom about the mouse; drag pans (and stops following).
-  if (hovered && io.MouseWheel != 0.0f) {
-    const float old = zoom_;
-    zoom_ = std::clamp(zoom_ * std::pow(1.2f, io.MouseWheel), kMinZoom, kMaxZoom);
-    const float f = zoom_ / old;
-    const ImVec2 m = io.MousePos;
-    pan_.x = (m.x - p0.x - margin) - (m.x - p0.x - margin - pan_.x) * f;
-    pan_.y = (m.y - p0.y - margin) - (m.y - p0.y - margin - pan_.y) * f;
-  }
-  if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
-    pan_.x += io.MouseDelta.x;
-    pan_.y += io.MouseDelta.y;
-    follow_ = false;
-  }
-
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  dl->PushClipRect(p0, p1, true);
-  dl->AddRectFilled(p0, p1, ImGui::GetColorU32(ImVec4(0.0f, 0.0f, 0.0f, 0.35f)));
-  auto visible_x = [&](float x) { return x >= p0.x - sx && x <= p1.x + sx; };
-  auto visible = [&](const ImVec2& c) { return visible_x(c.x) && c.y >= p0.y - sy && c.y <= p1.y + sy; };
-
-  // Edges first, brighter where the ray went.
-  const float edge_w = std::max(1.0f, 0.08f * em * std::min(zoom_, 1.5f));
-  for (size_t i = 0; i < layout_.items.size(); ++i) {
-    const TreeItem& it = layout_.items[i];
-    if (it.parent < 0) continue;
-    const ImVec2 a = screen(layout_.items[static_cast<size_t>(it.parent)]), b = screen(it);
-    if ((a.x < p0.x - sx && b.x < p0.x - sx) || (a.x > p1.x + sx && b.x > p1.x + sx) || b.y < p0.y - sy ||
-        a.y > p1.y + sy)
-      continue;
-    const bool reached = status_[i].state != TreeNodeState::NotReached;
-    dl->AddLine(ImVec2(a.x, a.y + r), ImVec2(b.x, b.y - r),
-                color_u32(reached ? ui::kVisitedText : state_color({}), reached ? 0.8f : 0.45f), edge_w);
-  }
-
-  // Nodes, the hovered one found on the way.
-  hovered_ = -1;
-  // Counts in a smaller font, shown once the slots are wide enough for a digit or two.
-  const float label_size = 0.8f * em;
-  const bool labels = sx >= 0.8f * em;
-  ImFont* font = ImGui::GetFont();
-  const ImU32 outline = ImGui::GetColorU32(ImVec4(0.0f, 0.0f, 0.0f, 0.9f));
-  for (size_t i = 0; i < layout_.items.size(); ++i) {
-    const TreeItem& it = layout_.items[i];
-    const ImVec2 c = screen(it);
-    if (!visible(c)) continue;
-    const TreeNodeStatus& st = status_[i];
-    const ImU32 fill = color_u32(state_color(st));
-    if (it.kind == TreeItem::Kind::Collapsed) {
-      // A triangle standing for a whole subtree, labelled with its node count.
-      dl->AddTriangleFilled(ImVec2(c.x, c.y - r), ImVec2(c.x - 1.2f * r, c.y + 1.3f * r),
-                            ImVec2(c.x + 1.2f * r, c.y + 1.3f * r), color_u32(state_color({}), 0.8f));
-      if (labels) {
-        const std::string text = short_count(it.subtree_nodes);
-        const ImVec2 ts = font->CalcTextSizeA(label_size, FLT_MAX, 0.0f, text.c_str());
-        dl->AddText(font, label_size, ImVec2(c.x - 0.5f * ts.x, c.y + 1.4f * r), color_u32(ui::kDimText), text.c_str());
-      }
-    } else if (it.leaf) {
-      dl->AddRectFilled(ImVec2(c.x - r, c.y - r), ImVec2(c.x + r, c.y + r), fill);
-      dl->AddRect(ImVec2(c.x - r, c.y - r), ImVec2(c.x + r, c.y + r), outline);
-      if (labels) {
-        const std::string text = std::to_string(it.prims);
-        const ImVec2 ts = font->CalcTextSizeA(label_size, FLT_MAX, 0.0f, text.c_str());
-        dl->AddText(font, label_size, ImVec2(c.x - 0.5f * ts.x, c.y + 1.1f * r), ImGui::GetColorU32(ImGuiCol_Text),
-                    text.c_str());
-      }
-    } else {
-      dl->AddCircleFilled(c, r, fill, 20);
-      dl->AddCircle(c, r, outline, 20);
-      if (it.children.empty() && labels) {  // a touched node whose subtree stays closed
-        char text[40];  // (not "+" + std::string: GCC 12 warns falsely on that, -Wrestrict)
-        std::snprintf(text, sizeof text, "+%s", short_count(it.subtree_nodes - 1).c_str());
-        const ImVec2 ts = font->CalcTextSizeA(label_size, FLT_MAX, 0.0f, text);
-        dl->AddText(font, label_size, ImVec2(c.x - 0.5f * ts.x, c.y + 1.1f * r), color_u32(ui::kDimText), text);
-      }
-    }
-    if (st.state == TreeNodeState::Current)
-      dl->AddCircle(c, 1.9f * r, color_u32(ui::kCurrentText), 24, std::max(2.0f, 0.12f * em));
-    if (it.node == selected_ && it.kind == TreeItem::Kind::Node)
-      dl->AddCircle(c, 2.3f * r, color_u32(ui::kSelectedText), 24, std::max(2.0f, 0.15f * em));
-    if (hovered) {
-      const float dx = io.MousePos.x - c.x, dy = io.MousePos.y - c.y;
-      const float pick = std::max(1.4f * r, 0.5f * em);
-      if (dx * dx + dy * dy <= pick * pick) hovered_ = static_cast<int>(i);
-    }
-  }
-  dl->PopClipRect();
-
-  if (hovered_ >= 0) {
-    const TreeItem& it = layout_.items[static_cast<size_t>(hovered_)];
-    const TreeNodeStatus& st = status_[static_cast<size_t>(hovered_)];
-    ImGui::BeginTooltip();
-    if (it.kind == TreeItem::Kind::Collapsed) {
-      ImGui::Text("subtree of node %u: %s nodes", it.node, ui::with_separators(it.subtree_nodes).c_str());
-      ImGui::TextDisabled("no step of the ray touches it; click to open");
-    } else {
-      ImGui::Text("node %u (depth %d), %s", it.node, it.depth, it.leaf ? "leaf" : "inner");
-      if (it.leaf) ImGui::Text("%u triangles", it.prims);
-      else ImGui::Text("subtree: %s nodes", ui::with_separators(it.subtree_nodes).c_str());
-      ImGui::TextColored(state_color(st), "%s", state_name(st.state));
-      if (st.state == TreeNodeState::Culled)
-        ImGui::TextColored(state_color(st), "reason: %s (step %zu)", accel::cull_reason_name(st.reason), st.step + 1);
-      else if (st.state != TreeNodeState::NotReached && !replay_mode_)
-        ImGui::TextDisabled("since step %zu", st.step + 1);
-    }
-    ImGui::EndTooltip();
-  }
-  // A click (not a drag) selects the node under the mouse; a collapsed glyph opens.
-  if (released && io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] < 9.0f && hovered_ >= 0) {
-    const NodeId node = layout_.items[static_cast<size_t>(hovered_)].node;
-    if (replay_mode_) {
-      selected_ = node;
-      layout_dirty_ = true;
-    } else {
-      (void)select(node, isolate_);  // a node of the layout always exists
-    }
   }
 }
 

@@ -68,7 +68,18 @@ class TreeDiagram final : public Tool {
   void rebuild_layout();
   void refresh_states();
   void rebuild_highlight();
+  // The diagram's canvas, step by step (tree_diagram_canvas.cpp).
+  struct Canvas;
   void diagram_canvas(float width, float height);
+  void fit_canvas(float width, float height, float margin, float em);
+  /// An item out of view is brought to the middle, per axis; one in view stays where it is.
+  void bring_into_view(const Canvas& canvas, int item);
+  void keep_in_view(const Canvas& canvas);
+  void zoom_and_pan(const Canvas& canvas, bool hovered, bool active);
+  void draw_edges(const Canvas& canvas) const;
+  void draw_nodes(const Canvas& canvas, bool hovered);
+  void node_tooltip() const;
+  void click_node();
   void selection_numbers();
   void grid_table();
   void legend();

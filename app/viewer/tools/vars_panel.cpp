@@ -218,6 +218,128 @@ void pending_table(const accel::TraceHighlight& h, TraversalKind kind, ImFont* m
   if (mono) ImGui::PopFont();
 }
 
+/// The t-axis strip's place in its window: the rows (title, visited intervals, keys, axis),
+/// the axis's ends, t to x, and the colours.
+struct StripCanvas {
+  explicit StripCanvas(const TStrip& s)
+      : em(ImGui::GetFontSize()),
+        dl(ImGui::GetWindowDrawList()),
+        p0(ImGui::GetCursorScreenPos()),
+        avail(ImGui::GetContentRegionAvail()),
+        x0(p0.x + 4.4f * em),  // the row names on the left
+        x1(p0.x + avail.x - 0.5f * em),
+        t_lo(s.t_lo),
+        span(std::max(s.t_hi - s.t_lo, 1e-30f)),
+        y_title(p0.y),
+        y_int(p0.y + 1.15f * em),
+        y_keys(y_int + 1.15f * em),
+        y_axis(y_keys + 1.15f * em) {}
+
+  float x_of(float t) const {
+    const float u = std::clamp((t - t_lo) / span, -0.01f, 1.01f);
+    return x0 + u * (x1 - x0);
+  }
+
+  float em;
+  ImDrawList* dl;
+  ImVec2 p0, avail;
+  float x0, x1;  // the axis's ends: t_lo and t_hi
+  float t_lo, span;
+  float y_title, y_int, y_keys, y_axis;  // the rows' tops
+  ImU32 dim = ImGui::GetColorU32(kDimText), white = ImGui::GetColorU32(kWhite);
+  ImU32 current = ImGui::GetColorU32(kCurrentText), queue = ImGui::GetColorU32(kQueueText);
+  ImU32 hit = ImGui::GetColorU32(ImVec4(1.0f, 0.78f, 0.05f, 1.0f));
+};
+
+/// "t in [lo, hi]", with tmin when the strip starts after it.
+std::string strip_title(const TStrip& s, float tmin) {
+  char title[160];
+  if (s.t_lo > tmin)
+    std::snprintf(title, sizeof title, "t in [%s, %s] (tmin %s)", num(s.t_lo).c_str(), num(s.t_hi).c_str(),
+                  num(tmin).c_str());
+  else
+    std::snprintf(title, sizeof title, "t in [%s, %s]", num(s.t_lo).c_str(), num(s.t_hi).c_str());
+  return title;
+}
+
+/// The visited intervals: earlier ones faint (overlaps add up), the current one bright.
+void strip_intervals(const StripCanvas& c, const TStrip& s) {
+  const float em = c.em;
+  const float bar_h = 0.55f * em, bar_y = c.y_int + 0.25f * em;
+  for (const TStrip::Interval& iv : s.intervals) {
+    if (iv.current || !(iv.t1 >= iv.t0)) continue;
+    c.dl->AddRectFilled(ImVec2(c.x_of(iv.t0), bar_y),
+                        ImVec2(std::max(c.x_of(iv.t1), c.x_of(iv.t0) + 1.0f), bar_y + bar_h),
+                        ImGui::GetColorU32(ImVec4(0.85f, 0.88f, 0.95f, 0.22f)));
+  }
+  for (const TStrip::Interval& iv : s.intervals) {
+    if (!iv.current || !(iv.t1 >= iv.t0)) continue;
+    const float a = c.x_of(iv.t0), b = std::max(c.x_of(iv.t1), a + 2.0f);
+    c.dl->AddRectFilled(ImVec2(a, bar_y - 0.1f * em), ImVec2(b, bar_y + bar_h + 0.1f * em), c.current);
+  }
+}
+
+/// Push keys (pending bright, taken faint) and the kd-tree's split distances.
+void strip_keys_and_splits(const StripCanvas& c, const TStrip& s) {
+  const float em = c.em;
+  const float tick_y = c.y_keys + 0.15f * em, tick_h = 0.8f * em;
+  for (const TStrip::Key& k : s.keys) {
+    if (!std::isfinite(k.t)) continue;
+    const float x = c.x_of(k.t);
+    const ImU32 color = k.pending ? c.queue : ImGui::GetColorU32(ImVec4(kQueueText.x, kQueueText.y, kQueueText.z, 0.3f));
+    c.dl->AddTriangleFilled(ImVec2(x, tick_y + tick_h), ImVec2(x - 0.3f * em, tick_y + 0.3f * em),
+                            ImVec2(x + 0.3f * em, tick_y + 0.3f * em), color);
+  }
+  for (const TStrip::Split& sp : s.splits) {
+    if (!std::isfinite(sp.t) || sp.t < s.t_lo - c.span || sp.t > s.t_hi + c.span) continue;
+    const float x = c.x_of(sp.t);
+    c.dl->AddLine(ImVec2(x, tick_y), ImVec2(x, tick_y + tick_h), sp.current ? c.current : c.dim,
+                  sp.current ? 0.2f * em : 0.08f * em);
+  }
+}
+
+/// The axis with ticks at tmin and tmax.
+void strip_axis(const StripCanvas& c, const TStrip& s) {
+  const float em = c.em;
+  c.dl->AddLine(ImVec2(c.x0, c.y_axis), ImVec2(c.x1, c.y_axis), c.white, 0.08f * em);
+  c.dl->AddText(ImVec2(c.x0, c.y_axis + 0.1f * em), c.dim, num(s.t_lo).c_str());
+  const std::string hi = num(s.t_hi);
+  c.dl->AddText(ImVec2(c.x1 - ImGui::CalcTextSize(hi.c_str()).x, c.y_axis + 0.1f * em), c.dim, hi.c_str());
+}
+
+/// The current event's own distance, the closest hit so far (labelled right of `title`),
+/// and the naive answer where it differs from the true one.
+void strip_markers(const StripCanvas& c, const TStrip& s, const std::string& title, const DebugRay& ray,
+                   const accel::NaiveAnswer* naive) {
+  const float em = c.em;
+  const float top = c.y_int, bottom = c.y_axis;
+  if (std::isfinite(s.event_t)) {
+    const float x = c.x_of(s.event_t);
+    c.dl->AddLine(ImVec2(x, top), ImVec2(x, bottom), c.white, 0.06f * em);
+  }
+  if (std::isfinite(s.closest)) {
+    const float x = c.x_of(s.closest);
+    c.dl->AddLine(ImVec2(x, top - 0.2f * em), ImVec2(x, bottom + 0.2f * em), c.hit, 0.22f * em);
+    // Labelled on the title row, right of the title so the two never overlap.
+    const float title_end = c.p0.x + ImGui::CalcTextSize(title.c_str()).x + em;
+    std::string label = "closest_hit " + num(s.closest);
+    if (title_end + ImGui::CalcTextSize(label.c_str()).x > c.x1) label = "hit " + num(s.closest);  // a narrow view
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    c.dl->AddText(ImVec2(std::max(std::min(x - 0.5f * w, c.x1 - w), title_end), c.y_title), c.hit, label.c_str());
+  }
+  if (naive && naive->hit && (!ray.hit.valid() || naive->prim != ray.hit.prim)) {
+    const float x = c.x_of(naive->t);
+    const ImU32 color = ImGui::GetColorU32(kNaiveText);
+    for (float y = top; y < bottom; y += 0.5f * em)
+      c.dl->AddLine(ImVec2(x, y), ImVec2(x, y + 0.3f * em), color, 0.18f * em);
+    // On the keys row, beside the marker (the axis row holds the tmin and tmax labels).
+    const std::string label = "naive " + num(naive->t);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    c.dl->AddText(ImVec2(x + 0.3f * em + w <= c.x1 ? x + 0.3f * em : x - 0.3f * em - w, c.y_keys), color,
+                  label.c_str());
+  }
+}
+
 }  // namespace
 
 void VarsPanel::panel(const PanelPlace& where, const DebugRay& ray, const accel::TraceHighlight& h, TraversalKind kind,
@@ -284,90 +406,16 @@ void VarsPanel::strip(const WindowRect& rect, const DebugRay& ray, const accel::
     ImGui::End();
     return;
   }
-  const float em = ImGui::GetFontSize();
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const ImVec2 p0 = ImGui::GetCursorScreenPos();
-  const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const float label_w = 4.4f * em;  // the row names on the left
-  const float x0 = p0.x + label_w, x1 = p0.x + avail.x - 0.5f * em;
-  const float span = std::max(s.t_hi - s.t_lo, 1e-30f);
-  auto x_of = [&](float t) {
-    const float u = std::clamp((t - s.t_lo) / span, -0.01f, 1.01f);
-    return x0 + u * (x1 - x0);
-  };
-  const ImU32 dim = ImGui::GetColorU32(kDimText), white = ImGui::GetColorU32(kWhite);
-  const ImU32 current = ImGui::GetColorU32(kCurrentText), queue = ImGui::GetColorU32(kQueueText);
-  const ImU32 hit = ImGui::GetColorU32(ImVec4(1.0f, 0.78f, 0.05f, 1.0f));
-  const float row = 1.15f * em;
-  const float y_title = p0.y, y_int = p0.y + row, y_keys = y_int + row, y_axis = y_keys + row;
-
-  char title[160];
-  if (s.t_lo > ray.ray.tmin)
-    std::snprintf(title, sizeof title, "t in [%s, %s] (tmin %s)", num(s.t_lo).c_str(), num(s.t_hi).c_str(),
-                  num(ray.ray.tmin).c_str());
-  else
-    std::snprintf(title, sizeof title, "t in [%s, %s]", num(s.t_lo).c_str(), num(s.t_hi).c_str());
-  dl->AddText(ImVec2(p0.x, y_title), white, title);
-  dl->AddText(ImVec2(p0.x, y_int), dim, "visited");
-  dl->AddText(ImVec2(p0.x, y_keys), dim, "keys");
-  // The visited intervals: earlier ones faint (overlaps add up), the current one bright.
-  const float bar_h = 0.55f * em, bar_y = y_int + 0.25f * em;
-  for (const TStrip::Interval& iv : s.intervals) {
-    if (iv.current || !(iv.t1 >= iv.t0)) continue;
-    dl->AddRectFilled(ImVec2(x_of(iv.t0), bar_y), ImVec2(std::max(x_of(iv.t1), x_of(iv.t0) + 1.0f), bar_y + bar_h),
-                      ImGui::GetColorU32(ImVec4(0.85f, 0.88f, 0.95f, 0.22f)));
-  }
-  for (const TStrip::Interval& iv : s.intervals) {
-    if (!iv.current || !(iv.t1 >= iv.t0)) continue;
-    const float a = x_of(iv.t0), b = std::max(x_of(iv.t1), a + 2.0f);
-    dl->AddRectFilled(ImVec2(a, bar_y - 0.1f * em), ImVec2(b, bar_y + bar_h + 0.1f * em), current);
-  }
-  // Push keys (pending bright, taken faint) and the kd-tree's split distances.
-  const float tick_y = y_keys + 0.15f * em, tick_h = 0.8f * em;
-  for (const TStrip::Key& k : s.keys) {
-    if (!std::isfinite(k.t)) continue;
-    const float x = x_of(k.t);
-    const ImU32 c = k.pending ? queue : ImGui::GetColorU32(ImVec4(kQueueText.x, kQueueText.y, kQueueText.z, 0.3f));
-    dl->AddTriangleFilled(ImVec2(x, tick_y + tick_h), ImVec2(x - 0.3f * em, tick_y + 0.3f * em),
-                          ImVec2(x + 0.3f * em, tick_y + 0.3f * em), c);
-  }
-  for (const TStrip::Split& sp : s.splits) {
-    if (!std::isfinite(sp.t) || sp.t < s.t_lo - span || sp.t > s.t_hi + span) continue;
-    const float x = x_of(sp.t);
-    dl->AddLine(ImVec2(x, tick_y), ImVec2(x, tick_y + tick_h), sp.current ? current : dim,
-                sp.current ? 0.2f * em : 0.08f * em);
-  }
-  // The axis with ticks at tmin and tmax.
-  dl->AddLine(ImVec2(x0, y_axis), ImVec2(x1, y_axis), white, 0.08f * em);
-  dl->AddText(ImVec2(x0, y_axis + 0.1f * em), dim, num(s.t_lo).c_str());
-  const std::string hi = num(s.t_hi);
-  dl->AddText(ImVec2(x1 - ImGui::CalcTextSize(hi.c_str()).x, y_axis + 0.1f * em), dim, hi.c_str());
-  // The current event's own distance, the closest hit so far, and the naive answer.
-  const float top = y_int, bottom = y_axis;
-  if (std::isfinite(s.event_t)) {
-    const float x = x_of(s.event_t);
-    dl->AddLine(ImVec2(x, top), ImVec2(x, bottom), white, 0.06f * em);
-  }
-  if (std::isfinite(s.closest)) {
-    const float x = x_of(s.closest);
-    dl->AddLine(ImVec2(x, top - 0.2f * em), ImVec2(x, bottom + 0.2f * em), hit, 0.22f * em);
-    // Labelled on the title row, right of the title so the two never overlap.
-    const float title_end = p0.x + ImGui::CalcTextSize(title).x + em;
-    std::string label = "closest_hit " + num(s.closest);
-    if (title_end + ImGui::CalcTextSize(label.c_str()).x > x1) label = "hit " + num(s.closest);  // a narrow view
-    const float w = ImGui::CalcTextSize(label.c_str()).x;
-    dl->AddText(ImVec2(std::max(std::min(x - 0.5f * w, x1 - w), title_end), y_title), hit, label.c_str());
-  }
-  if (naive && naive->hit && (!ray.hit.valid() || naive->prim != ray.hit.prim)) {
-    const float x = x_of(naive->t);
-    const ImU32 c = ImGui::GetColorU32(kNaiveText);
-    for (float y = top; y < bottom; y += 0.5f * em) dl->AddLine(ImVec2(x, y), ImVec2(x, y + 0.3f * em), c, 0.18f * em);
-    // On the keys row, beside the marker (the axis row holds the tmin and tmax labels).
-    const std::string label = "naive " + num(naive->t);
-    const float w = ImGui::CalcTextSize(label.c_str()).x;
-    dl->AddText(ImVec2(x + 0.3f * em + w <= x1 ? x + 0.3f * em : x - 0.3f * em - w, y_keys), c, label.c_str());
-  }
-  ImGui::Dummy(avail);
+  const StripCanvas canvas(s);
+  const std::string title = strip_title(s, ray.ray.tmin);
+  canvas.dl->AddText(ImVec2(canvas.p0.x, canvas.y_title), canvas.white, title.c_str());
+  canvas.dl->AddText(ImVec2(canvas.p0.x, canvas.y_int), canvas.dim, "visited");
+  canvas.dl->AddText(ImVec2(canvas.p0.x, canvas.y_keys), canvas.dim, "keys");
+  strip_intervals(canvas, s);
+  strip_keys_and_splits(canvas, s);
+  strip_axis(canvas, s);
+  strip_markers(canvas, s, title, ray, naive);
+  ImGui::Dummy(canvas.avail);
   ImGui::End();
 }
 
