@@ -59,7 +59,12 @@ def replay_in_viewer(args, report, name):
             f.write(f"print-hit\nstep hit\nscreenshot {shot}\nsave-state {saved}\n")
         auth = os.path.join(args.work, f"{name}_{k}.Xauthority")
         open(auth, "w").close()
-        code, out, err = run(["xvfb-run", "-a", "-f", auth, "-s", "-screen 0 1280x1024x24", args.viewer, "--msaa", "0",
+        # Display numbers from 150: this test runs beside the viewer's tests (which take
+        # turns from 99, RESOURCE_LOCK xvfb), and two `xvfb-run -a` picking the same free
+        # number at once leave one viewer without its X server (CI: app_playlist_keys found
+        # no window).
+        code, out, err = run(["xvfb-run", "-a", "-n", "150", "-f", auth, "-s", "-screen 0 1280x1024x24", args.viewer,
+                              "--msaa", "0",
                               "--restore", w["state_file"], "--script", script], timeout=300)
         got = w["got"]
         line = next((l for l in out.splitlines() if l.startswith("hit ") or l == "miss"), "")
