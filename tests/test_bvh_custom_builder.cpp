@@ -22,11 +22,13 @@
 #include "structure_suite.h"
 #include "structures/bvh_builders.h"
 #include "structures/bvh_top_down.h"
+#include "test_support.h"
 
 namespace accel {
 namespace {
 
 using namespace top_down;
+using testing::four_walls;
 
 /// Splits a node at the middle of its box's longest axis: a centre below it goes left.
 /// InPlaceSplitter supplies the rest (the references, the box, the leaves, the median
@@ -69,18 +71,6 @@ constexpr BuilderListing kMiddleListing{"BVH: top-down, middle of the box (test)
 const BvhBuilderKind kMiddle = add_bvh_builder({BvhBuilderKind{}, "test_middle", "middle (test)",
                                                 "the middle of the node box's longest axis (test only)", false, true,
                                                 &kMiddleListing, build_middle_tree});
-
-/// Four small triangles in the planes x = 0, 1, 2, 3 (prims 0..3), 2 units tall.
-Scene four_walls() {
-  std::vector<Vec3> p;
-  std::vector<UVec3> t;
-  for (uint32_t k = 0; k < 4; ++k) {
-    const float x = float(k);
-    p.insert(p.end(), {{x, -1, -1}, {x, 1, -1}, {x, 0, 1}});
-    t.emplace_back(3 * k, 3 * k + 1, 3 * k + 2);
-  }
-  return Scene(std::move(p), std::move(t));
-}
 
 TEST(BvhCustomBuilder, IsARowOfTheTableAndAChoiceOfTheParameter) {
   EXPECT_STREQ(builder_name(kMiddle), "test_middle");

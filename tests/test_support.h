@@ -32,6 +32,21 @@ struct Workload {
 };
 
 /// Path of a mesh in ../shared/scenes (may not exist: callers skip).
+/// Four small triangles in the planes x = 0, 1, 2, 3 (prims 0..3), 2 units tall. With
+/// builder=median, axis=x, leaf_size=1 the flattened BVH is:
+///   node 0 root {0,1,2,3}; node 1 {0,1}; node 2 leaf prim 0; node 3 leaf prim 1;
+///   node 4 {2,3}; node 5 leaf prim 2; node 6 leaf prim 3.
+inline Scene four_walls() {
+  std::vector<Vec3> p;
+  std::vector<UVec3> t;
+  for (uint32_t k = 0; k < 4; ++k) {
+    const float x = float(k);
+    p.insert(p.end(), {{x, -1, -1}, {x, 1, -1}, {x, 0, 1}});
+    t.emplace_back(3 * k, 3 * k + 1, 3 * k + 2);
+  }
+  return Scene(std::move(p), std::move(t));
+}
+
 inline std::string shared_scene_path(const std::string& file) {
   return std::string(ACCEL_SHARED_SCENES) + "/" + file;
 }
