@@ -25,8 +25,6 @@ namespace {
 // so the number is readable yet follows a change within a fraction of a second.
 constexpr double kTimingSmoothing = 0.05;
 
-float aspect_of(glm::ivec2 size) { return static_cast<float>(size.x) / static_cast<float>(std::max(size.y, 1)); }
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -223,7 +221,7 @@ void App::draw(int framebuffer_width, int framebuffer_height) {
   for (Tool* tool : tool_list_) tool->sync_gl(*renderer_, host);
   // The view keeps its rectangle from update(); clamp it to this framebuffer.
   layout_.clamp_to({framebuffer_width, framebuffer_height});
-  const float aspect = aspect_of(layout_.view_size());
+  const float aspect = layout_.view_aspect();
   // Frame once the panels are placed: the view's rectangle (and aspect) is known then, so
   // the scene is framed into the part of the window the panels leave free.
   camera_.frame_if_requested(session().scene(), aspect, !layout_.ui_visible() || layout_.settled());

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include "scene.h"
+#include "window_layout.h"
 
 namespace viz {
 
@@ -39,8 +40,7 @@ MouseFrame CameraControl::update() {
   m.left_held = left_.held();
   m.left_dragging = left_.dragging();
   m.shift = io.KeyShift;
-  m.scale = {io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f,
-             io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f};
+  m.scale = display_scale();
   // 2D: the left button places corners, moves them and shoots rays (the blackboard's).
   if (!camera_.top_down() && m.left.orbit != glm::vec2(0.0f)) camera_.orbit(m.left.orbit.x, m.left.orbit.y);
   if (!io.WantCaptureMouse && !left_.held() &&

@@ -108,7 +108,7 @@ accel::Status ToolHost::apply_preset(const Preset& preset) {
     set_ray(ray, "preset " + preset.name);
   } else {
     const glm::ivec4 view = view_area();
-    camera().frame_now(session().scene(), static_cast<float>(view.z) / static_cast<float>(std::max(view.w, 1)));
+    camera().frame_now(session().scene(), layout().view_aspect());
     shoot_at_pixel(static_cast<float>(view.x) + 0.5f * static_cast<float>(view.z),
                    static_cast<float>(view.y) + 0.5f * static_cast<float>(view.w), false);
   }

@@ -7,6 +7,12 @@
 
 namespace viz {
 
+glm::vec2 display_scale() {
+  const ImGuiIO& io = ImGui::GetIO();
+  return {io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f,
+          io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f};
+}
+
 bool* PanelSwitches::find(const std::string& name) {
   const struct {
     const char* name;
@@ -79,8 +85,7 @@ PanelPlace WindowLayout::place(const WindowRect& rect, bool docks) { return {rec
 
 void WindowLayout::end_frame() {
   const ImGuiIO& io = ImGui::GetIO();
-  const glm::vec2 scale(io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f,
-                        io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f);
+  const glm::vec2 scale = display_scale();
   view_ = view_rect(dock_, {io.DisplaySize.x, io.DisplaySize.y}, scale, ui_visible_);
   const glm::ivec2 fb(static_cast<int>(std::lround(io.DisplaySize.x * scale.x)),
                       static_cast<int>(std::lround(io.DisplaySize.y * scale.y)));

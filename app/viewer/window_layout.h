@@ -4,6 +4,7 @@
 // at all, the lecture mode's fonts and colours, the docked edges and the 3D view's rectangle
 // between them, and the framebuffer's size. App owns it; the tools place their windows
 // through it (host.layout().place(...)).
+#include <algorithm>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -30,6 +31,10 @@ struct PanelSwitches {
   /// is a tool's window.
   bool* find(const std::string& name);
 };
+
+/// Framebuffer pixels per window unit, from ImGui's display (1 where it does not say): window
+/// coordinates (the mouse, the panels) times this are the framebuffer's (the 3D view).
+glm::vec2 display_scale();
 
 class WindowLayout {
  public:
@@ -80,6 +85,8 @@ class WindowLayout {
   /// The 3D view in framebuffer pixels (x, y from the top-left, width, height).
   glm::ivec4 view() const { return view_; }
   glm::ivec2 view_size() const { return {view_.z, view_.w}; }
+  /// The 3D view's width over its height: the camera's aspect.
+  float view_aspect() const { return static_cast<float>(view_.z) / static_cast<float>(std::max(view_.w, 1)); }
   glm::ivec2 framebuffer() const { return framebuffer_; }
   void set_framebuffer(glm::ivec2 size) { framebuffer_ = size; }
   glm::vec4 background() const { return background_; }

@@ -9,6 +9,7 @@
 #include "tools/playlist_verbs.h"
 #include "tools/ui_colors.h"
 #include "tool_host.h"
+#include "window_layout.h"
 
 namespace viz {
 namespace {
@@ -136,7 +137,7 @@ void PlaylistTool::section(ToolHost& host, PanelSection section) {
 
 void PlaylistTool::overlay(ToolHost& host) {
   // At the top of the 3D view (window coordinates).
-  const float sx = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
+  const float sx = display_scale().x;
   const glm::ivec4 view = host.view_area();
   title_overlay(glm::vec4(static_cast<float>(view.x) / sx, 0.0f, static_cast<float>(view.z) / sx, 0.0f),
                 ImGui::GetTime());
