@@ -28,7 +28,7 @@ struct FrameTiming {
   double fps = 0.0;
 };
 
-/// Mutable UI state of the scene section, owned by App.
+/// Mutable UI state of the scene section, owned by StructureSession.
 struct ScenePanelState {
   std::string obj_path;                   ///< the "Load mesh" path field
   std::string load_error;                 ///< last load error (shown in red), empty if none

@@ -1,7 +1,7 @@
 #pragma once
 // GL-free window layout: where the panels go, which of them dock along the left and right
 // edges, and the 3D view's rectangle between them (the camera frames the scene into it).
-// Owns nothing; App keeps the results between frames.
+// Owns nothing; WindowLayout (window_layout.h) keeps the results between frames.
 #include <glm/glm.hpp>
 
 namespace viz {
