@@ -41,6 +41,12 @@ bool parse_kernel(std::string_view name, Kernel* out);
 /// "watertight, moller, double": the valid names, for error messages.
 std::string kernel_names_text(std::string_view separator = ", ");
 
+/// gamma(n) = n*eps / (1 - n*eps) with eps = 2^-24 (pbrt's bound on n float roundings).
+constexpr float gamma_bound(int n) {
+  constexpr float eps = std::numeric_limits<float>::epsilon() * 0.5f;
+  return (n * eps) / (1.0f - n * eps);
+}
+
 /// Result of one triangle test.
 struct TriangleHit {
   float t, u, v;
@@ -132,10 +138,17 @@ struct BoxTester {
   /// 1 + 2*gamma(3) so rounding never loses a hit on a box face; a zero direction component
   /// with the origin on a slab plane gives no NaN (Williams et al. 2005).
   ACCEL_FORCE_INLINE bool intersect(const Aabb& box, float tmin, float tmax, float* t_enter, float* t_exit) const;
+  /// The factor of Ize's widening of far distances, 1 + 2*gamma(3).
+  static constexpr float kWiden = 1.0f + 2.0f * gamma_bound(3);
   Vec3 org, inv_dir;
+  /// inv_dir * kWiden (rounded): a far distance (bound - org) * inv_dir_far is widened in
+  /// the same multiply. As many roundings as (bound - org) * inv_dir * kWiden, so Ize's bound
+  /// holds for it the same way, and every box test (node, octree child, wide lane) saves a
+  /// multiply per axis.
+  Vec3 inv_dir_far;
   /// Per axis, the index in an Aabb's six floats of the bound the ray meets first (min, or
   /// max where the direction's sign bit is set, -0.0 included) and of the other one.
-  int near_index[3], far_index[3];
+  uint8_t near_index[3], far_index[3];  // bytes: the kit's Ray carries a BoxTester in 128 bytes
 };
 
 /// The box whose min and max are the x, y, z lanes of two SSE registers (the builders keep
@@ -154,12 +167,6 @@ inline Aabb aabb_from_lanes(__m128 lo, __m128 hi) {
 /// (radius widened by a few ulps) so no enclosed hit is culled.
 bool intersect_sphere(const Ray& ray, const BoundingSphere& s, float tmin, float tmax, float* t_enter,
                       float* t_exit);
-
-/// gamma(n) = n*eps / (1 - n*eps) with eps = 2^-24 (pbrt's bound on n float roundings).
-constexpr float gamma_bound(int n) {
-  constexpr float eps = std::numeric_limits<float>::epsilon() * 0.5f;
-  return (n * eps) / (1.0f - n * eps);
-}
 
 // ---------------------------------------------------------------------------
 // Inline definitions of the hot tests.
@@ -181,22 +188,34 @@ TriangleTester::TriangleTester(const Ray& ray, Kernel kernel) : ray_(ray), kerne
   const int flip = int(component(ray.dir, kz_) < 0.0f);
   kx_ = x + flip * (y - x);
   ky_ = y + flip * (x - y);
-  const float dz = component(ray.dir, kz_);
-  sx_ = component(ray.dir, kx_) / dz;
-  sy_ = component(ray.dir, ky_) / dz;
-  sz_ = 1.0f / dz;
+  // The three divisions in one SSE division (each lane correctly rounded, so the values of
+  // three scalar ones): a ray's set-up is a large share of a primary ray's time, and
+  // divisions are the slowest of its instructions (bench/profile_rays.sh).
+  alignas(16) float shear[4];
+  _mm_store_ps(shear, _mm_div_ps(_mm_setr_ps(component(ray.dir, kx_), component(ray.dir, ky_), 1.0f, 1.0f),
+                                 _mm_set1_ps(component(ray.dir, kz_))));
+  sx_ = shear[0];
+  sy_ = shear[1];
+  sz_ = shear[2];
   org_kx_ = component(ray.org, kx_);
   org_ky_ = component(ray.org, ky_);
   org_kz_ = component(ray.org, kz_);
 }
 
 BoxTester::BoxTester(const Ray& ray) : org(ray.org) {
-  // 1/(-0.0) = -inf and 1/(+0.0) = +inf, so the slab test needs no special case.
-  inv_dir = Vec3(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
+  // 1/(-0.0) = -inf and 1/(+0.0) = +inf, so the slab test needs no special case. One SSE
+  // division for the three (correctly rounded per lane: the scalar divisions' values).
+  const __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), _mm_setr_ps(ray.dir.x, ray.dir.y, ray.dir.z, 1.0f));
+  alignas(16) float lanes[4];
+  _mm_store_ps(lanes, inv);
+  inv_dir = Vec3(lanes[0], lanes[1], lanes[2]);
+  _mm_store_ps(lanes, _mm_mul_ps(inv, _mm_set1_ps(kWiden)));
+  inv_dir_far = Vec3(lanes[0], lanes[1], lanes[2]);
+  const int negative = _mm_movemask_ps(inv);  // the sign bits, -inf from -0.0 included
   for (int axis = 0; axis < 3; ++axis) {
-    const int negative = std::signbit(inv_dir[axis]) ? 1 : 0;
-    near_index[axis] = axis + 3 * negative;
-    far_index[axis] = axis + 3 * (1 - negative);
+    const int neg = (negative >> axis) & 1;
+    near_index[axis] = uint8_t(axis + 3 * neg);
+    far_index[axis] = uint8_t(axis + 3 * (1 - neg));
   }
 }
 
@@ -435,7 +454,6 @@ bool TriangleTester::moller(const Vec3& p0, const Vec3& p1, const Vec3& p2, floa
 }
 
 bool BoxTester::intersect(const Aabb& box, float tmin, float tmax, float* t_enter, float* t_exit) const {
-  constexpr float widen = 1.0f + 2.0f * gamma_bound(3);
   // Near and far slab by the sign of the direction, not by comparing the distances: with
   // -0.0 one distance may be NaN and a comparison would pick the wrong side. The max/min
   // below are written so a NaN (0 * inf: origin on a slab plane, zero direction) leaves the
@@ -445,7 +463,7 @@ bool BoxTester::intersect(const Aabb& box, float tmin, float tmax, float* t_ente
   const float* bounds = glm::value_ptr(box.min);
   for (int axis = 0; axis < 3; ++axis) {
     const float t_near = (bounds[near_index[axis]] - org[axis]) * inv_dir[axis];
-    const float t_far = (bounds[far_index[axis]] - org[axis]) * inv_dir[axis] * widen;
+    const float t_far = (bounds[far_index[axis]] - org[axis]) * inv_dir_far[axis];
     tmin = t_near > tmin ? t_near : tmin;
     tmax = t_far < tmax ? t_far : tmax;
   }

@@ -45,6 +45,7 @@ struct BenchOptions {
   std::string kernels = "watertight";
   std::string out_md, out_csv, out_json;
   bool embree = true;
+  bool embree_robust = false;  ///< also an embree-robust row (RTC_SCENE_FLAG_ROBUST, medium quality)
   bool tinybvh = true;    ///< the tinybvh peer rows (when built with tinybvh and the CPU has AVX2)
   double min_time = 0.5;  ///< seconds each timing sample lasts at least
   std::string memory_limit;  ///< as StructureOptions

@@ -32,6 +32,7 @@ EmbreeScene::EmbreeScene(const accel::Scene& scene, const std::string& quality, 
   const auto start = std::chrono::steady_clock::now();
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, quality == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+  if (quality == "robust") rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
   if (scene.triangle_count() > 0) {
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geom, quality == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);

@@ -18,7 +18,8 @@ bool embree_available();
 /// skips them itself, and prim ids stay the scene's triangle numbers).
 class EmbreeScene {
  public:
-  /// quality: "medium" or "high". threads: Embree's build threads (0 = all cores), so its
+  /// quality: "medium", "high", or "robust" (medium with RTC_SCENE_FLAG_ROBUST: Embree's
+  /// mode that avoids optimisations which lose hits at edges, at some cost in speed). threads: Embree's build threads (0 = all cores), so its
   /// build time compares with ours at the bench's thread count.
   EmbreeScene(const accel::Scene& scene, const std::string& quality, int threads = 0);
   ~EmbreeScene();

@@ -151,6 +151,8 @@ CLI::App* add_bench_command(CLI::App& app, cli::BenchOptions* o) {
   cmd->add_option("--out-csv", o->out_csv, "write the rows as CSV");
   cmd->add_option("--out-json", o->out_json, "write the rows as a JSON array");
   cmd->add_flag("!--no-embree", o->embree, "skip the Embree baseline rows");
+  cmd->add_flag("--embree-robust", o->embree_robust,
+                "add an embree-robust row: Embree's robust mode (RTC_SCENE_FLAG_ROBUST), medium quality");
   cmd->add_flag("!--no-tinybvh", o->tinybvh,
                 cli::tinybvh_available() ? "skip the tinybvh peer rows (tinybvh-bvh8, tinybvh-bvh4, tinybvh-bvh8-hq)"
                                          : "skip the tinybvh peer rows (this binary has no tinybvh)");

@@ -236,8 +236,6 @@ class Octree final : public StructureWithTraversal<Octree> {
  private:
   // DFS that pushes up to 8 children per level holds at most 7 per level + 1 entries.
   static constexpr int kStackSize = 8 * (kOctreeMaxDepth + 1);
-  // BoxTester's widening of far distances (Ize 2013: 1 + 2*gamma(3)).
-  static constexpr float kWiden = 1.0f + 2.0f * gamma_bound(3);
 
   /// A node waiting on the traversal's stack: its id, its depth and the ray's interval in it.
   struct StackEntry {
@@ -344,7 +342,7 @@ ACCEL_FORCE_INLINE unsigned Octree::visiting_mask(const Ray& ray) const {
 
 // The children's ray intervals from the node's 9 planes (Revelles et al. 2000's parametric
 // idea): per axis and half, the distance to the near plane and to the far plane, the latter
-// widened -- the very values BoxTester::intersect would compute for each child box, combined
+// widened (BoxTester::inv_dir_far) -- the very values BoxTester::intersect would compute for each child box, combined
 // in its order, so every interval is bit-identical to it (conservative after Ize 2013,
 // NaN-safe for zero direction components) without 8 separate box tests. (0.5f * x is exact,
 // so the split point is the same float here and in octree_child_box() even if the compiler
@@ -353,14 +351,13 @@ ACCEL_FORCE_INLINE Octree::ChildSlabs Octree::child_slabs(const PathBox& box, co
   ChildSlabs slabs;
   for (int axis = 0; axis < 3; ++axis) {
     const float mid = 0.5f * box.min[axis] + 0.5f * box.max[axis];
-    const float inv = boxes.inv_dir[axis], org = boxes.org[axis];
-    const float t_min = (box.min[axis] - org) * inv, t_mid = (mid - org) * inv;
-    const float t_max = (box.max[axis] - org) * inv;
+    const float inv = boxes.inv_dir[axis], inv_far = boxes.inv_dir_far[axis], org = boxes.org[axis];
     const bool negative = std::signbit(inv);
-    slabs.near_t[axis][0] = negative ? t_mid : t_min;  // lower half [min, mid]
-    slabs.far_t[axis][0] = (negative ? t_min : t_mid) * kWiden;
-    slabs.near_t[axis][1] = negative ? t_max : t_mid;  // upper half [mid, max]
-    slabs.far_t[axis][1] = (negative ? t_mid : t_max) * kWiden;
+    const float lo = box.min[axis] - org, half = mid - org, hi = box.max[axis] - org;
+    slabs.near_t[axis][0] = (negative ? half : lo) * inv;  // lower half [min, mid]
+    slabs.far_t[axis][0] = (negative ? lo : half) * inv_far;
+    slabs.near_t[axis][1] = (negative ? hi : half) * inv;  // upper half [mid, max]
+    slabs.far_t[axis][1] = (negative ? half : hi) * inv_far;
   }
   return slabs;
 }

@@ -70,11 +70,12 @@ struct WideRayFor<Sse2Tag> {
     for (int axis = 0; axis < 3; ++axis) {
       org[axis] = _mm_set1_ps(box_ray.org[axis]);
       inv_dir[axis] = _mm_set1_ps(box_ray.inv_dir[axis]);
+      inv_dir_far[axis] = _mm_set1_ps(box_ray.inv_dir_far[axis]);
       near_row[axis] = box_ray.near_index[axis];  // a node's rows are ordered as an Aabb's floats
       far_row[axis] = box_ray.far_index[axis];
     }
   }
-  __m128 org[3], inv_dir[3];
+  __m128 org[3], inv_dir[3], inv_dir_far[3];
   int near_row[3], far_row[3];
 };
 
@@ -86,14 +87,12 @@ struct WideRayFor<Sse2Tag> {
 template <int W>
 ACCEL_FORCE_INLINE int intersect_four(const WideNodeOf<W>& node, int first, const WideRayFor<Sse2Tag>& r, float tmin,
                                       float tmax, float* t_enter, float* t_exit) {
-  const __m128 widen = _mm_set1_ps(1.0f + 2.0f * gamma_bound(3));
   __m128 t0 = _mm_set1_ps(tmin), t1 = _mm_set1_ps(tmax);
   for (int axis = 0; axis < 3; ++axis) {
     const __m128 t_near =
         _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.near_row[axis]] + first), r.org[axis]), r.inv_dir[axis]);
-    const __m128 t_far = _mm_mul_ps(
-        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[axis]] + first), r.org[axis]), r.inv_dir[axis]),
-        widen);
+    const __m128 t_far =
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[axis]] + first), r.org[axis]), r.inv_dir_far[axis]);
     // maxps/minps return the second operand when either is NaN: a NaN slab distance (origin
     // on the slab plane, zero direction) leaves the interval unchanged, as in BoxTester.
     t0 = _mm_max_ps(t_near, t0);

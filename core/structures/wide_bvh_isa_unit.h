@@ -23,31 +23,32 @@ struct WideRayFor<ACCEL_ISA_TAG> {
     for (int axis = 0; axis < 3; ++axis) {
       org[axis] = _mm256_set1_ps(box_ray.org[axis]);
       inv_dir[axis] = _mm256_set1_ps(box_ray.inv_dir[axis]);
+      inv_dir_far[axis] = _mm256_set1_ps(box_ray.inv_dir_far[axis]);
       // Byte offsets of the near and far rows in an 8-wide node (32 bytes a row): one
       // address addition per load in the loop, no index scaling.
       near_off[axis] = size_t(box_ray.near_index[axis]) * sizeof(WideNode8::bounds[0]);
       far_off[axis] = size_t(box_ray.far_index[axis]) * sizeof(WideNode8::bounds[0]);
     }
   }
-  __m256 org[3], inv_dir[3];
+  __m256 org[3], inv_dir[3], inv_dir_far[3];
   size_t near_off[3], far_off[3];
 };
 
 /// intersect_four() of wide_bvh.h on all eight slots at once: the same operations in the
-/// same order per lane (subtract, multiply, widen the far distance, max / min with the
+/// same order per lane (subtract, multiply by the inverse direction or its widened
+/// form for the far distance, max / min with the
 /// running interval; vmaxps/vminps return the second operand on NaN as maxps/minps do;
 /// the comparison is ordered like cmpleps), so the mask and the distances are the SSE2
 /// kernel's bit for bit (tests/test_wide_isa.cpp).
 ACCEL_FORCE_INLINE int intersect_children(const WideNode8& node, const WideRayFor<ACCEL_ISA_TAG>& r, float tmin,
                                           float tmax, float* t_enter, float* t_exit) {
-  const __m256 widen = _mm256_set1_ps(1.0f + 2.0f * gamma_bound(3));
   __m256 t0 = _mm256_set1_ps(tmin), t1 = _mm256_set1_ps(tmax);
   const char* rows = reinterpret_cast<const char*>(node.bounds);
   for (int axis = 0; axis < 3; ++axis) {
     const __m256 lo = _mm256_load_ps(reinterpret_cast<const float*>(rows + r.near_off[axis]));
     const __m256 hi = _mm256_load_ps(reinterpret_cast<const float*>(rows + r.far_off[axis]));
     const __m256 t_near = _mm256_mul_ps(_mm256_sub_ps(lo, r.org[axis]), r.inv_dir[axis]);
-    const __m256 t_far = _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(hi, r.org[axis]), r.inv_dir[axis]), widen);
+    const __m256 t_far = _mm256_mul_ps(_mm256_sub_ps(hi, r.org[axis]), r.inv_dir_far[axis]);
     t0 = _mm256_max_ps(t_near, t0);
     t1 = _mm256_min_ps(t_far, t1);
   }

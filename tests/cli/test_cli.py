@@ -329,6 +329,7 @@ def test_bench(cli, work):
     check("build ms" in md_header and "Embree build ratio" in md_header, f"bench Markdown header {md_header}")
     check(md_header[-2:] == ["vs peer (1t)", "vs peer (mt)"], f"bench Markdown header {md_header}")
     test_bench_without_embree(cli, work)
+    test_bench_embree_robust(cli, work, bool(embree))
     if tinybvh:
         test_bench_tinybvh_only(cli, work)
     bad_out = os.path.join(work, "bench_bad.json")
@@ -342,6 +343,22 @@ def test_bench(cli, work):
     expect_bad(cli, bench + ["--min-time", "0"], "--min-time", bad_out)
     expect_bad(cli, ["bench", "--scene", "/nonexistent/x.obj", "--out-json", bad_out], "/nonexistent/x.obj: cannot open",
                bad_out)
+
+
+def test_bench_embree_robust(cli, work, with_embree):
+    """--embree-robust adds one embree-robust row per scene (Embree's robust mode, issue #51's
+    ratio) after medium and high, an Embree row like them; without Embree, none."""
+    import json
+    out = os.path.join(work, "bench_robust.json")
+    code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh", "--rays", "random:2000:1",
+                       "--threads", "2", "--min-time", "0.001", "--no-tinybvh", "--embree-robust", "--out-json", out)
+    check(code == 0, f"bench --embree-robust: exit {code}, stderr {err!r}")
+    if code != 0:
+        return
+    with open(out) as f:
+        names = [r["structure"] for r in json.load(f)]
+    expected = ["embree-medium", "embree-high", "embree-robust", "bvh"] if with_embree else ["bvh"]
+    check(names == expected, f"bench --embree-robust: rows {names}, expected {expected}")
 
 
 def test_bench_tinybvh_only(cli, work):
