@@ -259,7 +259,7 @@ def dumps_of(work, tag):
 
 
 def analyse_case(args, case, smap):
-    tag, mesh, kind, small, full, log, native = case
+    tag, mesh, kind, small, full, native = case
     timed = {}
     if os.path.exists(native):
         for row in json.load(open(native)):
@@ -374,7 +374,8 @@ def main():
     p.add_argument("--work", required=True)
     p.add_argument("--out-md")
     p.add_argument("--out-json")
-    p.add_argument("--case", nargs=7, action="append", default=[])
+    p.add_argument("--case", nargs=6, action="append", default=[],
+                   metavar=("TAG", "MESH", "RAYS", "CALLGRIND_RAYS", "TIMED_RAYS", "TIMED_JSON"))
     p.add_argument("--peers-from", help="an earlier run's JSON: its peer rows join this run's accelviz rows")
     args = p.parse_args()
     smap = SourceMap(args.root, args.tinybvh)

@@ -17,7 +17,8 @@
 # (primary rays of the same camera at 256x192; 30,000 random rays); the timed ones are
 # those of bench/README.md. docs/performance.md shows the tables.
 #
-# --no-build profiles the CLI already in build-prof/ (ACCEL_PROFILE_BUILD) as it is.
+# --no-build profiles the CLI already in build-prof/ (ACCEL_PROFILE_BUILD) as it is: it must
+# have been built from these sources, whose lines the categories and counts are matched with.
 # --keep DIR keeps the callgrind dumps, logs and timings in DIR.
 # --peers-from JSON (an earlier run's --out-json) profiles accelviz alone and takes the
 # peers' rows from that file: the peers do not change between two runs, and their builds
@@ -74,8 +75,9 @@ for c in $cases; do
   esac
   tag="${mesh%.obj}_$kind"
   echo "profile_rays.sh: $mesh, $kind rays: callgrind ($small)" >&2
-  # --dump-before splits the counts at every progress line of the bench: one dump per row,
-  # in the order the rows are announced (the log keeps the announcements).
+  # --dump-before splits the counts at every function named *progress* (the bench's progress
+  # line before each row, the builds' progress too): each row's queries land in one dump,
+  # which profile_rays.py names by the query function it counted.
   valgrind --tool=callgrind --branch-sim=yes --dump-instr=yes --compress-strings=no --compress-pos=no \
     --callgrind-out-file="$work/$tag.cg" \
     --toggle-collect='accel::wide8_fast_avx2*' --toggle-collect='rtcIntersect1*' \
@@ -85,8 +87,9 @@ for c in $cases; do
     "${no_peers[@]+"${no_peers[@]}"}" >"$work/$tag.log" 2>&1 || { tail -5 "$work/$tag.log" >&2; exit 1; }
   echo "profile_rays.sh: $mesh, $kind rays: timed natively ($full, 1 thread)" >&2
   "$cli" bench --scene "$shared/scenes/$mesh" --structures bvh --rays "$full" --threads 1 --min-time 0.3 \
-    "${no_peers[@]+"${no_peers[@]}"}" --out-json "$work/$tag.json" >/dev/null 2>&1
-  args+=(--case "$tag" "$mesh" "$kind" "$small" "$full" "$work/$tag.log" "$work/$tag.json")
+    "${no_peers[@]+"${no_peers[@]}"}" --out-json "$work/$tag.json" >/dev/null 2>"$work/$tag.timed.log" ||
+    { tail -5 "$work/$tag.timed.log" >&2; exit 1; }
+  args+=(--case "$tag" "$mesh" "$kind" "$small" "$full" "$work/$tag.json")
 done
 python3 "$here/profile_rays.py" --label "$label" --root "$root" --tinybvh "$shared/peers/tinybvh/tiny_bvh.h" \
   --mhz "$(awk -F: '/cpu MHz/ {print $2; exit}' /proc/cpuinfo)" --work "$work" \

@@ -31,7 +31,6 @@ struct Workload {
   std::vector<ReferenceHit> reference;
 };
 
-/// Path of a mesh in ../shared/scenes (may not exist: callers skip).
 /// Four small triangles in the planes x = 0, 1, 2, 3 (prims 0..3), 2 units tall. With
 /// builder=median, axis=x, leaf_size=1 the flattened BVH is:
 ///   node 0 root {0,1,2,3}; node 1 {0,1}; node 2 leaf prim 0; node 3 leaf prim 1;
@@ -47,6 +46,7 @@ inline Scene four_walls() {
   return Scene(std::move(p), std::move(t));
 }
 
+/// Path of a mesh in ../shared/scenes (may not exist: callers skip).
 inline std::string shared_scene_path(const std::string& file) {
   return std::string(ACCEL_SHARED_SCENES) + "/" + file;
 }

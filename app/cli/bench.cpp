@@ -436,12 +436,17 @@ std::unique_ptr<Built> best_peer_build(double* best_build_ms, Build&& build) {
   return built;
 }
 
-/// The Embree rows, medium quality first: it is the build baseline, and the high row gets
-/// its ratio too. Returns false after a signal.
-bool embree_rows(SceneBench& b) {
+/// The Embree rows' qualities (EmbreeScene), medium first: it is the build baseline, and the
+/// rows after it get its ratio too.
+std::vector<const char*> embree_qualities(const BenchOptions& o) {
   std::vector<const char*> qualities{"medium", "high"};
-  if (b.o.embree_robust) qualities.push_back("robust");
-  for (const char* quality : qualities) {
+  if (o.embree_robust) qualities.push_back("robust");
+  return qualities;
+}
+
+/// The Embree rows, one per quality of embree_qualities(). Returns false after a signal.
+bool embree_rows(SceneBench& b) {
+  for (const char* quality : embree_qualities(b.o)) {
     progress(b.step, b.total_steps, b.spec + ": embree-" + quality);
     double best_build_ms = 0.0;
     const auto built = best_peer_build<EmbreeScene>(
@@ -608,7 +613,8 @@ int run_bench(const BenchOptions& o) {
   BenchPlan p;
   if (auto planned = plan_bench(o, p); !planned) return fail(planned.error().message);
   std::vector<Row> rows;
-  const size_t steps_per_scene = p.structures.size() * p.kernels.size() + (p.with_embree ? (o.embree_robust ? 3 : 2) : 0) +
+  const size_t steps_per_scene = p.structures.size() * p.kernels.size() +
+                                 (p.with_embree ? embree_qualities(o).size() : 0) +
                                  (p.with_tinybvh ? std::size(kTinyBvhRows) : 0) + 1;
   const size_t total_steps = o.scenes.size() * steps_per_scene;
   size_t step = 0;

@@ -19,8 +19,9 @@ bool embree_available();
 class EmbreeScene {
  public:
   /// quality: "medium", "high", or "robust" (medium with RTC_SCENE_FLAG_ROBUST: Embree's
-  /// mode that avoids optimisations which lose hits at edges, at some cost in speed). threads: Embree's build threads (0 = all cores), so its
-  /// build time compares with ours at the bench's thread count.
+  /// mode that avoids optimisations which lose hits at edges, at some cost in speed).
+  /// threads: Embree's build threads (0 = all cores), so its build time compares with ours
+  /// at the bench's thread count.
   EmbreeScene(const accel::Scene& scene, const std::string& quality, int threads = 0);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;

@@ -342,11 +342,11 @@ ACCEL_FORCE_INLINE unsigned Octree::visiting_mask(const Ray& ray) const {
 
 // The children's ray intervals from the node's 9 planes (Revelles et al. 2000's parametric
 // idea): per axis and half, the distance to the near plane and to the far plane, the latter
-// widened (BoxTester::inv_dir_far) -- the very values BoxTester::intersect would compute for each child box, combined
-// in its order, so every interval is bit-identical to it (conservative after Ize 2013,
-// NaN-safe for zero direction components) without 8 separate box tests. (0.5f * x is exact,
-// so the split point is the same float here and in octree_child_box() even if the compiler
-// fuses multiply and add.)
+// widened (BoxTester::inv_dir_far) -- the very values BoxTester::intersect would compute for
+// each child box, combined in its order, so every interval is bit-identical to it
+// (conservative after Ize 2013, NaN-safe for zero direction components) without 8 separate
+// box tests. (0.5f * x is exact, so the split point is the same float here and in
+// octree_child_box() even if the compiler fuses multiply and add.)
 ACCEL_FORCE_INLINE Octree::ChildSlabs Octree::child_slabs(const PathBox& box, const BoxTester& boxes) {
   ChildSlabs slabs;
   for (int axis = 0; axis < 3; ++axis) {
