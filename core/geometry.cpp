@@ -38,6 +38,23 @@ bool TriangleTester::reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, f
   return float_answer(t, u, v, tmax, out);
 }
 
+int TriangleTester::scalar4(const TriangleBlock& block, int lanes, float tmax, float* t, float* u,
+                            float* v) const {
+  // Double and planar have no SIMD form; lane by lane.
+  return test_lanes(block, lanes, tmax, t, u, v,
+                    [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max, TriangleHit* h) {
+                      return intersect(p0, p1, p2, t_max, h);
+                    });
+}
+
+int TriangleTester::reference4(const TriangleBlock& block, int lanes, float tmax, float* t, float* u,
+                               float* v) const {
+  return test_lanes(block, lanes, tmax, t, u, v,
+                    [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max, TriangleHit* h) {
+                      return reference(p0, p1, p2, t_max, h);
+                    });
+}
+
 bool TriangleTester::float_answer(double t, double u, double v, float tmax, TriangleHit* out) const {
   *out = {float(t), float(u), float(v)};
   // A t beyond FLT_MAX (a subnormal direction: t in units of a tiny d) has no float answer.

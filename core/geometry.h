@@ -92,6 +92,17 @@ class TriangleTester {
   ACCEL_FORCE_INLINE bool watertight(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   inline bool moller(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   bool reference(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
+  /// intersect() lane by lane, for the kernels with no SIMD form (double, planar). Out of
+  /// line and cold, as reference4 below, for the same reason.
+  __attribute__((noinline, cold)) int scalar4(const TriangleBlock& block, int lanes, float tmax, float* t, float* u,
+                                              float* v) const;
+  /// reference() on the lanes of `block` set in `lanes` (the fallback of watertight4, for
+  /// 0.2-0.3% of the rays). Out of line and cold: a call clobbers every vector register,
+  /// and a call on the hot path made the traversal save and restore its ray constants
+  /// around every leaf (9 ymm registers, ~20 instructions a leaf: bench/profile_rays.sh);
+  /// on the cold path only the rays that call it pay.
+  __attribute__((noinline, cold)) int reference4(const TriangleBlock& block, int lanes, float tmax, float* t,
+                                                 float* u, float* v) const;
   bool planar(const Vec3& p0, const Vec3& p1, const Vec3& p2, float tmax, TriangleHit* out) const;
   /// A double kernel's hit (t, u, v) as the float answer in [tmin, tmax], or none.
   bool float_answer(double t, double u, double v, float tmax, TriangleHit* out) const;
@@ -288,9 +299,7 @@ int TriangleTester::intersect4(const TriangleBlock& block, int lanes, float tmax
                                float* v) const {
   if (kernel_ == Kernel::Watertight) return watertight4(block, lanes, tmax, t, u, v);
   if (kernel_ == Kernel::Moller) return moller4(block, lanes, tmax, t, u, v);
-  // Double and planar have no SIMD form; lane by lane.
-  return test_lanes(block, lanes, tmax, t, u, v, [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max,
-                                                       TriangleHit* h) { return intersect(p0, p1, p2, t_max, h); });
+  return scalar4(block, lanes, tmax, t, u, v);
 }
 
 template <class Test>
@@ -380,11 +389,7 @@ int TriangleTester::watertight4(const TriangleBlock& block, int lanes, float tma
   }
   // Lanes too close to an edge or to tmin/tmax: the double-precision test decides (after the
   // stores above, so their answers overwrite those lanes).
-  if (fallback)
-    hits |= test_lanes(block, fallback, tmax, t_out, u_out, v_out,
-                       [this](const Vec3& p0, const Vec3& p1, const Vec3& p2, float t_max, TriangleHit* h) {
-                         return reference(p0, p1, p2, t_max, h);
-                       });
+  if (__builtin_expect(fallback != 0, 0)) hits |= reference4(block, fallback, tmax, t_out, u_out, v_out);
   return hits;
 }
 

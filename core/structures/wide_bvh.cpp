@@ -57,6 +57,7 @@ Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, Buil
   tree_span.finish();
   if (build_cancelled(control)) return cancelled_error();  // e.g. cancelled from the callback
   collapse(scene, tree, recorder);
+  root_ref_ = entries_.empty() ? 0 : ref_of(0);
   if (recorder) recorder->done(entries_.size());
   return {};
 }

@@ -308,7 +308,7 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   /// Makes its SIMD ray constants itself: a local the compiler keeps in registers or its
   /// own frame (through a reference, every store of the loop might alias them).
   template <class Tag, TraversalSink Sink>
-  void traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester, bool nearest_first,
+  ACCEL_FORCE_INLINE void traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester, bool nearest_first,
                       const Pending& root, Hit& closest, Sink& sink) const;
   template <class Tag, TraversalSink Sink>
   void traverse_pqueue(const Ray& ray, const WideRayFor<Tag>& wray, const TriangleTester& tester, Pending root,
@@ -328,6 +328,9 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   size_t triangle_count_ = 0;  ///< distinct triangles among them (fewer after sbvh's spatial splits)
   BvhBuildOptions options_;
   TraversalOrder order_ = TraversalOrder::Ordered;
+  /// ref_of(0), kept apart: read from the entries on every query, it cost a load and a
+  /// branch on the root's kind (query entry and exit, bench/profile_rays.sh).
+  ChildRef root_ref_ = 0;
   FastWideTraversal fast_ = nullptr;  ///< set for 8-wide trees on AVX2 / AVX-512 CPUs (stack orders)
   Isa fast_isa_ = Isa::Sse2;
 };
@@ -383,7 +386,7 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
   if (!entries_.empty()) {
     const TriangleTester tester(ray, this->kernel_);
     const BoxTester box_ray(ray);
-    Pending root{ref_of(0), 0, ray.tmin, closest.t};
+    Pending root{root_ref_, 0, ray.tmin, closest.t};
     // The fast path enters the root without testing its box: the root's children are
     // tested at once against the same [tmin, tmax], so a ray that misses the root's box
     // misses them all and the answer is the same, while the scalar box test cost every ray
@@ -416,7 +419,7 @@ Hit WideBvhOf<W>::traverse_with(const Ray& ray, Sink& sink) const {
 /// visit the same nodes in the same order.
 template <int W>
 template <class Tag, TraversalSink Sink>
-void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester,
+ACCEL_FORCE_INLINE void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTester& box_ray, const TriangleTester& tester,
                                   bool nearest_first, const Pending& root, Hit& closest, Sink& sink) const {
   const WideRayFor<Tag> wray(box_ray);
   using Item = PendingFor<Sink>;
