@@ -316,7 +316,7 @@ def analyse_case(args, case, smap):
             row["inner_nodes_per_ray"] = runs.get(marks.get("accel node"), 0) / calls
             row["leaves_per_ray"] = runs.get(marks.get("accel leaf"), 0) / calls
             row["triangle_lanes_per_ray"] = 4 * runs.get(marks.get("accel block"), 0) / calls
-            row["fallbacks_per_ray"] = sum(c for n, c in d.calls.items() if n and "TriangleTester::reference" in n) / calls
+            row["fallbacks_per_ray"] = sum(c for n, c in d.calls.items() if n and "TriangleTester::reference(" in n) / calls
         elif row["split_known"]:
             row["inner_nodes_per_ray"] = runs.get(marks.get("tinybvh node"), 0) / calls
             row["leaves_per_ray"] = runs.get(marks.get("tinybvh leaf"), 0) / calls
