@@ -36,9 +36,9 @@ struct WideRayFor<ACCEL_ISA_TAG> {
 
 /// intersect_four() of wide_bvh.h on all eight slots at once: the same operations in the
 /// same order per lane (subtract, multiply by the inverse direction, or by its widened form
-/// for the far distance, max / min with the running interval; vmaxps/vminps return the second operand on NaN as maxps/minps do;
-/// the comparison is ordered like cmpleps), so the mask and the distances are the SSE2
-/// kernel's bit for bit (tests/test_wide_isa.cpp).
+/// for the far distance, max / min with the running interval; vmaxps/vminps return the
+/// second operand on NaN as maxps/minps do; the comparison is ordered like cmpleps), so the
+/// mask and the distances are the SSE2 kernel's bit for bit (tests/test_wide_isa.cpp).
 ACCEL_FORCE_INLINE int intersect_children(const WideNode8& node, const WideRayFor<ACCEL_ISA_TAG>& r, float tmin,
                                           float tmax, float* t_enter, float* t_exit) {
   __m256 t0 = _mm256_set1_ps(tmin), t1 = _mm256_set1_ps(tmax);

@@ -3,6 +3,7 @@
 docs/hits.md, and bad input (exit 2, one line naming file and line, no output file)."""
 import argparse
 import csv
+import json
 import math
 import os
 import shutil
@@ -134,7 +135,6 @@ def test_trace_2d(cli, work):
         got = [(int(r[1]), float(r[2])) for r in rows]
         check(got == EXPECTED_2D, f"2D trace {structure}: {got}, expected {EXPECTED_2D}")
     # bench on a 2D scene judges by the 2D rule too: no wrong answer, the kernel named planar.
-    import json
     bench_json = os.path.join(work, "bench_2d.json")
     code, _, err = run(cli, "bench", "--scene", scene, "--structures", "grid,kdtree,bvh", "--rays", rays,
                        "--kernel", "watertight", "--no-embree", "--no-tinybvh", "--min-time", "0.001",
@@ -247,7 +247,6 @@ def test_bench(cli, work):
     """bench writes one row per scene x structure x kernel (plus Embree and tinybvh rows when
     built with them) with the keys of issue #6, the same rows as JSON, CSV and Markdown, and the
     watertight kernel makes no error; bad options fail before any output file is written."""
-    import json
     tinybvh = has_tinybvh(cli)
     out = {ext: os.path.join(work, f"bench.{ext}") for ext in ("json", "csv", "md")}
     args = ["bench", "--scene", "procedural:cornell", "--scene", "procedural:soup", "--structures", "all",
@@ -348,7 +347,6 @@ def test_bench(cli, work):
 def test_bench_embree_robust(cli, work, with_embree):
     """--embree-robust adds one embree-robust row per scene (Embree's robust mode, issue #51's
     ratio) after medium and high, an Embree row like them; without Embree, none."""
-    import json
     out = os.path.join(work, "bench_robust.json")
     code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh", "--rays", "random:2000:1",
                        "--threads", "2", "--min-time", "0.001", "--no-tinybvh", "--embree-robust", "--out-json", out)
@@ -364,7 +362,6 @@ def test_bench_embree_robust(cli, work, with_embree):
 def test_bench_tinybvh_only(cli, work):
     """--no-embree with tinybvh: the tinybvh rows are the peers, so peer_ratio_* are numbers
     while the embree_* ratios are null."""
-    import json
     out = os.path.join(work, "bench_tinybvh.json")
     code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh", "--rays", "random:500:1",
                        "--threads", "2", "--min-time", "0.001", "--no-embree", "--out-json", out)
@@ -388,7 +385,6 @@ def test_bench_tinybvh_only(cli, work):
 def test_bench_without_embree(cli, work):
     """--no-embree --no-tinybvh: no peer rows, and the build and peer ratios are null / empty /
     "-" everywhere."""
-    import json
     out = {ext: os.path.join(work, f"bench_noembree.{ext}") for ext in ("json", "csv", "md")}
     code, _, err = run(cli, "bench", "--scene", "procedural:cornell", "--structures", "bvh,grid", "--rays", "random:500:1",
                        "--threads", "2", "--min-time", "0.001", "--no-embree", "--no-tinybvh", "--out-json", out["json"],
@@ -422,7 +418,6 @@ def test_bench_without_embree(cli, work):
 def test_build_trace(cli, source, work):
     """stats --build-trace FILE: JSON lines, a header then one object per step, from the scene
     box to done; the same structure's statistics on stdout; bad paths are one-line errors."""
-    import json
     obj = os.path.join(source, "scenes", "steps.obj")
     for structure in ["brute", "grid", "octree", "kdtree", "bvh", "spheretree"]:
         out = os.path.join(work, f"build_{structure}.jsonl")
