@@ -52,6 +52,16 @@ struct BenchOptions {
   double time_limit = 0.0;   ///< as StructureOptions, per build
 };
 
+/// accelviz-cli build-vs-embree: the default BVH's cold build against Embree medium's
+/// (build_vs_embree.cpp), each the first build of a fresh child process.
+struct BuildVsEmbreeOptions {
+  std::vector<std::string> scenes;
+  int runs = 3;     ///< child processes per side and scene; the median is kept
+  int threads = 0;  ///< build threads of both sides (0 = all cores)
+  std::string out_json, out_md;
+  std::string child;  ///< hidden: "accelviz" or "embree" makes this process one child
+};
+
 /// accelviz-cli check: the assignment kit's grader (check_command.cpp, docs/student.md).
 struct CheckOptions {
   std::string structure;      ///< one student structure; empty: every one the worker holds
@@ -84,6 +94,7 @@ int run_trace(const TraceOptions& options);
 int run_check(const CheckOptions& options);
 int run_grade_class(const GradeClassOptions& options);
 int run_bench(const BenchOptions& options);
+int run_build_vs_embree(const BuildVsEmbreeOptions& options);
 int run_stats(const StatsOptions& options);
 
 /// Sets the control's memory and time limits from the options' text; the error names

@@ -159,6 +159,21 @@ CLI::App* add_bench_command(CLI::App& app, cli::BenchOptions* o) {
   return cmd;
 }
 
+/// build-vs-embree: the default BVH's cold build against Embree medium's, in fresh processes.
+CLI::App* add_build_vs_embree_command(CLI::App& app, cli::BuildVsEmbreeOptions* o) {
+  CLI::App* cmd = app.add_subcommand(
+      "build-vs-embree", "cold builds: the default BVH's first build in a fresh process against Embree medium's "
+                         "(median of --runs processes each; ratio > 1: accelviz builds faster)");
+  cmd->add_option("--scene", o->scenes, "mesh file or procedural:NAME (repeatable)")->required();
+  cmd->add_option("--runs", o->runs, "fresh processes per side and scene")->check(CLI::Range(1, 100))->capture_default_str();
+  cmd->add_option("--threads", o->threads, "build threads of both sides (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--out-json", o->out_json, "write the rows as a JSON array");
+  cmd->add_option("--out-md", o->out_md, "write the table as Markdown");
+  // The children this command starts: one side's builds in a fresh process, one JSON line out.
+  cmd->add_option("--child", o->child)->check(CLI::IsMember({"accelviz", "embree"}))->group("");
+  return cmd;
+}
+
 /// check: the assignment kit's grader over one or every student structure.
 CLI::App* add_check_command(CLI::App& app, cli::CheckOptions* o) {
   o->shared = ACCEL_DEFAULT_SHARED_SCENES;
@@ -241,6 +256,8 @@ int main(int argc, char** argv) {
   cli::BenchOptions bench;
   CLI::App* bench_cmd = add_bench_command(app, &bench);
   CLI::App* params_cmd = app.add_subcommand("params", "list the structures and their parameters");
+  cli::BuildVsEmbreeOptions build_vs_embree;
+  CLI::App* build_vs_embree_cmd = add_build_vs_embree_command(app, &build_vs_embree);
   cli::CheckOptions check;
   CLI::App* check_cmd = add_check_command(app, &check);
   cli::GradeClassOptions grade;
@@ -260,6 +277,7 @@ int main(int argc, char** argv) {
   if (trace_cmd->parsed()) return check_stdout(cli::run_trace(trace));
   if (stats_cmd->parsed()) return check_stdout(cli::run_stats(stats));
   if (bench_cmd->parsed()) return check_stdout(cli::run_bench(bench));
+  if (build_vs_embree_cmd->parsed()) return check_stdout(cli::run_build_vs_embree(build_vs_embree));
   if (params_cmd->parsed()) return check_stdout(print_params());
   if (check_cmd->parsed()) return check_stdout(cli::run_check(check));
   if (grade_cmd->parsed()) return check_stdout(cli::run_grade_class(grade));

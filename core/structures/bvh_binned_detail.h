@@ -149,15 +149,17 @@ struct BinSplit {
 };
 
 /// Per-task buffers of the binned split, allocated once per task, not per node, and off the
-/// stack: a BinSet is 27 KB and the recursion may be 96 deep.
+/// stack: a BinSet is 27 KB and the recursion may be 96 deep. Left uninitialised (every
+/// node clears the bins it uses and the sweep writes before it reads): zeroing the 64 KB of
+/// each of the few hundred tasks was 2% of a build's instructions.
 struct Scratch : top_down::ScratchBase {
-  std::unique_ptr<BinSet> bins = std::make_unique<BinSet>();
-  std::unique_ptr<BinSet> spare = std::make_unique<BinSet>();
+  std::unique_ptr<BinSet> bins = std::make_unique_for_overwrite<BinSet>();
+  std::unique_ptr<BinSet> spare = std::make_unique_for_overwrite<BinSet>();
   struct RightSweep {
     __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
     __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
   };
-  std::unique_ptr<RightSweep> right = std::make_unique<RightSweep>();
+  std::unique_ptr<RightSweep> right = std::make_unique_for_overwrite<RightSweep>();
   std::vector<SplitCandidate> planes[3];  ///< recording only: the planes of the node being swept
 };
 
@@ -194,10 +196,12 @@ class BinnedSah {
   }
 
  private:
-  /// Bin count for a node of n references: `bins` at most, fewer for small nodes, where a
-  /// plane per pair of references already covers every distinct split and the bins would
-  /// cost more to clear and sweep than the binning itself.
-  int bin_count(size_t n) const { return int(std::min<size_t>(size_t(std::min(o_.bins, kMaxBins)), 4 + n / 2)); }
+  /// Bin count for a node of n references: `bins` at most, 4 + n / 4 below that. A node's
+  /// clearing and sweep cost ~80 instructions a bin against ~45 a reference to bin, so with
+  /// a bin per two references (as before issue #51) the sweep cost nodes of a few hundred
+  /// references more than their binning. A bin per four moved the SAH cost by -0.2% to
+  /// +0.2% on the shared meshes and took 6% off the build (docs/performance.md).
+  int bin_count(size_t n) const { return int(std::min<size_t>(size_t(std::min(o_.bins, kMaxBins)), 4 + n / 4)); }
 
   /// o_.leaf_cost(n), with a shift instead of the integer division for the usual power-of-two
   /// prims_per_test (the division was a tenth of the whole build in a profile).
