@@ -329,6 +329,7 @@ def test_bench(cli, work):
     check(md_header[-2:] == ["vs peer (1t)", "vs peer (mt)"], f"bench Markdown header {md_header}")
     test_bench_without_embree(cli, work)
     test_bench_embree_robust(cli, work, bool(embree))
+    test_build_vs_embree(cli, work, bool(embree))
     if tinybvh:
         test_bench_tinybvh_only(cli, work)
     bad_out = os.path.join(work, "bench_bad.json")
@@ -357,6 +358,47 @@ def test_bench_embree_robust(cli, work, with_embree):
         names = [r["structure"] for r in json.load(f)]
     expected = ["embree-medium", "embree-high", "embree-robust", "bvh"] if with_embree else ["bvh"]
     check(names == expected, f"bench --embree-robust: rows {names}, expected {expected}")
+
+
+def test_build_vs_embree(cli, work, with_embree):
+    """build-vs-embree (issue #51): per scene, --runs fresh processes per side, their medians and
+    Embree / accelviz as the ratio, in the printed line and the JSON; a scene that cannot be
+    loaded is a one-line error naming it, nothing printed, no file; without Embree, an error."""
+    out = {ext: os.path.join(work, f"build_vs_embree.{ext}") for ext in ("json", "md")}
+    scenes = ["procedural:cornell", "procedural:soup"]
+    args = ["build-vs-embree", "--scene", scenes[0], "--scene", scenes[1], "--runs", "3", "--threads", "2",
+            "--out-json", out["json"], "--out-md", out["md"]]
+    code, stdout, err = run(cli, *args)
+    if not with_embree:
+        check(code == 2 and "without Embree" in err and stdout == "", f"build-vs-embree without Embree: {code} {err!r}")
+        return
+    check(code == 0, f"build-vs-embree: exit {code}, stderr {err!r}")
+    if code != 0:
+        return
+    with open(out["json"]) as f:
+        rows = json.load(f)
+    check([r["scene"] for r in rows] == scenes, f"build-vs-embree: rows {[r['scene'] for r in rows]}")
+    for r in rows:
+        for side in ("accelviz", "embree"):
+            cold = r[f"{side}_cold_ms"]
+            check(len(cold) == 3 and all(ms > 0 for ms in cold), f"build-vs-embree {r['scene']}: {side} runs {cold}")
+            check(r[f"{side}_cold_median_ms"] == sorted(cold)[1], f"build-vs-embree {r['scene']}: {side} median")
+        ratio = r["embree_cold_median_ms"] / r["accelviz_cold_median_ms"]
+        check(abs(r["embree_over_accelviz_cold"] - ratio) <= 1e-9 * ratio,
+              f"build-vs-embree {r['scene']}: ratio {r['embree_over_accelviz_cold']} vs {ratio}")
+        check(r["triangles"] > 0 and r["threads"] == 2,
+              f"build-vs-embree {r['scene']}: {r['triangles']} triangles, {r['threads']} threads")
+        line = [l for l in stdout.splitlines() if l.startswith(r["scene"] + " ")]
+        check(len(line) == 1 and f"{r['embree_over_accelviz_cold']:.2f}" in line[0].split(),
+              f"build-vs-embree: printed line of {r['scene']}: {line}")
+    with open(out["md"]) as f:
+        check(len(f.read().splitlines()) == 2 + len(scenes), f"build-vs-embree: Markdown rows")
+    bad_out = os.path.join(work, "build_vs_embree_bad.json")
+    code, stdout, err = run(cli, "build-vs-embree", "--scene", "/nonexistent/x.obj", "--runs", "1",
+                            "--out-json", bad_out)
+    check(code == 2 and stdout == "" and len(err.splitlines()) == 1 and "/nonexistent/x.obj" in err,
+          f"build-vs-embree, missing scene: exit {code}, stdout {stdout!r}, stderr {err!r}")
+    check(not os.path.exists(bad_out), "build-vs-embree, missing scene: the JSON was written")
 
 
 def test_bench_tinybvh_only(cli, work):
