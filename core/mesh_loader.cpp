@@ -15,6 +15,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <assimp/BaseImporter.h>
@@ -220,11 +221,35 @@ Status check_ascii_ply_line(const std::string& path, int line, const PlyLayout::
   return {};
 }
 
-/// An ASCII body, line by line as Assimp reads it: one element instance per line, the
-/// list's count read as the digits its token starts with.
+/// Assimp 5.2's line ends (ParsingUtils.h, IsLineEnd): a NUL or a form feed ends a line too.
+bool is_assimp_line_end(char c) { return c == '\n' || c == '\r' || c == '\0' || c == '\f'; }
+
+/// The next line of `body` from `pos` as Assimp 5.2's IOStreamBuffer::getNextLine cuts it,
+/// and `pos` moved past it: the line runs to the next line end, which is stepped over;
+/// a line that would begin at another line end ("\r\n", an empty line, two NULs) first
+/// skips everything through the next '\n'. Assimp reads one element instance per line,
+/// so the check must cut the same lines: fuzz_mesh found a face line "8\t", a NUL, then
+/// "888...883 0 3 2", which Assimp read as two faces, the second with 954,437,172 entries
+/// (14.9 GB before its validation refused it), where a cut at '\n' alone saw one harmless face.
+std::string_view next_assimp_line(const std::string& body, size_t& pos) {
+  if (pos < body.size() && is_assimp_line_end(body[pos])) {
+    const size_t newline = body.find('\n', pos);
+    pos = newline == std::string::npos ? body.size() : newline + 1;
+  }
+  size_t end = pos;
+  while (end < body.size() && !is_assimp_line_end(body[end])) ++end;
+  const std::string_view line(body.data() + pos, end - pos);
+  pos = end + 1;
+  return line;
+}
+
+/// An ASCII body, line by line as Assimp reads it (next_assimp_line): one element instance
+/// per line, the list's count read as the digits its token starts with.
 Status check_ascii_ply_lists(const std::string& path, const PlyLayout& layout, const std::string& body) {
   size_t pos = 0;
-  int line = 0;  // the body's lines read so far; the header's lines are added in messages
+  // The file's line number of `pos`, for the messages: the header's lines, then the body's '\n's.
+  int line = layout.header_lines + 1;
+  size_t counted = 0;  // body[0, counted) holds the '\n's counted in `line`
   for (const PlyLayout::Element& e : layout.elements) {
     // Tokens up to the last list; an element without one is only skipped, line by line.
     size_t lists_end = 0;
@@ -232,19 +257,13 @@ Status check_ascii_ply_lists(const std::string& path, const PlyLayout& layout, c
       if (e.properties[k].list) lists_end = k + 1;
     for (uintmax_t i = 0; i < e.count; ++i) {
       if (pos >= body.size()) return {};
-      size_t end = body.find('\n', pos);
-      if (lists_end == 0) {
-        pos = end == std::string::npos ? body.size() : end + 1;
-        ++line;
-        continue;
-      }
-      if (end == std::string::npos) end = body.size();
-      const std::string_view text(body.data() + pos, end - pos);
-      pos = end + 1;
-      ++line;
+      const std::string_view text = next_assimp_line(body, pos);
+      if (lists_end == 0) continue;
+      const size_t begin = size_t(text.data() - body.data());
+      line += int(std::count(body.begin() + long(counted), body.begin() + long(begin), '\n'));
+      counted = begin;
       const size_t after = pos < body.size() ? body.size() - pos : 0;
-      if (Status st = check_ascii_ply_line(path, layout.header_lines + line, e, i, lists_end, text, after); !st)
-        return st;
+      if (Status st = check_ascii_ply_line(path, line, e, i, lists_end, text, after); !st) return st;
     }
   }
   return {};
