@@ -330,8 +330,10 @@ TEST(TraceReplay, PriorityQueueEndsEmptyAndPopsInKeyOrder) {
 TEST(TraceReplay, ReplayAfterRebuildKeepsTheStepClamped) {
   const Scene scene = sphere_scene();
   const Ray ray = ray_through_sphere();
+  // Two traces of different lengths (the test's premise): wide leaves of up to 16 against
+  // the binary tree's single triangles.
   auto coarse = build_structure("bvh", scene, {"leaf_size=16"});
-  auto fine = build_structure("bvh", scene, {"leaf_size=1"});
+  auto fine = build_structure("bvh", scene, {"leaf_size=1", "width=2"});
   ASSERT_TRUE(coarse.ok() && fine.ok());
   TraceRecorder a, b;
   coarse.value()->intersect_traced(ray, a);

@@ -9,7 +9,7 @@ namespace accel {
 
 /// Builds the binned SAH tree over scene.valid_prims() with the guarantees of
 /// build_bvh_tree(). `options.bins` is the maximum bin count per axis; a node of n
-/// references uses min(bins, 4 + n / 2) bins (small nodes need fewer candidate planes).
+/// references uses min(bins, 4 + n / 4) bins (small nodes need fewer candidate planes).
 /// Nodes are numbered in pre-order (left subtree first), identically for any thread count.
 /// With a `recorder`, every construction step is recorded (build_trace.h) and the build runs serially.
 BuildTree build_binned_sah_tree(const Scene& scene, const BvhBuildOptions& options, ProgressSpan* progress = nullptr,

@@ -35,7 +35,7 @@ struct BvhBuildOptions {
   BvhBuilderKind builder = BvhBuilderKind::BinnedSah;
   MedianAxis axis = MedianAxis::Longest;
   /// 64 bins (Embree uses 32): with 16 or 32 the binned cost exceeds the sweep's by 2-5% on
-  /// crytek_sponza and spider; a node of n references uses at most 4 + n / 2 bins anyway.
+  /// crytek_sponza and spider; a node of n references uses at most 4 + n / 4 bins anyway.
   int bins = 64;
   int leaf_size = 4;     ///< max triangles per leaf
   /// sbvh: a node tries a spatial split when its best object split's children overlap by

@@ -11,7 +11,7 @@ namespace accel {
 /// Builds the spatial-split tree over scene.valid_prims() with the guarantees of
 /// build_bvh_tree() (the sbvh clause: a triangle may be in several leaves, never twice in
 /// one). At most options.sbvh_budget references per triangle in total; a node of n
-/// references bins its object split into min(bins, 4 + n / 2) bins per axis as the binned
+/// references bins its object split into min(bins, 4 + n / 4) bins per axis as the binned
 /// builder does, its spatial split into min(kSpatialBins, 4 + n / 2) over the node's box. Parallel (TBB tasks for the upper levels);
 /// the tree does not depend on the thread count. With a `recorder` the build runs serially
 /// and records every step (build_trace.h): spatial splits are Split steps with values[1] = 1

@@ -36,7 +36,7 @@ ParamTable<HierarchyOptions> make_table(bool with_width) {
                   "median builder only: split axis always x, cycling x,y,z by depth, or the longest extent of the "
                   "centres")
           .integer("bins", [](O& o) -> auto& { return o.build.bins; }, 2, 256,
-                   "binned_sah and sbvh: bins per axis (a node of n triangles uses at most 4 + n/2)")
+                   "binned_sah and sbvh: bins per axis (a node of n triangles uses at most 4 + n/4)")
           .number("sbvh_alpha", [](O& o) -> auto& { return o.build.sbvh_alpha; }, 0.0, 1.0,
                   "sbvh only: try a spatial split when the object split's children overlap by more than this "
                   "fraction of the root's area (0: at every node)")

@@ -65,10 +65,12 @@ Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, Buil
 // ----------------------------------------------------------------------------
 // Collapse, in parallel: the SAH-optimal choice of each wide node's children is solved
 // first (wide_collapse.h); then the top of the binary tree is planned serially; every subtree
-// below it is emitted by its own task into its own WideLayout with local numbering, then
-// all are placed at their pre-order offsets and relocated in parallel. The result is the
-// serial emission's, for any thread count: each node's children depend only on its binary
-// subtree, and the offsets follow from the subtrees' sizes.
+// below it is counted by its own task, placed at its pre-order offsets from the counts, and
+// emitted by its task straight into the final arrays there. The result is the serial
+// emission's, for any thread count: each node's children depend only on its binary
+// subtree, and the offsets follow from the subtrees' sizes. (Emitting each task into arrays
+// of its own and copying them into place cost a large scene's cold build a sixth of its
+// time in fresh memory: issue #51, docs/performance.md.)
 // ----------------------------------------------------------------------------
 namespace {
 
@@ -92,8 +94,7 @@ void record_collapse(const BuildTree& tree, const WideCollapse<W>& choice, Build
 }
 
 /// The top of the binary tree, planned serially: wide nodes over binary subtrees of
-/// kCollapseTaskNodes or more. A child below that size (or a leaf) becomes a task, emitted
-/// into its own Layout.
+/// kCollapseTaskNodes or more. A child below that size (or a leaf) becomes a task.
 template <int W>
 struct CollapsePlan {
   struct TopNode {
@@ -144,9 +145,9 @@ struct CollapsePlacement {
   std::vector<uint32_t> top_wide;        ///< by top node: its wide node
   CollapseOffsets total;                 ///< the arrays' sizes
 
-  /// Places top node `t` and everything below it (`parts`: the tasks' emitted subtrees).
-  template <int W, class Part>
-  void place(const CollapsePlan<W>& plan, const std::vector<Part>& parts, int32_t t) {
+  /// Places top node `t` and everything below it (`parts`: each task's counts).
+  template <int W>
+  void place(const CollapsePlan<W>& plan, const std::vector<CollapseOffsets>& parts, int32_t t) {
     top_id[size_t(t)] = total.entry++;
     top_wide[size_t(t)] = total.node++;
     const auto& node = plan.top[size_t(t)];
@@ -157,16 +158,17 @@ struct CollapsePlacement {
       }
       const size_t k = size_t(-node.child[s] - 1);
       part_at[k] = total;
-      total.entry += uint32_t(parts[k].entries.size());
-      total.node += uint32_t(parts[k].nodes.size());
-      total.block += uint32_t(parts[k].blocks.size());
+      total.entry += parts[k].entry;
+      total.node += parts[k].node;
+      total.block += parts[k].block;
     }
   }
 };
 
 }  // namespace
 
-/// One emitted subtree, numbered from 0: the arrays of WideBvhOf for that subtree alone.
+/// The arrays of WideBvhOf being filled: sized for the whole tree first, then every task
+/// emits its subtree into them at its own offsets.
 template <int W>
 struct WideBvhOf<W>::Layout {
   std::vector<Node> nodes;
@@ -176,41 +178,35 @@ struct WideBvhOf<W>::Layout {
   std::vector<uint16_t> depth;
   std::vector<TriangleBlock> blocks;
 
-  /// Room for the emit of a binary subtree of `binary_nodes` nodes: an entry, box and depth
-  /// per node at most, a wide node per inner node, a block per leaf (leaf_size <= 4; more
-  /// grows the vector). Growing them instead copied ~11 MB a crytek-sized build.
-  void reserve(size_t binary_nodes) {
-    const size_t leaves = (binary_nodes + 1) / 2;
-    entries.reserve(binary_nodes);
-    boxes.reserve(binary_nodes);
-    depth.reserve(binary_nodes);
-    nodes.reserve(leaves);
-    child_ids.reserve(leaves);
-    blocks.reserve(leaves);
+  /// What the emit of binary node `src`'s subtree adds: its entries, wide nodes and blocks.
+  static CollapseOffsets count(const BuildTree& tree, const WideCollapse<W>& choice, uint32_t src) {
+    CollapseOffsets n;
+    add_count(tree, choice, src, n);
+    return n;
   }
 
-  /// The subtree of binary node `src` at `depth`, in depth-first order; returns its node id.
+  /// The subtree of binary node `src` at `depth`, in depth-first order, from `at` on (which
+  /// it advances past the subtree); returns its node id.
   NodeId emit(const Scene& scene, const BuildTree& tree, const WideCollapse<W>& choice, uint32_t src,
-               int depth_of_src) {
+              int depth_of_src, CollapseOffsets& at) {
     ACCEL_CHECK(depth_of_src < kMaxBvhDepth);  // collapsing only makes the tree shallower
-    const NodeId id = NodeId(entries.size());
+    const NodeId id = at.entry++;
     const BuildNode& b = tree.nodes[src];
-    entries.emplace_back();
-    boxes.push_back(b.box);
-    depth.push_back(uint16_t(depth_of_src));
+    boxes[id] = b.box;
+    depth[id] = uint16_t(depth_of_src);
     if (b.count) {
-      entries[id] = {add_blocks(scene, tree.prims.data() + b.first, b.count), b.count};
+      entries[id] = {add_blocks(scene, tree.prims.data() + b.first, b.count, at), b.count};
       return id;
     }
     uint32_t kids[W];
     NullBuildSink no_steps;
     const int n = choice.children(src, kids, no_steps);
-    const uint32_t w = uint32_t(nodes.size());
+    const uint32_t w = at.node++;
     entries[id] = {w, 0};
-    nodes.push_back(empty_node());
-    child_ids.push_back(no_children());
+    nodes[w] = empty_node();
+    child_ids[w] = no_children();
     for (int s = 0; s < n; ++s) {
-      const NodeId child = emit(scene, tree, choice, kids[s], depth_of_src + 1);  // may reallocate: index, not reference
+      const NodeId child = emit(scene, tree, choice, kids[s], depth_of_src + 1, at);
       set_slot(nodes[w], s, tree.nodes[kids[s]].box, ref_of(child));
       child_ids[w][s] = child;
     }
@@ -277,30 +273,6 @@ struct WideBvhOf<W>::Layout {
     }
   }
 
-  /// A task's subtree, relocated to `at`: node ids by the entry offset, WideNode indices by
-  /// the node offset, triangle blocks by the block offset.
-  void copy_part(const Layout& part, const CollapseOffsets& at) {
-    auto relocate = [&](ChildRef r) { return ref_is_leaf(r) ? leaf_ref(ref_first(r) + at.block, ref_count(r)) : r + at.node; };
-    for (size_t i = 0; i < part.entries.size(); ++i) {
-      const Entry e = part.entries[i];
-      entries[at.entry + i] = {e.index + (e.leaf() ? at.block : at.node), e.count};
-      boxes[at.entry + i] = part.boxes[i];
-      depth[at.entry + i] = part.depth[i];
-    }
-    for (size_t w = 0; w < part.nodes.size(); ++w) {
-      Node node = part.nodes[w];
-      std::array<NodeId, W> ids = part.child_ids[w];
-      for (int s = 0; s < W; ++s) {
-        if (ids[s] == kNoNode) continue;
-        node.ref[s] = relocate(node.ref[s]);
-        ids[s] += at.entry;
-      }
-      nodes[at.node + w] = node;
-      child_ids[at.node + w] = ids;
-    }
-    std::copy(part.blocks.begin(), part.blocks.end(), blocks.begin() + long(at.block));
-  }
-
   /// Now every entry is final: the top nodes' child references.
   void link_top_nodes(const CollapsePlan<W>& plan, const CollapsePlacement& at) {
     for (size_t t = 0; t < plan.top.size(); ++t) {
@@ -309,13 +281,14 @@ struct WideBvhOf<W>::Layout {
     }
   }
 
-  /// Appends a leaf's triangles as blocks of four; returns the first block. Copies of the
-  /// triangles in leaf order: a leaf is one contiguous read, four triangles per SSE test,
-  /// instead of an index lookup and three scattered vertex loads per triangle.
-  uint32_t add_blocks(const Scene& scene, const uint32_t* prims, uint32_t count) {
-    const uint32_t first = uint32_t(blocks.size());
+  /// Writes a leaf's triangles as blocks of four from block `at.block` on; returns the first
+  /// block. Copies of the triangles in leaf order: a leaf is one contiguous read, four
+  /// triangles per SSE test, instead of an index lookup and three scattered vertex loads
+  /// per triangle.
+  uint32_t add_blocks(const Scene& scene, const uint32_t* prims, uint32_t count, CollapseOffsets& at) {
+    const uint32_t first = at.block;
     for (uint32_t done = 0; done < count; done += 4) {
-      TriangleBlock& block = blocks.emplace_back();
+      TriangleBlock& block = blocks[at.block++];
       for (uint32_t lane = 0; lane < 4; ++lane) {
         const bool used = done + lane < count;
         block.prim[lane] = used ? prims[done + lane] : TriangleBlock::kNoPrim;
@@ -326,6 +299,21 @@ struct WideBvhOf<W>::Layout {
       }
     }
     return first;
+  }
+
+ private:
+  static void add_count(const BuildTree& tree, const WideCollapse<W>& choice, uint32_t src, CollapseOffsets& n) {
+    ++n.entry;
+    const BuildNode& b = tree.nodes[src];
+    if (b.count) {
+      n.block += (b.count + 3) / 4;
+      return;
+    }
+    ++n.node;
+    uint32_t kids[W];
+    NullBuildSink no_steps;
+    const int k = choice.children(src, kids, no_steps);
+    for (int s = 0; s < k; ++s) add_count(tree, choice, kids[s], n);
   }
 };
 
@@ -341,22 +329,28 @@ void WideBvhOf<W>::collapse(const Scene& scene, const BuildTree& tree, BuildReco
 
   Layout whole;
   if (tree.nodes[tree.root].count || size[tree.root] < kCollapseTaskNodes) {  // one task
-    whole.reserve(size[tree.root]);
-    whole.emit(scene, tree, choice, tree.root, 0);
+    whole.resize(Layout::count(tree, choice, tree.root));
+    CollapseOffsets at;
+    whole.emit(scene, tree, choice, tree.root, 0, at);
   } else {
     CollapsePlan<W> plan;
     plan.plan(tree, choice, size, tree.root, 0);
-    std::vector<Layout> parts(plan.tasks.size());
-    par::parallel_for(size_t(0), plan.tasks.size(), [&](size_t t) {
-      parts[t].reserve(size[plan.tasks[t].src]);
-      parts[t].emit(scene, tree, choice, plan.tasks[t].src, plan.tasks[t].depth);
-    });
-    CollapsePlacement at{std::vector<CollapseOffsets>(parts.size()), std::vector<NodeId>(plan.top.size()),
+    std::vector<CollapseOffsets> counts(plan.tasks.size());
+    par::parallel_for(size_t(0), plan.tasks.size(),
+                      [&](size_t t) { counts[t] = Layout::count(tree, choice, plan.tasks[t].src); });
+    CollapsePlacement at{std::vector<CollapseOffsets>(counts.size()), std::vector<NodeId>(plan.top.size()),
                          std::vector<uint32_t>(plan.top.size()), {}};
-    at.place(plan, parts, 0);
+    at.place(plan, counts, 0);
     whole.resize(at.total);
     whole.write_top_nodes(tree, plan, at);
-    par::parallel_for(size_t(0), parts.size(), [&](size_t k) { whole.copy_part(parts[k], at.part_at[k]); });
+    par::parallel_for(size_t(0), plan.tasks.size(), [&](size_t t) {
+      CollapseOffsets cursor = at.part_at[t];
+      whole.emit(scene, tree, choice, plan.tasks[t].src, plan.tasks[t].depth, cursor);
+      // The emit fills exactly what the count placed: no task writes into another's part.
+      ACCEL_CHECK(cursor.entry == at.part_at[t].entry + counts[t].entry &&
+                  cursor.node == at.part_at[t].node + counts[t].node &&
+                  cursor.block == at.part_at[t].block + counts[t].block);
+    });
     whole.link_top_nodes(plan, at);
   }
   nodes_ = std::move(whole.nodes);
