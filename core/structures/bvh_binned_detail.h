@@ -153,13 +153,15 @@ struct BinSplit {
 /// node clears the bins it uses and the sweep writes before it reads): zeroing the 64 KB of
 /// each of the few hundred tasks was 2% of a build's instructions.
 struct Scratch : top_down::ScratchBase {
-  std::unique_ptr<BinSet> bins = std::make_unique_for_overwrite<BinSet>();
-  std::unique_ptr<BinSet> spare = std::make_unique_for_overwrite<BinSet>();
+  // `new T` without parentheses: default-initialised (make_unique_for_overwrite, which the
+  // web build's libc++ lacks).
+  std::unique_ptr<BinSet> bins{new BinSet};
+  std::unique_ptr<BinSet> spare{new BinSet};
   struct RightSweep {
     __m128 area[kMaxBins];    ///< lane a: area of the bins >= b on axis a
     __m128i count[kMaxBins];  ///< lane a: references in the bins >= b on axis a
   };
-  std::unique_ptr<RightSweep> right = std::make_unique_for_overwrite<RightSweep>();
+  std::unique_ptr<RightSweep> right{new RightSweep};
   std::vector<SplitCandidate> planes[3];  ///< recording only: the planes of the node being swept
 };
 
