@@ -201,8 +201,9 @@ class BinnedSah {
   /// Bin count for a node of n references: `bins` at most, 4 + n / 4 below that. A node's
   /// clearing and sweep cost ~80 instructions a bin against ~45 a reference to bin, so with
   /// a bin per two references (as before issue #51) the sweep cost nodes of a few hundred
-  /// references more than their binning. A bin per four moved the SAH cost by -0.2% to
-  /// +0.2% on the shared meshes and took 6% off the build (docs/performance.md).
+  /// references more than their binning. A bin per four moved the SAH cost by +0.2% in
+  /// geometric mean over the shared meshes (-0.6% to +3.9%) and took 6-10% off the build
+  /// (docs/performance.md).
   int bin_count(size_t n) const { return int(std::min<size_t>(size_t(std::min(o_.bins, kMaxBins)), 4 + n / 4)); }
 
   /// o_.leaf_cost(n), with a shift instead of the integer division for the usual power-of-two
