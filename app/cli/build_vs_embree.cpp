@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -27,10 +26,14 @@
 #include "registry.h"
 #include "rays_io.h"
 #include "scene.h"
+#include "text_format.h"
 
 extern char** environ;
 
 namespace cli {
+
+using accel::fixed;
+
 namespace {
 
 int fail(const std::string& message) {
@@ -128,12 +131,6 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 }  // namespace
 
 int run_build_vs_embree(const BuildVsEmbreeOptions& o) {
@@ -186,9 +183,9 @@ int run_build_vs_embree(const BuildVsEmbreeOptions& o) {
                     {"embree_over_accelviz_cold", cold_ratio}, {"accelviz_warm_median_ms", ow},
                     {"embree_warm_median_ms", ew}, {"embree_over_accelviz_warm", warm_ratio},
                     {"embree_device_median_ms", median(embree_device)}});
-    md << "| " << scene << " | " << triangles << " | " << fixed(oc, 1) << " | " << fixed(ec, 1) << " | "
-       << fixed(cold_ratio, 2) << " | " << fixed(ow, 1) << " | " << fixed(ew, 1) << " | " << fixed(warm_ratio, 2)
-       << " |\n";
+    md << "| " << scene << " | " << triangles << " | " << fixed(oc, "%.1f") << " | " << fixed(ec, "%.1f") << " | "
+       << fixed(cold_ratio, "%.2f") << " | " << fixed(ow, "%.1f") << " | " << fixed(ew, "%.1f") << " | "
+       << fixed(warm_ratio, "%.2f") << " |\n";
   }
   if (!o.out_json.empty())
     if (auto w = accel::write_file_atomic(o.out_json, rows.dump(1) + "\n"); !w) return fail(w.error().message);

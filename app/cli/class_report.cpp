@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "platform_formats.h"
+#include "text_format.h"
 
 // Index
 //   [SECTION] Text helpers
@@ -18,6 +19,9 @@
 //   [SECTION] HTML: the page
 
 namespace cli {
+
+using accel::fixed;
+
 namespace {
 
 using nlohmann::json;
@@ -28,12 +32,6 @@ constexpr size_t kOutputBudget = 8 * 1024, kOutputMin = 256, kOutputMax = 2048;
 constexpr size_t kCompileErrorBytes = 1500, kFaultBytes = 400, kShortBytes = 90, kFaultsShown = 8;
 
 // [SECTION] Text helpers
-
-std::string fixed(double v, const char* format) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
 
 /// HTML-escapes text already cleaned by clean_text (both quotes: it also goes in attributes).
 std::string esc(std::string_view s) {

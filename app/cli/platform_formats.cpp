@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "text_format.h"
+
 // Index
 //   [SECTION] Reading a submission's report
 //   [SECTION] The summary
@@ -13,6 +15,9 @@
 //   [SECTION] PrairieLearn
 
 namespace cli {
+
+using accel::fixed;
+
 namespace {
 
 using nlohmann::json;
@@ -98,12 +103,6 @@ uint64_t sum_over_categories(const json& structure, const char* key) {
   uint64_t sum = 0;
   for (const json& c : list_of(structure, "categories")) sum += key ? count_of(c, key) : category_wrong(c);
   return sum;
-}
-
-std::string fixed(double v, const char* format) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
 }
 
 /// `text` cut to `max_bytes` with a note saying so, the note included in the bound.
