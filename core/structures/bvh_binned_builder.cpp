@@ -44,7 +44,7 @@ class BinnedSplitter {
   using Scratch = binned::Scratch;
 
   BinnedSplitter(const Scene& scene, const BvhBuildOptions& o, Sink& sink)
-      : scene_(scene), o_(o), object_(o, sink), refs_(scene.valid_prims().size()) {}
+      : scene_(scene), object_(o, sink), refs_(scene.valid_prims().size()), leaf_whatever_split_(kept_whole(o)) {}
 
   /// The references and the root's bounds in one parallel pass; min/max reduce exactly in any order.
   Range root() {
@@ -78,13 +78,11 @@ class BinnedSplitter {
   size_t count(const Range& r) const { return r.size(); }
   Aabb box(const Range& r) const { return r.box.aabb(); }
   BinSplit split(Scratch& scratch, Range& r, const Aabb&, int depth, uint32_t id) {
-    // A node the leaf rule may keep whole, whose leaf costs no more than one traversal step,
-    // is a leaf whatever its best split: a split costs ct plus a non-negative sum (exactly so
-    // in floats), so leaf_verdict() says NoGain. Binning it to learn so was 7% of the
-    // build (a leaf of 4 with the default ct = ci = 1, prims_per_test 4). Recorded builds
-    // still bin it, for the lecture's Candidates and Leaf steps; the tree is the same.
+    // Binning a node that is a leaf whatever its best split (kept_whole()) was 7% of the
+    // build. Recorded builds still bin it, for the lecture's Candidates and Leaf steps; the
+    // tree is the same.
     if constexpr (!Sink::kRecords)
-      if (r.size() <= size_t(o_.leaf_size) && o_.ct >= o_.leaf_cost(r.size())) return BinSplit{};
+      if (r.size() <= leaf_whatever_split_) return BinSplit{};
     return object_.find_split(scratch, refs_.data(), r, depth, id);
   }
   void leaf(const Range& r, const BinSplit&, std::vector<uint32_t>& prims) const {
@@ -100,10 +98,21 @@ class BinnedSplitter {
   }
 
  private:
+  /// The largest node that is a leaf whatever its best split: one the leaf rule may keep
+  /// whole (at most leaf_size) whose leaf costs no more than one traversal step, since a split
+  /// costs ct plus a non-negative sum (exactly so in floats) and leaf_verdict() says NoGain.
+  /// With the defaults (ct = ci = 1, prims_per_test 4) every leaf of up to 4. leaf_cost()
+  /// grows with n, so the nodes it holds for are those up to a bound, found once here.
+  static size_t kept_whole(const BvhBuildOptions& o) {
+    size_t n = 0;
+    while (n < size_t(o.leaf_size) && o.ct >= o.leaf_cost(n + 1)) ++n;
+    return n;
+  }
+
   const Scene& scene_;
-  const BvhBuildOptions& o_;
   BinnedSah<Sink> object_;
   std::vector<Ref> refs_;
+  const size_t leaf_whatever_split_;  ///< kept_whole(options)
 };
 
 }  // namespace
