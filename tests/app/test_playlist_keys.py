@@ -47,15 +47,20 @@ def main():
     started = time.time()
     seen = []  # (seconds, title) each time the title changed: printed when a check fails
     try:
+        # The window, within the 60 s settled() gives each state below: 200 polls (about 27 s)
+        # were too few in CI, where the kit's compiles share the two cores with the viewer.
         window = ""
-        for _ in range(200):
+        deadline = time.time() + 60.0
+        while time.time() < deadline and viewer.poll() is None:
             r = subprocess.run(["xdotool", "search", "--name", "^accelviz"], capture_output=True, text=True)
             if r.stdout.strip():
                 window = r.stdout.split()[0]
                 break
             time.sleep(0.1)
         if not window:
-            print("FAIL: no viewer window")
+            exited = viewer.poll()
+            print(f"FAIL: no viewer window after {time.time() - started:.0f} s"
+                  + (f" (the viewer exited with {exited})" if exited is not None else ""))
             return 1
 
         def title():
