@@ -288,11 +288,13 @@ class Tester:
     def run_script(self, name, lines, timeout, downloads=None, query=None):
         """Writes and runs a script in a fresh page (with `lines`; None: the page's `query`
         instead, the script already written); returns a Run (end None on a timeout).
-        `downloads`: the folder the browser saves downloads into."""
+        `downloads`: (folder, suffix): the browser saves downloads into the folder, and the
+        browser stays open until a file ending in the suffix is there (or 30 s passed):
+        closing it earlier cancels a download still being written."""
         script = self.write_script(name, lines) if lines is not None else None
         with self.browser() as browser:
             if downloads:
-                browser.send('Browser.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads})
+                browser.send('Browser.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads[0]})
             page = browser.new_page(*VIEWPORT)
             page.navigate(self.url(script) if query is None else self.base_url + '/accelviz.html?' + query)
             end, details = None, ''
@@ -307,6 +309,8 @@ class Tester:
                 except cdp.CdpError:
                     pass
             time.sleep(0.3)  # late errors
+            if downloads and end is not None:
+                wait_for_downloads(*downloads)
             if self.args.verbose:
                 for level, text in page.console:
                     print('    [%s] %s' % (level, clip(text, 200)))
@@ -699,7 +703,7 @@ class Tester:
         try:
             lines = ['size 640 480', 'scene procedural:cornell', 'structure kdtree', 'ray 0 0.5 3 0 0 -1',
                      'step start', 'record clip.gif fps=5 size=320x240', 'step 5', 'record stop']
-            run = self.run_script('gif.txt', lines, timeout=120, downloads=downloads)
+            run = self.run_script('gif.txt', lines, timeout=120, downloads=(downloads, '.gif'))
             if run.end is None or not run.end.startswith(PREFIX + 'script done'):
                 raise CheckFailed('the script: %s' % clip(run.end or run.details))
             wrote = [t for t in run.lines if t.startswith('wrote ')]
