@@ -1,5 +1,6 @@
 #include "batch.h"
 
+#include <algorithm>
 #include <mutex>
 #include <thread>
 
@@ -42,18 +43,20 @@ std::vector<Hit> trace_all(const Structure& s, const std::vector<Ray>& rays, int
   arena.execute([&] {
     par::parallel_for(par::blocked_range<size_t>(0, rays.size(), 256), [&](const par::blocked_range<size_t>& r) {
       QueryStats local;
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        // Every 64 rays: the partitioner's blocks may be far larger than the grain size.
-        if ((i - r.begin()) % 64 == 0) {
-          par::yield();
-          if (cancel && cancel->load(std::memory_order_relaxed)) break;
+      // 64 rays at a time: between them a yield and the cancel check (the partitioner's
+      // blocks may be far larger than the grain size), and one intersect_batch() call each.
+      for (size_t i = r.begin(); i < r.end(); i += 64) {
+        par::yield();
+        if (cancel && cancel->load(std::memory_order_relaxed)) break;
+        const size_t end = std::min(r.end(), i + 64);
+        if (!total) {
+          s.intersect_batch(rays.data() + i, end - i, hits.data() + i);
+          continue;
         }
-        if (total) {
+        for (size_t k = i; k < end; ++k) {
           QueryStats q;
-          hits[i] = s.intersect(rays[i], &q);
+          hits[k] = s.intersect(rays[k], &q);
           local += q;
-        } else {
-          hits[i] = s.intersect(rays[i]);
         }
       }
       if (total) {

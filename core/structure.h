@@ -94,6 +94,11 @@ class Structure {
   Status refit(const Scene& scene);
   /// Closest hit of `ray` (docs/hits.md rule). Fills per-query counters when `stats` is given.
   virtual Hit intersect(const Ray& ray, QueryStats* stats = nullptr) const = 0;
+  /// intersect() on each of rays[0..n), into hits[0..n): the same answers, one call for a
+  /// batch (a structure may loop where its query is inlined: no virtual call a ray).
+  virtual void intersect_batch(const Ray* rays, size_t n, Hit* hits) const {
+    for (size_t i = 0; i < n; ++i) hits[i] = intersect(rays[i]);
+  }
   /// Same answer as intersect(), recording every traversal step.
   virtual Hit intersect_traced(const Ray& ray, TraceRecorder& recorder) const = 0;
   /// Statistics of the last build, build time included.
@@ -155,6 +160,11 @@ class StructureWithTraversal : public Structure {
   }
   Hit intersect_traced(const Ray& ray, TraceRecorder& recorder) const override {
     return self().traverse(ray, recorder);
+  }
+  /// The loop where traverse() is known: one virtual call a batch, not one a ray.
+  void intersect_batch(const Ray* rays, size_t n, Hit* hits) const override {
+    NullSink sink;
+    for (size_t i = 0; i < n; ++i) hits[i] = self().traverse(rays[i], sink);
   }
 
  private:

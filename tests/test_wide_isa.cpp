@@ -155,6 +155,42 @@ TEST(WideIsa, EveryKernelVisitsTheSameNodesInTheSameOrder) {
   if (isas.empty()) GTEST_SKIP() << "only the SSE2 kernel runs here: compared with itself";
 }
 
+TEST(WideIsa, BatchesAnswerAsOneRayAtATime) {
+  const std::vector<Isa> isas = vector_isas();
+  if (isas.empty()) GTEST_SKIP() << "this CPU runs neither AVX2 nor AVX-512";
+  const Scene scene = make_procedural_scene("stadium").value();
+  auto built = build_structure("bvh", scene, {"width=8"});
+  ASSERT_TRUE(built);
+  const auto& bvh = dynamic_cast<const WideBvh8&>(*built.value());
+  Rng rng(5);
+  const Aabb box = scene.bounds();
+  std::vector<Ray> rays(1000);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    rays[i].org = box.center() + box.extent() * Vec3(rng.uniform(-0.7f, 0.7f), rng.uniform(-0.7f, 0.7f),
+                                                     rng.uniform(-0.7f, 0.7f));
+    rays[i].dir = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    if (i % 7 == 0) rays[i].dir[i % 3] = 0.0f;
+    if (i % 5 == 0) rays[i].tmin = rng.uniform(0.0f, 0.5f);
+  }
+  for (Isa isa : isas) {
+    std::vector<Hit> batch(rays.size());
+    // Uneven batches, one of a single ray and one empty among them.
+    for (size_t i = 0, n = 0; i < rays.size(); i += n, n = (n * 7 + 3) % 97)
+      (isa == Isa::Avx2 ? wide8_fast_batch_avx2 : wide8_fast_batch_avx512)(bvh, rays.data() + i,
+                                                                         std::min(n, rays.size() - i), batch.data() + i);
+    int hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const Hit one = (isa == Isa::Avx2 ? wide8_fast_avx2 : wide8_fast_avx512)(bvh, rays[i]);
+      ASSERT_EQ(batch[i].prim, one.prim) << isa_name(isa) << " ray " << i;
+      ASSERT_EQ(std::bit_cast<uint32_t>(batch[i].t), std::bit_cast<uint32_t>(one.t)) << isa_name(isa) << " ray " << i;
+      ASSERT_EQ(std::bit_cast<uint32_t>(batch[i].u), std::bit_cast<uint32_t>(one.u));
+      ASSERT_EQ(std::bit_cast<uint32_t>(batch[i].v), std::bit_cast<uint32_t>(one.v));
+      hits += one.valid();
+    }
+    EXPECT_GT(hits, 100);
+  }
+}
+
 TEST(WideIsa, EightWideTreesRunTheBestKernelOnStackOrders) {
   const Scene scene = make_procedural_scene("cornell").value();
   auto ordered = build_structure("bvh", scene, {"width=8"});

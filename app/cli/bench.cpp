@@ -568,9 +568,14 @@ std::optional<int> structure_rows(SceneBench& b, size_t k, std::optional<double>
       else
         run_serial(b.rays, [&](const accel::Ray& r) { return structure.intersect(r); });
     });
+    // One call a ray, as the peers' rows make theirs (rtcIntersect1, tinybvh's Intersect):
+    // not trace_all(), whose batch calls (Structure::intersect_batch) the peers' rows lack.
     std::vector<accel::Hit> hits;
     row.mrays_mt = measure_mrays(b.rays.size(), b.o.min_time, [&] {
-      hits = accel::trace_all(structure, b.rays, b.plan.threads, nullptr, interrupt_flag());
+      if (accel::answered_in_batches(structure))
+        hits = accel::trace_all(structure, b.rays, b.plan.threads, nullptr, interrupt_flag());
+      else
+        hits = run_parallel(b.rays.size(), b.plan.threads, [&](size_t i) { return structure.intersect(b.rays[i]); });
     });
     if (interrupted()) return interrupted_exit();
     if (peer_mt && *peer_mt > 0.0) row.peer_ratio_mt = row.mrays_mt / *peer_mt;

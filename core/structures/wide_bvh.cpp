@@ -44,11 +44,14 @@ Status WideBvhOf<W>::build_impl(const Scene& scene, const ParamSet& params, Buil
   // The fast path of an 8-wide tree runs the best kernel this CPU has; the priority queue
   // keeps the SSE2 one (its heap, not the box test, is what it spends its time on).
   fast_ = nullptr;
+  fast_batch_ = nullptr;
   fast_isa_ = Isa::Sse2;
   if constexpr (W == 8) {
     if (order_ != TraversalOrder::PriorityQueue) {
       fast_isa_ = active_isa();
-      fast_ = fast_wide8_traversal(fast_isa_);
+      const FastWidePaths paths = fast_wide8_paths(fast_isa_);
+      fast_ = paths.one;
+      fast_batch_ = paths.batch;
     }
   }
   ProgressSpan tree_span(control, 0.0, 0.8);
@@ -435,13 +438,13 @@ BuildStats WideBvhOf<W>::compute_stats() const {
 template class WideBvhOf<4>;
 template class WideBvhOf<8>;
 
-FastWideTraversal fast_wide8_traversal(Isa isa) {
+FastWidePaths fast_wide8_paths(Isa isa) {
   switch (isa) {
-    case Isa::Sse2: return nullptr;
-    case Isa::Avx2: return &wide8_fast_avx2;
-    case Isa::Avx512: return &wide8_fast_avx512;
+    case Isa::Sse2: return {};
+    case Isa::Avx2: return {&wide8_fast_avx2, &wide8_fast_batch_avx2};
+    case Isa::Avx512: return {&wide8_fast_avx512, &wide8_fast_batch_avx512};
   }
-  return nullptr;
+  return {};
 }
 
 int wide8_children_mask(Isa isa, const WideNode8& node, const BoxTester& ray, float tmin, float tmax,

@@ -140,6 +140,9 @@ class WideBvhOf;
 /// The fast traversal (nothing observed) of an 8-wide tree with the AVX2 or AVX-512 kernel;
 /// defined in wide_bvh_avx2.cpp / wide_bvh_avx512.cpp, compiled with those flags.
 using FastWideTraversal = Hit (*)(const WideBvhOf<8>& bvh, const Ray& ray);
+/// The same over a batch: hits[i] is the closest hit of rays[i], for i < n, the loop inside
+/// the unit (its register saves and stack frame paid once a batch, not once a ray).
+using FastWideBatch = void (*)(const WideBvhOf<8>& bvh, const Ray* rays, size_t n, Hit* hits);
 
 /// The collapsed tree, registered as "bvh" with width=4 or 8 (same parameters, builders and
 /// traversal orders as BinaryBvh). Node ids number every node, inner and leaf, in
@@ -186,6 +189,14 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
       if (fast_) return fast_(*this, ray);
     }
     return traverse_with<Sse2Tag>(ray, sink);
+  }
+  /// intersect() on each ray, the 8-wide fast path's loop inside its ISA unit.
+  void intersect_batch(const Ray* rays, size_t n, Hit* hits) const override {
+    if constexpr (W == 8) {
+      if (fast_batch_) return fast_batch_(*this, rays, n, hits);
+    }
+    NullSink sink;
+    for (size_t i = 0; i < n; ++i) hits[i] = traverse_with<Sse2Tag>(rays[i], sink);
   }
   /// The same query with the kernels of instruction set `Tag` (the ISA units instantiate
   /// it with their tag; everything else with Sse2Tag).
@@ -333,6 +344,7 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
   /// branch on the root's kind (query entry and exit, bench/profile_rays.sh).
   ChildRef root_ref_ = 0;
   FastWideTraversal fast_ = nullptr;  ///< set for 8-wide trees on AVX2 / AVX-512 CPUs (stack orders)
+  FastWideBatch fast_batch_ = nullptr;  ///< set with fast_
   Isa fast_isa_ = Isa::Sse2;
 };
 
@@ -473,14 +485,16 @@ ACCEL_FORCE_INLINE void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTe
         const int hit_mask = mask | (1 << first) | (1 << second);
         const int hits = popcount8<Tag>(unsigned(hit_mask));
         Item* const dst = stack + top + hits - 1;
+        int nearest = first;
         for (int rest = hit_mask; rest; rest &= rest - 1) {
           const int s = __builtin_ctz(unsigned(rest));
           const int before = nearest_first ? nearer_slots(Tag{}, std::integral_constant<int, W>{}, t0, s) & hit_mask
                                            : hit_mask & ((1 << s) - 1);
           *(dst - popcount8<Tag>(unsigned(before))) = child(s);
+          nearest = before == 0 ? s : nearest;
           prefetch(n.ref[s], bases);
         }
-        cur = *dst;
+        cur = child(nearest);
         if constexpr (!kObservesNothing<Sink>)  // the pushes in stack order, farthest first
           for (int k = top; k < top + hits - 1; ++k)
             sink.push(node_of(stack[k]), node_depth<Sink>(node_of(stack[k])), stack[k].t0);

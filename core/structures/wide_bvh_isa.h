@@ -11,8 +11,13 @@
 
 namespace accel {
 
-/// The fast traversal for `isa` (nullptr for Sse2: the template path is the fast path).
-FastWideTraversal fast_wide8_traversal(Isa isa);
+/// The fast traversal for `isa`, one ray and a batch (both nullptr for Sse2: the template
+/// path is the fast path).
+struct FastWidePaths {
+  FastWideTraversal one = nullptr;
+  FastWideBatch batch = nullptr;
+};
+FastWidePaths fast_wide8_paths(Isa isa);
 
 /// For tests: the 8-wide box test of `isa` on one node, as the traversal runs it: returns
 /// the hit mask (bit s = slot s) and writes each slot's [t_enter, t_exit].
@@ -24,6 +29,8 @@ Hit wide8_traverse_observed(Isa isa, const WideBvh8& bvh, const Ray& ray, StepLi
 // Defined by each ISA unit (the same source, wide_bvh_isa_unit.h, with its tag).
 Hit wide8_fast_avx2(const WideBvh8& bvh, const Ray& ray);
 Hit wide8_fast_avx512(const WideBvh8& bvh, const Ray& ray);
+void wide8_fast_batch_avx2(const WideBvh8& bvh, const Ray* rays, size_t n, Hit* hits);
+void wide8_fast_batch_avx512(const WideBvh8& bvh, const Ray* rays, size_t n, Hit* hits);
 int wide8_mask_avx2(const WideNode8& node, const BoxTester& ray, float tmin, float tmax, float* t0, float* t1);
 int wide8_mask_avx512(const WideNode8& node, const BoxTester& ray, float tmin, float tmax, float* t0, float* t1);
 Hit wide8_observed_avx2(const WideBvh8& bvh, const Ray& ray, StepListener& listener);

@@ -16,6 +16,8 @@ namespace {
 
 Hit wide8_fast_avx2(const WideBvh8&, const Ray&) { no_avx("wide8_fast_avx2"); }
 Hit wide8_fast_avx512(const WideBvh8&, const Ray&) { no_avx("wide8_fast_avx512"); }
+void wide8_fast_batch_avx2(const WideBvh8&, const Ray*, size_t, Hit*) { no_avx("wide8_fast_batch_avx2"); }
+void wide8_fast_batch_avx512(const WideBvh8&, const Ray*, size_t, Hit*) { no_avx("wide8_fast_batch_avx512"); }
 int wide8_mask_avx2(const WideNode8&, const BoxTester&, float, float, float*, float*) { no_avx("wide8_mask_avx2"); }
 int wide8_mask_avx512(const WideNode8&, const BoxTester&, float, float, float*, float*) { no_avx("wide8_mask_avx512"); }
 Hit wide8_observed_avx2(const WideBvh8&, const Ray&, StepListener&) { no_avx("wide8_observed_avx2"); }

@@ -71,6 +71,16 @@ Hit ACCEL_ISA_NAME(wide8_fast_)(const WideBvh8& bvh, const Ray& ray) {
   return bvh.traverse_with<ACCEL_ISA_TAG>(ray, sink);
 }
 
+// Flattened: the traversal is inlined into the loop, so its entry and exit (register saves,
+// the stack frame's alignment) are paid once a batch, not once a ray. Not by inlining
+// traverse_with itself: its SSE2 copy would then make every WideBvhOf::traverse() call pay
+// that frame before it even calls the fast path.
+__attribute__((flatten)) void ACCEL_ISA_NAME(wide8_fast_batch_)(const WideBvh8& bvh, const Ray* rays, size_t n,
+                                                                Hit* hits) {
+  NullSink sink;
+  for (size_t i = 0; i < n; ++i) hits[i] = bvh.traverse_with<ACCEL_ISA_TAG>(rays[i], sink);
+}
+
 int ACCEL_ISA_NAME(wide8_mask_)(const WideNode8& node, const BoxTester& ray, float tmin, float tmax, float* t0,
                                 float* t1) {
   alignas(32) float a[8], b[8];
