@@ -175,9 +175,9 @@ TEST(WideIsa, BatchesAnswerAsOneRayAtATime) {
   for (Isa isa : isas) {
     std::vector<Hit> batch(rays.size());
     // Uneven batches, one of a single ray and one empty among them.
+    const auto batch_of = isa == Isa::Avx2 ? wide8_fast_batch_avx2 : wide8_fast_batch_avx512;
     for (size_t i = 0, n = 0; i < rays.size(); i += n, n = (n * 7 + 3) % 97)
-      (isa == Isa::Avx2 ? wide8_fast_batch_avx2 : wide8_fast_batch_avx512)(bvh, rays.data() + i,
-                                                                         std::min(n, rays.size() - i), batch.data() + i);
+      batch_of(bvh, rays.data() + i, std::min(n, rays.size() - i), batch.data() + i);
     int hits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
       const Hit one = (isa == Isa::Avx2 ? wide8_fast_avx2 : wide8_fast_avx512)(bvh, rays[i]);
