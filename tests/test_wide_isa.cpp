@@ -176,11 +176,12 @@ TEST(WideIsa, BatchesAnswerAsOneRayAtATime) {
     std::vector<Hit> batch(rays.size());
     // Uneven batches, one of a single ray and one empty among them.
     const auto batch_of = isa == Isa::Avx2 ? wide8_fast_batch_avx2 : wide8_fast_batch_avx512;
+    const auto one_of = isa == Isa::Avx2 ? wide8_fast_avx2 : wide8_fast_avx512;
     for (size_t i = 0, n = 0; i < rays.size(); i += n, n = (n * 7 + 3) % 97)
       batch_of(bvh, rays.data() + i, std::min(n, rays.size() - i), batch.data() + i);
     int hits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
-      const Hit one = (isa == Isa::Avx2 ? wide8_fast_avx2 : wide8_fast_avx512)(bvh, rays[i]);
+      const Hit one = one_of(bvh, rays[i]);
       ASSERT_EQ(batch[i].prim, one.prim) << isa_name(isa) << " ray " << i;
       ASSERT_EQ(std::bit_cast<uint32_t>(batch[i].t), std::bit_cast<uint32_t>(one.t)) << isa_name(isa) << " ray " << i;
       ASSERT_EQ(std::bit_cast<uint32_t>(batch[i].u), std::bit_cast<uint32_t>(one.u));

@@ -195,8 +195,7 @@ class WideBvhOf final : public StructureWithTraversal<WideBvhOf<W>> {
     if constexpr (W == 8) {
       if (fast_batch_) return fast_batch_(*this, rays, n, hits);
     }
-    NullSink sink;
-    for (size_t i = 0; i < n; ++i) hits[i] = traverse_with<Sse2Tag>(rays[i], sink);
+    StructureWithTraversal<WideBvhOf<W>>::intersect_batch(rays, n, hits);
   }
   /// The same query with the kernels of instruction set `Tag` (the ISA units instantiate
   /// it with their tag; everything else with Sse2Tag).
@@ -485,16 +484,14 @@ ACCEL_FORCE_INLINE void WideBvhOf<W>::traverse_stack(const Ray& ray, const BoxTe
         const int hit_mask = mask | (1 << first) | (1 << second);
         const int hits = popcount8<Tag>(unsigned(hit_mask));
         Item* const dst = stack + top + hits - 1;
-        int nearest = first;
         for (int rest = hit_mask; rest; rest &= rest - 1) {
           const int s = __builtin_ctz(unsigned(rest));
           const int before = nearest_first ? nearer_slots(Tag{}, std::integral_constant<int, W>{}, t0, s) & hit_mask
                                            : hit_mask & ((1 << s) - 1);
           *(dst - popcount8<Tag>(unsigned(before))) = child(s);
-          nearest = before == 0 ? s : nearest;
           prefetch(n.ref[s], bases);
         }
-        cur = child(nearest);
+        cur = *dst;
         if constexpr (!kObservesNothing<Sink>)  // the pushes in stack order, farthest first
           for (int k = top; k < top + hits - 1; ++k)
             sink.push(node_of(stack[k]), node_depth<Sink>(node_of(stack[k])), stack[k].t0);
