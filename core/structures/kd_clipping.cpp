@@ -6,25 +6,41 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <utility>
+
+#include "bit_cast.h"
 
 namespace accel::kd {
 namespace {
 
 /// Largest float <= x.
 float round_down(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -kInf);
-  return f;
+  const float f = float(x);
+  return double(f) > x ? float_below(f) : f;
 }
 /// Smallest float >= x.
 float round_up(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, kInf);
-  return f;
+  const float f = float(x);
+  return double(f) < x ? float_above(f) : f;
 }
 
 }  // namespace
+
+// A float's bits, read as an integer, step by one ulp away from zero when incremented and
+// toward it when decremented (one step from an infinity toward zero is the largest finite
+// float); +0 and -0 step to the smallest denormal of the direction's sign.
+float float_below(float f) {
+  const int32_t bits = bit_cast<int32_t>(f);
+  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  return bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
+}
+float float_above(float f) {
+  const int32_t bits = bit_cast<int32_t>(f);
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  return bit_cast<float>(f < 0.0f ? bits - 1 : bits + 1);
+}
 
 bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aabb* out) {
   const Aabb& tri = scene.triangle_bounds(prim);
@@ -36,11 +52,11 @@ bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aa
     *out = tri;
     return true;
   }
-  double m = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    m = std::max({m, std::abs(double(tri.min[k])), std::abs(double(tri.max[k])), std::abs(double(box.min[k])),
-                  std::abs(double(box.max[k]))});
-  }
+  // The largest magnitude of a coordinate, in float (a float's magnitude converts to double
+  // exactly, so the maximum is the same either way).
+  const Vec3 mags =
+      glm::max(glm::max(glm::abs(tri.min), glm::abs(tri.max)), glm::max(glm::abs(box.min), glm::abs(box.max)));
+  const double m = double(std::max({mags.x, mags.y, mags.z}));
   const double delta = std::max(m, 1e-30) * 0x1p-30;  // exact, as ldexp(., -30)
 
   // A triangle clipped by 6 planes has at most 3 + 6 vertices. A plane that every vertex lies
@@ -53,6 +69,10 @@ bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aa
   for (int k = 0; k < 3; ++k) poly[k] = DVec3(scene.vertex(prim, k));
   for (int axis = 0; axis < 3; ++axis) {
     for (int side = 0; side < 2; ++side) {
+      // The triangle's own bounds inside this face: every vertex is inside by at least
+      // delta, far more than the rounding of the points earlier planes made (a few ulps of
+      // m), so the test below would find all inside: skipped without it.
+      if (side == 0 ? tri.min[axis] >= box.min[axis] : tri.max[axis] <= box.max[axis]) continue;
       const double plane = side == 0 ? double(box.min[axis]) - delta : double(box.max[axis]) + delta;
       bool in[10];
       int inside = 0;

@@ -5,7 +5,10 @@
 #include "structures/kd_events.h"
 
 #include <algorithm>
+#include <array>
+#include <utility>
 
+#include "bit_cast.h"
 #include "check.h"
 #include "structures/kd_builder.h"
 #include "structures/kd_clipping.h"
@@ -35,7 +38,53 @@ void merge_fresh(std::vector<Event>& list, size_t kept, const std::vector<Event>
   list.resize(kept + fresh.size());
 }
 
+/// -0 among the bounds of `b`.
+bool has_negative_zero(const Aabb& b) {
+  bool found = false;
+  for (int k = 0; k < 3; ++k)
+    found |= (bit_cast<uint32_t>(b.min[k]) == 0x80000000u) | (bit_cast<uint32_t>(b.max[k]) == 0x80000000u);
+  return found;
+}
+
+/// The radix sort's key: the position's bits made to order as unsigned integers (negative
+/// floats reversed, positive ones above them), then the type: event_less's order.
+uint64_t sort_key(const Event& e) {
+  const uint32_t bits = bit_cast<uint32_t>(e.pos);
+  const uint32_t ordered = bits ^ ((bits & 0x80000000u) ? 0xffffffffu : 0x80000000u);
+  return uint64_t(ordered) << 2 | e.type();
+}
+
 }  // namespace
+
+bool has_negative_zero(const std::vector<Event>& list) {
+  bool found = false;
+  for (const Event& e : list) found |= bit_cast<uint32_t>(e.pos) == 0x80000000u;
+  return found;
+}
+
+void radix_sort_events(std::vector<Event>& list) {
+  // 34 key bits in four digits of 9 bits: 512 buckets, whose write positions stay in the
+  // cache. A digit that is the same for every event (a scene's high position bits often
+  // are) is skipped.
+  constexpr int kDigitBits = 9, kDigits = 4;
+  constexpr size_t kBuckets = size_t(1) << kDigitBits;
+  const size_t n = list.size();
+  std::vector<std::array<size_t, kBuckets>> counts(kDigits);
+  for (auto& c : counts) c.fill(0);
+  for (const Event& e : list) {
+    const uint64_t key = sort_key(e);
+    for (int d = 0; d < kDigits; ++d) ++counts[d][(key >> (d * kDigitBits)) & (kBuckets - 1)];
+  }
+  std::vector<Event> other(n);
+  for (int d = 0; d < kDigits; ++d) {
+    std::array<size_t, kBuckets>& c = counts[d];
+    if (std::find(c.begin(), c.end(), n) != c.end()) continue;  // one bucket holds them all
+    size_t at = 0;
+    for (size_t& bucket : c) at += std::exchange(bucket, at);
+    for (const Event& e : list) other[c[(sort_key(e) >> (d * kDigitBits)) & (kBuckets - 1)]++] = e;
+    list.swap(other);
+  }
+}
 
 void classify(DistributeScratch& ws, const EventLists& events, const SplitChoice& s) {
   uint8_t* side = ws.side.data();
@@ -91,9 +140,9 @@ void distribute(const Scene& scene, bool clip, DistributeScratch& ws, const Even
     Aabb b;
     if (clip) {
       const bool in_left = clip_triangle_bounds(scene, prim, box_l, &b);
-      if (in_left) add_events(new_left, prim, b), ++nl;
+      if (in_left) add_events(new_left, prim, b), ++nl, ws.clipped_negative_zero |= has_negative_zero(b);
       const bool in_right = clip_triangle_bounds(scene, prim, box_r, &b);
-      if (in_right) add_events(new_right, prim, b), ++nr;
+      if (in_right) add_events(new_right, prim, b), ++nr, ws.clipped_negative_zero |= has_negative_zero(b);
       if constexpr (Sink::kRecords) ws.both += in_left && in_right;
     } else {
       const Aabb& tri = scene.triangle_bounds(prim);
@@ -101,6 +150,7 @@ void distribute(const Scene& scene, bool clip, DistributeScratch& ws, const Even
         b.min = glm::max(tri.min, child->min);
         b.max = glm::min(tri.max, child->max);
         add_events(child == &box_l ? new_left : new_right, prim, b);
+        ws.clipped_negative_zero |= has_negative_zero(b);
       }
       ++nl, ++nr;
       if constexpr (Sink::kRecords) ++ws.both;

@@ -45,6 +45,17 @@ struct EventLess {
   bool operator()(const Event& a, const Event& b) const { return event_less(a, b); }
 };
 
+/// True when some event lies at -0: only then can the order a sort leaves tied events in
+/// show in the tree (the first event of a position gives the split its bits, and -0 and +0
+/// are one position). Without one, tied events are equal in everything the build reads.
+bool has_negative_zero(const std::vector<Event>& list);
+
+/// Sorts `list` by event_less, stably: an LSD radix sort on the position's bits and the
+/// type, ~10x std::sort's speed on the root's lists of millions of events. Its tie order is
+/// not std::sort's, so the builder uses it only where no tie can show (has_negative_zero()).
+/// Takes a second buffer of the list's size while it runs.
+void radix_sort_events(std::vector<Event>& list);
+
 /// The events of one node: per axis, sorted by event_less.
 struct EventLists {
   std::vector<Event> axis[3];
@@ -110,6 +121,9 @@ struct DistributeScratch {
   EventLists fresh[2];               ///< events of re-clipped straddlers, per side
   EventPool pool;
   size_t both = 0;  ///< recorded builds: triangles stored in both children (after clipping)
+  /// A straddler's clipped bounds had a -0 (a bound rounded up from within 2^-150 below 0):
+  /// a build whose root lists were radix sorted must then be made again with std::sort.
+  bool clipped_negative_zero = false;
 };
 
 /// The children's events and triangle counts (after clipping).
