@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cmath>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -375,6 +376,13 @@ TEST(KdBuildTrace, TiedEventsKeepTheTreeWhateverTheRootsSort) {
         tri(Vec3(x + 1, y, zero), Vec3(x + 1, y + 1, zero), Vec3(x, y + 1, zero));
         if ((i + j) % 3 == 0) tri(Vec3(x, y, zero), Vec3(x, y + 1, 1.0f), Vec3(x, y + 2, 2.0f));
       }
+    }
+    // Large triangles on integer coordinates, crossing each other's planes: thousands of
+    // re-clipped straddlers, whose events are merged into the lists the root's sort ordered.
+    std::mt19937 rng(5);
+    for (int i = 0; i < 3000; ++i) {
+      const Vec3 a(float(rng() % 20), float(rng() % 20), float(rng() % 20));
+      tri(a, a + Vec3(float(rng() % 10), float(rng() % 10), 0.0f), a + Vec3(0.0f, float(rng() % 10), 9.0f));
     }
     const Scene scene(std::move(p), std::move(t), "grid");
     for (bool clip : {true, false}) {
