@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Prints `accelviz-cli stats` for every BVH builder (from `accelviz-cli params`), both
-# hierarchies, binary and collapsed, on dragon, crytek_sponza and stadium, timings left out:
-# run before and after a change to the builders and diff the two files.
+# hierarchies, binary and collapsed, on dragon, crytek_sponza and stadium, timings left out
+# and every tree's digest in (stats --digest: equal digests, the same tree): run before and
+# after a change to the builders and diff the two files.
 #   bench/same_trees.sh CLI > FILE
 set -euo pipefail
 cli=${1:?usage: same_trees.sh ACCELVIZ_CLI}
@@ -15,7 +16,8 @@ for scene in "$shared/dragon.obj" "$shared/crytek_sponza.obj" procedural:stadium
         params=(--param builder=$builder)
         [ "$structure" = bvh ] && params+=(--param width=$width)
         echo "== $(basename "$scene") $structure builder=$builder width=$width"
-        "$cli" stats --scene "$scene" --structure $structure "${params[@]}" | grep -v -E '^(load_ms|build_ms|refit_ms|scene):'
+        "$cli" stats --scene "$scene" --structure $structure "${params[@]}" --digest |
+          grep -v -E '^(load_ms|build_ms|refit_ms|scene):'
       done
     done
   done

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "bit_cast.h"
 #include "parallel.h"
 
 namespace accel {
@@ -60,6 +61,33 @@ BuildStats Structure::build_stats() const {
   s.build_ms = build_ms_;
   s.refit_ms = refit_ms_;
   return s;
+}
+
+uint64_t structure_digest(const Structure& structure) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  const auto mix = [&h](const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  };
+  const auto mix_value = [&mix](auto v) { mix(&v, sizeof v); };
+  structure.for_each_node([&](const NodeView& n) {
+    mix_value(n.id);
+    mix_value(int32_t(n.depth));
+    mix_value(uint8_t(n.leaf));
+    mix_value(n.prim_count);
+    for (int k = 0; k < 3; ++k) {
+      mix_value(bit_cast<uint32_t>(n.box.min[k]));
+      mix_value(bit_cast<uint32_t>(n.box.max[k]));
+      mix_value(bit_cast<uint32_t>(n.sphere.center[k]));
+    }
+    mix_value(bit_cast<uint32_t>(n.sphere.radius));
+    mix_value(int32_t(n.split_axis));
+    mix_value(bit_cast<uint32_t>(n.split_pos));
+    for (NodeId child : structure.node_children(n.id)) mix_value(child);
+    if (n.leaf)
+      for (uint32_t prim : structure.node_prims(n.id)) mix_value(prim);
+  });
+  return h;
 }
 
 }  // namespace accel

@@ -225,4 +225,10 @@ inline Hit finish_query(const Hit& closest, Sink& sink) {
   return result;
 }
 
+/// A 64-bit FNV-1a digest of what the structure's views show: every node in id order (its
+/// id, depth, kind, box and sphere bits, split plane, children) and every leaf's triangles in
+/// their stored order. Equal digests mean the same structure for all that can be seen of it;
+/// `accelviz-cli stats --digest` prints it, to check that a faster build makes the same tree.
+uint64_t structure_digest(const Structure& structure);
+
 }  // namespace accel

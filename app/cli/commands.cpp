@@ -118,6 +118,11 @@ int run_stats(const StatsOptions& o) {
   if (!built) return fail(built.error().message);
   const Built& b = *built.value();
   accel::BuildStats stats = b.structure->build_stats();
+  if (o.digest) {  // of the tree as built: the refit below may change its boxes
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(accel::structure_digest(*b.structure)));
+    stats.extra.push_back({"digest", hex});
+  }
   QueryReport q;
   if (!o.rays.empty()) {
     auto rays = read_rays_input(o.rays, b.scene);

@@ -34,6 +34,7 @@ struct StatsOptions {
   int threads = 0;
   std::string build_trace;       ///< optional: also record the construction steps to this JSON-lines file
   int build_trace_budget_mb = 512;  ///< memory for the recorded steps (deeper levels are dropped beyond it)
+  bool digest = false;  ///< also print structure_digest() of the tree as built (before any refit)
 };
 
 struct BenchOptions {

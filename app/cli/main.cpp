@@ -123,6 +123,9 @@ CLI::App* add_stats_command(CLI::App& app, cli::StatsOptions* o) {
       ->check(CLI::Range(0, 1024));
   cmd->add_option("--build-trace", o->build_trace,
                   "also record the construction step by step and write it as JSON lines (docs/build-trace.md)");
+  cmd->add_flag("--digest", o->digest,
+               "also print a digest of the structure (every node and leaf as the views show them): equal "
+               "digests, the same tree");
   cmd->add_option("--build-trace-budget", o->build_trace_budget_mb,
                   "MB of recorded steps; a bigger build is recorded to the depth that fits")
       ->check(CLI::Range(1, 65536))

@@ -562,9 +562,12 @@ Result<KdTreeData> KdBuilder::run(BuildRecorder* recorder) {
   // leaves tied events in can show in the tree only through a -0 (kd_events.h); with none,
   // the radix sort gives the same tree ten times faster. A -0 that clipping makes further
   // down is caught there, and the build made again with std::sort (below). A recorded build
-  // takes std::sort: its steps are recorded as it goes, so it is never made again.
-  const bool radix = !std_sort_ && !recorder && !has_negative_zero(root.events.axis[0]) &&
-                     !has_negative_zero(root.events.axis[1]) && !has_negative_zero(root.events.axis[2]);
+  // takes std::sort: its steps are recorded as it goes, so it is never made again. So does a
+  // root too large for the radix sort's second buffers (a list's size each, two lists at a
+  // time) to fit the event budget beside the lists.
+  const bool radix = !std_sort_ && !recorder && 10 * prims.size() <= o_.event_limit &&
+                     !has_negative_zero(root.events.axis[0]) && !has_negative_zero(root.events.axis[1]) &&
+                     !has_negative_zero(root.events.axis[2]);
   auto sort_axis = [&root, radix](int k) {
     std::vector<Event>& list = root.events.axis[k];
     if (radix)

@@ -6,6 +6,7 @@ import csv
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -487,6 +488,29 @@ def test_build_trace(cli, source, work):
                out=os.path.join(work, "t.jsonl"))
 
 
+def test_digest(cli, source):
+    """stats --digest: one 16-hex-digit line, the same for the same build (text and JSON alike),
+    another for another tree (the kd-tree's middle split against its SAH)."""
+    obj = os.path.join(source, "scenes", "steps.obj")
+
+    def digest(structure, *extra):
+        code, stdout, err = run(cli, "stats", "--scene", obj, "--structure", structure, "--digest", *extra)
+        check(code == 0, f"stats --digest {structure} {extra}: exit {code}, {err!r}")
+        if "--json" in extra:
+            return json.loads(stdout)["extra"].get("digest") if code == 0 else None
+        lines = [l for l in stdout.splitlines() if l.startswith("digest: ")]
+        check(len(lines) == 1, f"stats --digest {structure}: {len(lines)} digest lines")
+        return lines[0].split(": ", 1)[1] if lines else None
+
+    for structure in ["brute", "grid", "octree", "kdtree", "bvh", "spheretree"]:
+        first = digest(structure)
+        check(first is not None and re.fullmatch(r"[0-9a-f]{16}", first) is not None,
+              f"{structure}: digest {first!r}")
+        check(digest(structure) == first, f"{structure}: two builds, two digests")
+        check(digest(structure, "--json") == first, f"{structure}: the JSON digest differs from the text one")
+    check(digest("kdtree", "--param", "split=middle") != digest("kdtree"), "kdtree: middle and sah, one digest")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cli", required=True)
@@ -501,6 +525,7 @@ def main():
     test_trace_2d(a.cli, a.work)
     test_bench(a.cli, a.work)
     test_build_trace(a.cli, a.source, a.work)
+    test_digest(a.cli, a.source)
     print(f"{'FAILED' if FAILURES else 'OK'}: {len(FAILURES)} failures")
     return 1 if FAILURES else 0
 
