@@ -41,8 +41,10 @@ void merge_fresh(std::vector<Event>& list, size_t kept, const std::vector<Event>
 /// -0 among the bounds of `b`.
 bool has_negative_zero(const Aabb& b) {
   bool found = false;
-  for (int k = 0; k < 3; ++k)
-    found |= (bit_cast<uint32_t>(b.min[k]) == 0x80000000u) | (bit_cast<uint32_t>(b.max[k]) == 0x80000000u);
+  for (int k = 0; k < 3; ++k) {
+    found |= bit_cast<uint32_t>(b.min[k]) == 0x80000000u;
+    found |= bit_cast<uint32_t>(b.max[k]) == 0x80000000u;
+  }
   return found;
 }
 
