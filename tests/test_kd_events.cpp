@@ -1,6 +1,6 @@
 // The kd-tree builder's parts that must not change the tree: the root's radix sort against
 // std::stable_sort, the test that decides where it may run, and the ulp steps of the
-// clipping's outward rounding against std::nextafter.
+// clipping's outward rounding (float_steps.h, the SBVH's as well) against std::nextafter.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "structures/kd_clipping.h"
+#include "float_steps.h"
 #include "structures/kd_events.h"
 
 namespace accel::kd {
@@ -50,7 +50,7 @@ TEST(KdEvents, NegativeZeroIsFoundAndPositiveZeroIsNot) {
   EXPECT_TRUE(has_negative_zero(events));
 }
 
-TEST(KdClipping, FloatStepsAreNextafter) {
+TEST(FloatSteps, StepsAreNextafter) {
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<float> values = {0.0f, -0.0f, 1.0f, -1.0f, 1e-45f, -1e-45f, 1.17549435e-38f, -1.17549435e-38f,
                                std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 0.1f, -2.5f};
@@ -61,14 +61,14 @@ TEST(KdClipping, FloatStepsAreNextafter) {
   }
   for (float f : values) {
     if (f != -inf) {
-      EXPECT_EQ(std::bit_cast<uint32_t>(float_below(f)), std::bit_cast<uint32_t>(std::nextafter(f, -inf))) << f;
+      EXPECT_EQ(std::bit_cast<uint32_t>(step_down(f)), std::bit_cast<uint32_t>(std::nextafter(f, -inf))) << f;
     }
     if (f != inf) {
-      EXPECT_EQ(std::bit_cast<uint32_t>(float_above(f)), std::bit_cast<uint32_t>(std::nextafter(f, inf))) << f;
+      EXPECT_EQ(std::bit_cast<uint32_t>(step_up(f)), std::bit_cast<uint32_t>(std::nextafter(f, inf))) << f;
     }
   }
-  EXPECT_EQ(float_below(inf), std::numeric_limits<float>::max());
-  EXPECT_EQ(float_above(-inf), -std::numeric_limits<float>::max());
+  EXPECT_EQ(step_down(inf), std::numeric_limits<float>::max());
+  EXPECT_EQ(step_up(-inf), -std::numeric_limits<float>::max());
 }
 
 }  // namespace

@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "bit_cast.h"
+#include "float_steps.h"
 #include "check.h"
 #include "parallel.h"
 #include "structures/bvh_binned_detail.h"
@@ -54,25 +55,6 @@
 
 namespace accel {
 namespace {
-
-/// The next float towards -inf / +inf of a finite f (std::nextafter without the library
-/// call, which was a twentieth of the build).
-inline float step_down(float f) {
-  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
-  const uint32_t bits = accel::bit_cast<uint32_t>(f);
-  return accel::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
-}
-inline float step_up(float f) { return -step_down(-f); }
-
-/// The largest float <= d and the smallest float >= d (d finite, within float range).
-inline float float_down(double d) {
-  const float f = float(d);
-  return double(f) > d ? step_down(f) : f;
-}
-inline float float_up(double d) {
-  const float f = float(d);
-  return double(f) < d ? step_up(f) : f;
-}
 
 /// Intersects `b` with `box` in place; false when the result is empty.
 inline bool clip_to(Aabb& b, const Aabb& box) {

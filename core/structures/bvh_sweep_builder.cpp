@@ -16,28 +16,13 @@
 #include <array>
 
 #include "bit_cast.h"
+#include "radix_sort.h"
 #include "structures/bvh_top_down.h"
 
 namespace accel {
 namespace {
 
 using namespace top_down;
-
-/// Sorts `items` stably by their upper 32 bits: an LSD radix sort, three passes of 11 bits.
-/// `scratch` is a buffer.
-void stable_sort_by_upper_half(std::vector<uint64_t>& items, std::vector<uint64_t>& scratch) {
-  constexpr int kDigitBits = 11;
-  constexpr uint64_t kDigitMask = (1u << kDigitBits) - 1;
-  scratch.resize(items.size());
-  for (int shift = 32; shift < 64; shift += kDigitBits) {
-    std::array<size_t, kDigitMask + 1> start{};
-    for (uint64_t v : items) ++start[(v >> shift) & kDigitMask];
-    size_t sum = 0;
-    for (size_t& s : start) sum += std::exchange(s, sum);
-    for (uint64_t v : items) scratch[start[(v >> shift) & kDigitMask]++] = v;
-    items.swap(scratch);
-  }
-}
 
 /// A reference in a sorted axis list of the SAH sweep: its box inline (the sweeps read the
 /// lists front to back instead of gathering from PrimRef), the triangle index in the spare
@@ -126,7 +111,7 @@ class SweepSplitter : public RefRangeSplitter<SweepSplitter<Sink>, Sink> {
         const uint32_t ordered = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
         keys[i] = (uint64_t(ordered) << 32) | uint64_t(i);
       }
-      stable_sort_by_upper_half(keys, scratch);
+      radix_sort_stable<32, 11>(keys, scratch, [](uint64_t v) { return v >> 32; });
       std::vector<SweepRef>& list = lists_[axis];
       list.resize(total_);
       par::parallel_for(size_t(0), total_, [&](size_t i) {

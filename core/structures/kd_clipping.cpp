@@ -6,41 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <limits>
 #include <utility>
 
-#include "bit_cast.h"
+#include "float_steps.h"
 
 namespace accel::kd {
-namespace {
-
-/// Largest float <= x.
-float round_down(double x) {
-  const float f = float(x);
-  return double(f) > x ? float_below(f) : f;
-}
-/// Smallest float >= x.
-float round_up(double x) {
-  const float f = float(x);
-  return double(f) < x ? float_above(f) : f;
-}
-
-}  // namespace
-
-// A float's bits, read as an integer, step by one ulp away from zero when incremented and
-// toward it when decremented (one step from an infinity toward zero is the largest finite
-// float); +0 and -0 step to the smallest denormal of the direction's sign.
-float float_below(float f) {
-  const int32_t bits = bit_cast<int32_t>(f);
-  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
-  return bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
-}
-float float_above(float f) {
-  const int32_t bits = bit_cast<int32_t>(f);
-  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
-  return bit_cast<float>(f < 0.0f ? bits - 1 : bits + 1);
-}
 
 bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aabb* out) {
   const Aabb& tri = scene.triangle_bounds(prim);
@@ -106,8 +76,8 @@ bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aa
   }
   Aabb b;
   for (int k = 0; k < 3; ++k) {
-    b.min[k] = std::max(round_down(lo[k] - delta), cut.min[k]);
-    b.max[k] = std::min(round_up(hi[k] + delta), cut.max[k]);
+    b.min[k] = std::max(float_down(lo[k] - delta), cut.min[k]);
+    b.max[k] = std::min(float_up(hi[k] + delta), cut.max[k]);
   }
   if (b.empty()) return false;  // the enlarged clip lies outside the exact bounds: a miss
   *out = b;

@@ -19,10 +19,4 @@ namespace accel::kd {
 /// Returns false only when the triangle certainly misses the box.
 bool clip_triangle_bounds(const Scene& scene, uint32_t prim, const Aabb& box, Aabb* out);
 
-/// The next float below `f`: std::nextafter(f, -inf) for every float but NaN and -inf,
-/// without its library call (1% of a large build).
-float float_below(float f);
-/// The next float above `f`: std::nextafter(f, +inf) for every float but NaN and +inf.
-float float_above(float f);
-
 }  // namespace accel::kd

@@ -5,11 +5,9 @@
 #include "structures/kd_events.h"
 
 #include <algorithm>
-#include <array>
-#include <utility>
-
 #include "bit_cast.h"
 #include "check.h"
+#include "radix_sort.h"
 #include "structures/kd_builder.h"
 #include "structures/kd_clipping.h"
 
@@ -38,12 +36,15 @@ void merge_fresh(std::vector<Event>& list, size_t kept, const std::vector<Event>
   list.resize(kept + fresh.size());
 }
 
+/// -0, which compares equal to +0.
+bool is_negative_zero(float f) { return bit_cast<uint32_t>(f) == 0x80000000u; }
+
 /// -0 among the bounds of `b`.
 bool has_negative_zero(const Aabb& b) {
   bool found = false;
   for (int k = 0; k < 3; ++k) {
-    found |= bit_cast<uint32_t>(b.min[k]) == 0x80000000u;
-    found |= bit_cast<uint32_t>(b.max[k]) == 0x80000000u;
+    found |= is_negative_zero(b.min[k]);
+    found |= is_negative_zero(b.max[k]);
   }
   return found;
 }
@@ -60,32 +61,14 @@ uint64_t sort_key(const Event& e) {
 
 bool has_negative_zero(const std::vector<Event>& list) {
   bool found = false;
-  for (const Event& e : list) found |= bit_cast<uint32_t>(e.pos) == 0x80000000u;
+  for (const Event& e : list) found |= is_negative_zero(e.pos);
   return found;
 }
 
 void radix_sort_events(std::vector<Event>& list) {
-  // 34 key bits in four digits of 9 bits: 512 buckets, whose write positions stay in the
-  // cache. A digit that is the same for every event (a scene's high position bits often
-  // are) is skipped.
-  constexpr int kDigitBits = 9, kDigits = 4;
-  constexpr size_t kBuckets = size_t(1) << kDigitBits;
-  const size_t n = list.size();
-  std::vector<std::array<size_t, kBuckets>> counts(kDigits);
-  for (auto& c : counts) c.fill(0);
-  for (const Event& e : list) {
-    const uint64_t key = sort_key(e);
-    for (int d = 0; d < kDigits; ++d) ++counts[d][(key >> (d * kDigitBits)) & (kBuckets - 1)];
-  }
-  std::vector<Event> other(n);
-  for (int d = 0; d < kDigits; ++d) {
-    std::array<size_t, kBuckets>& c = counts[d];
-    if (std::find(c.begin(), c.end(), n) != c.end()) continue;  // one bucket holds them all
-    size_t at = 0;
-    for (size_t& bucket : c) at += std::exchange(bucket, at);
-    for (const Event& e : list) other[c[(sort_key(e) >> (d * kDigitBits)) & (kBuckets - 1)]++] = e;
-    list.swap(other);
-  }
+  // 34 key bits in four digits of 9 bits: 512 buckets, whose write positions stay in the cache.
+  std::vector<Event> scratch;
+  radix_sort_stable<34, 9>(list, scratch, sort_key);
 }
 
 void classify(DistributeScratch& ws, const EventLists& events, const SplitChoice& s) {
